@@ -1,0 +1,240 @@
+/* Energy balance of one impact (MODEL.md §7, Eqs. 39-41): u_max, unloading, e; the
+ * critical velocity; repeated impacts carry the rods' state; the truncation depth. */
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+void ct_impact_opts_default(ct_impact_opts *opts)
+{
+    opts->rule = CT_QUAD_BREAKPOINTS;
+    opts->nodes = 64;
+    opts->tolerance = 1e-14;
+}
+
+int ct_critical_energy(ct_bundle *b, double *energy, double *u_yield)
+{
+    double u0 = ct_bundle_first_contact(b), uy = ct_bundle_first_yield(b);
+    if (!isfinite(u0) || !isfinite(uy))
+        return ct_error_set(CT_EINVAL, "critical energy: the bundle holds no rod");
+    *u_yield = uy;
+    *energy = ct_bundle_work(b, u0, uy);
+    return CT_OK;
+}
+
+static double force_at(double u, void *ctx)
+{
+    return ct_bundle_force((ct_bundle *)ctx, u);
+}
+
+int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max)
+{
+    const ct_params *p = ct_bundle_params(b);
+    double u0 = ct_bundle_first_contact(b);
+    if (!isfinite(W) || W < 0.0)
+        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and >= 0", W);
+    if (!(tolerance > 0.0 && tolerance < 1.0))
+        return ct_error_set(CT_EINVAL, "tolerance = %g: must satisfy 0 < tolerance < 1",
+                            tolerance);
+    if (!isfinite(u0))
+        return ct_error_set(CT_EINVAL, "u_max: the bundle holds no rod");
+    if (W == 0.0) {
+        *u_max = u0;
+        return CT_OK;
+    }
+    if (!(u0 < p->Hstar))
+        return ct_error_set(CT_ERANGE, "first contact at u = %g is not above H* = %g", u0,
+                            p->Hstar);
+    double W_crushed = ct_bundle_work(b, u0, p->Hstar);
+    if (!(W < W_crushed))
+        return ct_error_set(CT_ERANGE,
+                            "impact energy %.6g reaches u_max >= H* = %g (the layer would be "
+                            "crushed, strains >= 1): outside the model; lower V* or raise H",
+                            W, p->Hstar);
+
+    double *pts;
+    size_t n;
+    int st = ct_bundle_breakpoints(b, u0, p->Hstar, &pts, &n);
+    if (st)
+        return st;
+    /* W(u) is convex and piecewise quadratic with knots at the breakpoints: bisect for the
+     * piece holding the target, then solve that quadratic exactly. */
+    size_t lo = 0, hi = n - 1; /* W(pts[lo]) <= W < W(pts[hi]) */
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (ct_bundle_work(b, u0, pts[mid]) <= W)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double a = pts[lo], c = pts[hi];
+    free(pts);
+    double Wa = ct_bundle_work(b, u0, a);
+    double Pa = ct_bundle_force(b, a), Pc = ct_bundle_force(b, c);
+    double slope = (Pc - Pa) / (c - a);
+    double R = W - Wa;
+    double disc = Pa * Pa + 2.0 * slope * R;
+    double denom = Pa + sqrt(disc > 0.0 ? disc : 0.0);
+    double u = denom > 0.0 ? a + 2.0 * R / denom : c;
+    if (u > c)
+        u = c;
+    if (u < a)
+        u = a;
+    /* One Newton step against the summed closed form mops up rounding in slope. */
+    for (int it = 0; it < 3; it++) {
+        double r = ct_bundle_work(b, u0, u) - W;
+        if (fabs(r) <= tolerance * W)
+            break;
+        double P = ct_bundle_force(b, u);
+        if (!(P > 0.0))
+            break;
+        double next = u - r / P;
+        u = next < a ? a : next > c ? c : next;
+    }
+    double resid = fabs(ct_bundle_work(b, u0, u) - W);
+    if (!(resid <= tolerance * W))
+        return ct_error_set(CT_ENOCONV,
+                            "u_max solve: |W(u) - W| / W = %.3g after the exact piece and Newton "
+                            "steps, above the tolerance %.3g",
+                            resid / W, tolerance);
+    *u_max = u;
+    return CT_OK;
+}
+
+static int energy_quadrature(ct_bundle *b, double lo, double hi, const ct_impact_opts *opts,
+                             double *result)
+{
+    double *pts = NULL, abserr;
+    size_t n = 0;
+    int st;
+    if (opts->rule == CT_QUAD_BREAKPOINTS && (st = ct_bundle_breakpoints(b, lo, hi, &pts, &n)))
+        return st;
+    st = ct_integrate(force_at, b, lo, hi, opts->rule, opts->nodes, pts, n, result, &abserr);
+    free(pts);
+    return st;
+}
+
+int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_result *res)
+{
+    ct_impact_opts defaults;
+    if (!opts) {
+        ct_impact_opts_default(&defaults);
+        opts = &defaults;
+    }
+    int st;
+    double scale = ct_energy_scale(ct_bundle_params(b));
+    double W_crit, u_yield;
+    if (!isfinite(W) || !(W > 0.0))
+        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and > 0", W);
+    if ((st = ct_critical_energy(b, &W_crit, &u_yield)))
+        return st;
+    res->kinetic_energy = W;
+    res->V_star = sqrt(W / scale);
+    res->V_star_crit = sqrt(W_crit / scale);
+    res->u_contact = ct_bundle_first_contact(b);
+    if ((st = ct_solve_umax(b, W, opts->tolerance, &res->u_max)))
+        return st;
+    if ((st = energy_quadrature(b, res->u_contact, res->u_max, opts, &res->W_load)))
+        return st;
+    res->W_load_closed = ct_bundle_work(b, res->u_contact, res->u_max);
+
+    if (W <= W_crit) {
+        /* No rod yields: the state is unchanged and every joule comes back (e = 1 exactly). */
+        res->elastic = 1;
+        res->u_release = res->u_contact;
+        res->W_unload = res->W_load;
+        res->W_unload_closed = res->W_load_closed;
+        res->e = res->e_closed = 1.0;
+        res->quad_error = 0.0;
+        return CT_OK;
+    }
+    res->elastic = 0;
+    ct_bundle_advance(b, res->u_max);
+    res->u_release = ct_bundle_first_contact(b);
+    if ((st = energy_quadrature(b, res->u_release, res->u_max, opts, &res->W_unload)))
+        return st;
+    res->W_unload_closed = ct_bundle_elastic_energy(b, res->u_max); /* Eq. 40 in closed form */
+    if (!(res->W_load > 0.0) || !(res->W_unload >= 0.0))
+        return ct_error_set(CT_ENOCONV,
+                            "%s quadrature gave W_load = %g, W_unload = %g: not a valid "
+                            "energy pair",
+                            ct_quad_rule_name(opts->rule), res->W_load, res->W_unload);
+    res->e = sqrt(res->W_unload / res->W_load); /* Eq. 41, the right way up */
+    res->e_closed = sqrt(res->W_unload_closed / res->W_load_closed);
+    res->quad_error = fabs(res->e - res->e_closed);
+    return CT_OK;
+}
+
+/* Bound on |P_N(u) - P_inf(u)| for any common history: the force of a rod is Lipschitz in
+ * its top depth h with constant E H* / (H* - h0)^2 (strain and plastic strain both vary as
+ * (u - H*)/(H* - h)^2), each difference is also at most E eps_y, and the tip lumps area l_N
+ * of tops in [0, h_N]. */
+static double force_bound(const ct_params *p, long N)
+{
+    double lN = ct_stage_length(p, (double)N), hN = ct_stage_depth(p, (double)N);
+    double eps_y = p->sigma_y / p->E, gap = p->Hstar - p->h0;
+    double lip = hN * p->Hstar / (gap * gap);
+    return p->E * lN * (lip < eps_y ? lip : eps_y);
+}
+
+static int depth_bound(const ct_params *p, long N, double W_min, double *bound)
+{
+    ct_bundle *b;
+    double u;
+    int st = ct_bundle_alloc(&b, p, CT_REP_STAGES, N, INFINITY);
+    if (st)
+        return st;
+    /* The truncated surface is softer than the fractal on a virgin loading, so its u_max is
+     * an upper bound of the fractal's: the energy bound below is safe. */
+    st = ct_solve_umax(b, W_min, 1e-12, &u);
+    if (!st) {
+        double dP = force_bound(p, N), P = ct_bundle_force(b, u);
+        double rel_W = dP * u / W_min, rel_P = P > 0.0 ? dP / P : INFINITY;
+        *bound = rel_W > rel_P ? rel_W : rel_P;
+    }
+    ct_bundle_free(b);
+    return st;
+}
+
+int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound)
+{
+    int st;
+    if ((st = ct_params_validate(p)))
+        return st;
+    if (!(tol > 0.0 && tol < 1.0))
+        return ct_error_set(CT_EINVAL, "depth tolerance = %g: must satisfy 0 < tol < 1", tol);
+    if (!isfinite(W_min) || !(W_min > 0.0))
+        return ct_error_set(CT_EINVAL, "depth auto: impact energy %g must be finite and > 0",
+                            W_min);
+    long hi = 1;
+    double b_hi;
+    for (;;) {
+        if ((st = depth_bound(p, hi, W_min, &b_hi)))
+            return st;
+        if (b_hi <= tol)
+            break;
+        if (hi >= CT_MAX_STAGES_DEPTH / 2)
+            return ct_error_set(CT_ENOCONV,
+                                "depth auto: even %ld stages leave a truncation bound of %.3g "
+                                "> tolerance %.3g (fx, fz too close to 1); raise the tolerance "
+                                "or give a depth",
+                                hi, b_hi, tol);
+        hi *= 2;
+    }
+    long lo = hi / 2; /* bound(lo) > tol or lo = 0 */
+    while (hi - lo > 1) {
+        long mid = lo + (hi - lo) / 2;
+        double b_mid;
+        if ((st = depth_bound(p, mid, W_min, &b_mid)))
+            return st;
+        if (b_mid <= tol) {
+            hi = mid;
+            b_hi = b_mid;
+        } else {
+            lo = mid;
+        }
+    }
+    *depth = hi;
+    *bound = b_hi;
+    return CT_OK;
+}

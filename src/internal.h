@@ -1,0 +1,18 @@
+/* Internal helpers shared by the library's modules. */
+#ifndef CT_INTERNAL_H
+#define CT_INTERNAL_H
+
+#include "cantact.h"
+
+#if defined(__GNUC__)
+#define CT_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define CT_PRINTF(a, b)
+#endif
+
+/* Records a detailed message for the calling thread and returns status, so that
+ * "return ct_error_set(CT_EINVAL, ...)" reads naturally. Every error goes through here:
+ * a breakpoint on it catches them all. */
+int ct_error_set(int status, const char *fmt, ...) CT_PRINTF(2, 3);
+
+#endif
