@@ -138,8 +138,7 @@ int ct_set_threads(int threads);
 
 /* Breakpoints of P(u) in [lo, hi], sorted and distinct, in a malloc'ed array the caller
  * frees. The ends lo and hi are included. */
-int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **points,
-                          size_t *count);
+int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **points, size_t *count);
 
 /* ---- quadrature ------------------------------------------------------------------ */
 
@@ -212,16 +211,16 @@ enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
 
 typedef struct {
     ct_params params;
-    long depth;         /* >= 0, or -1 for auto */
+    long depth; /* >= 0, or -1 for auto */
     ct_representation representation;
-    double *V_star;     /* velocities, dimensionless, in input order */
+    double *V_star; /* velocities, dimensionless, in input order */
     size_t nvel;
-    long impacts;       /* impacts per velocity, >= 1 */
+    long impacts; /* impacts per velocity, >= 1 */
     ct_impact_opts opts;
     double depth_tolerance; /* relative tolerance of depth auto */
-    int threads;        /* 0: OpenMP default */
-    char *output;       /* CSV path, "-" for stdout */
-    unsigned what;      /* CT_OUT_* bits */
+    int threads;            /* 0: OpenMP default */
+    char *output;           /* CSV path, "-" for stdout */
+    unsigned what;          /* CT_OUT_* bits */
 } ct_scene;
 
 /* Reads a scene file, then applies overrides "section.key=value"; on error returns

@@ -24,11 +24,11 @@
 struct ct_bundle {
     ct_params params;
     ct_representation rep;
-    long depth;        /* prefractal depth N */
-    long first_stage;  /* stages below this were left out (never touched) */
-    size_t first_rod;  /* global index of rod 0 (segments: 2^first_stage - 1) */
-    size_t n;          /* rods held */
-    size_t omitted;    /* rods left out */
+    long depth;       /* prefractal depth N */
+    long first_stage; /* stages below this were left out (never touched) */
+    size_t first_rod; /* global index of rod 0 (segments: 2^first_stage - 1) */
+    size_t n;         /* rods held */
+    size_t omitted;   /* rods left out */
     double E, eps_y;
     double *top, *length, *area, *plastic_strain;
     size_t nblocks;
@@ -176,8 +176,9 @@ int ct_bundle_alloc(ct_bundle **out, const ct_params *p, ct_representation rep, 
             double top = ct_stage_depth(p, (double)i);
             double length = p->Hstar - top;
             /* middles carry s_i / 2^i, the tips l_N / 2^N */
-            double area = (i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i)) *
-                          ldexp(1.0, (int)-i);
+            double area =
+                (i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i)) *
+                ldexp(1.0, (int)-i);
             /* first touch in parallel, so pages land where the threads will read them */
 #pragma omp parallel for schedule(static) if (pieces >= CT_PARALLEL_MIN_RODS)
             for (ptrdiff_t j = 0; j < (ptrdiff_t)pieces; j++) {
@@ -267,27 +268,36 @@ int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
 
 enum sum_kind { SUM_FORCE, SUM_WORK, SUM_ELASTIC };
 
+/* Neumaier-compensated sum of one block: 2^i identical pieces of a stage then add up to
+ * what the merged stage rod gives, to a few ulps. */
+#define CT_ADD(term)                                                                               \
+    do {                                                                                           \
+        double x_ = (term), t_ = s + x_;                                                           \
+        c += fabs(s) >= fabs(x_) ? (s - t_) + x_ : (x_ - t_) + s;                                  \
+        s = t_;                                                                                    \
+    } while (0)
+
 static double block_sum(const ct_bundle *b, enum sum_kind kind, double ua, double ub, size_t k0,
                         size_t k1)
 {
     const double *top = b->top, *length = b->length, *area = b->area, *eps_p = b->plastic_strain;
     const double E = b->E, eps_y = b->eps_y;
-    double s = 0.0;
+    double s = 0.0, c = 0.0;
     switch (kind) {
     case SUM_FORCE:
         for (size_t k = k0; k < k1; k++)
-            s += ct_rod_force(ua, top[k], length[k], area[k], eps_p[k], E, eps_y);
+            CT_ADD(ct_rod_force(ua, top[k], length[k], area[k], eps_p[k], E, eps_y));
         break;
     case SUM_WORK:
         for (size_t k = k0; k < k1; k++)
-            s += ct_rod_work(ua, ub, top[k], length[k], area[k], eps_p[k], E, eps_y);
+            CT_ADD(ct_rod_work(ua, ub, top[k], length[k], area[k], eps_p[k], E, eps_y));
         break;
     case SUM_ELASTIC:
         for (size_t k = k0; k < k1; k++)
-            s += ct_rod_elastic_energy(ua, top[k], length[k], area[k], eps_p[k], E, eps_y);
+            CT_ADD(ct_rod_elastic_energy(ua, top[k], length[k], area[k], eps_p[k], E, eps_y));
         break;
     }
-    return s;
+    return s + c;
 }
 
 static double blocked_total(ct_bundle *b, enum sum_kind kind, double ua, double ub)
@@ -364,8 +374,7 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **points,
-                          size_t *count)
+int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **points, size_t *count)
 {
     *points = NULL;
     *count = 0;

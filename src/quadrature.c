@@ -71,8 +71,8 @@ static double gauss3(ct_function f, void *ctx, double a, double b, size_t K)
     double h = (b - a) / (double)panels, s = 0.0;
     for (size_t k = 0; k < panels; k++) {
         double mid = a + ((double)k + 0.5) * h, half = 0.5 * h;
-        s += half * (5.0 * f(mid - half * x, ctx) + 8.0 * f(mid, ctx) +
-                     5.0 * f(mid + half * x, ctx)) /
+        s += half *
+             (5.0 * f(mid - half * x, ctx) + 8.0 * f(mid, ctx) + 5.0 * f(mid + half * x, ctx)) /
              9.0;
     }
     return s;
@@ -95,8 +95,7 @@ static size_t usable_nodes(ct_quad_rule rule, size_t K)
     }
 }
 
-static double composite(ct_function f, void *ctx, double a, double b, ct_quad_rule rule,
-                        size_t K)
+static double composite(ct_function f, void *ctx, double a, double b, ct_quad_rule rule, size_t K)
 {
     switch (rule) {
     case CT_QUAD_TRAPEZOID:

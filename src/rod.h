@@ -54,8 +54,8 @@ static inline double ct_rod_work_density(double d, double eps_y)
 /* Returns the work [energy] of the rod's force at its current state from u_a to u_b: the
  * work done when loading from u_a to u_b if u_a is at or below the rod's contact point,
  * W = E s L eps^2/2 (elastic) or E s L (eps_y eps - eps_y^2/2) (yielded) from virgin. */
-static inline double ct_rod_work(double u_a, double u_b, double top, double length,
-                                 double area, double plastic_strain, double E, double eps_y)
+static inline double ct_rod_work(double u_a, double u_b, double top, double length, double area,
+                                 double plastic_strain, double E, double eps_y)
 {
     double da = ct_rod_elastic_strain(u_a, top, length, plastic_strain);
     double db = ct_rod_elastic_strain(u_b, top, length, plastic_strain);

@@ -17,15 +17,26 @@ typedef struct {
 } key_spec;
 
 static const key_spec known_keys[] = {
-    {"surface", "fx", 1},         {"surface", "fz", 1},         {"surface", "H", 1},
-    {"surface", "h0", 0},         {"surface", "l0", 0},         {"surface", "depth", 0},
+    {"surface", "fx", 1},
+    {"surface", "fz", 1},
+    {"surface", "H", 1},
+    {"surface", "h0", 0},
+    {"surface", "l0", 0},
+    {"surface", "depth", 0},
     {"surface", "representation", 0},
-    {"material", "E", 1},         {"material", "sigma_y", 0},
-    {"impact", "V_star", 0},      {"impact", "mass", 0},        {"impact", "velocity", 0},
+    {"material", "E", 1},
+    {"material", "sigma_y", 0},
+    {"impact", "V_star", 0},
+    {"impact", "mass", 0},
+    {"impact", "velocity", 0},
     {"impact", "impacts", 0},
-    {"solver", "quadrature", 0},  {"solver", "nodes", 0},       {"solver", "tolerance", 0},
-    {"solver", "depth_tolerance", 0},                           {"solver", "threads", 0},
-    {"output", "file", 0},        {"output", "what", 0},
+    {"solver", "quadrature", 0},
+    {"solver", "nodes", 0},
+    {"solver", "tolerance", 0},
+    {"solver", "depth_tolerance", 0},
+    {"solver", "threads", 0},
+    {"output", "file", 0},
+    {"output", "what", 0},
 };
 #define NKEYS (sizeof known_keys / sizeof known_keys[0])
 
@@ -39,6 +50,8 @@ typedef struct {
     const char *name;
     entry entries[NKEYS];
     int line;
+    int section_line; /* line of the latest [section] header */
+    int error_line;   /* line of the handler's first error */
     int status;
     const char *text; /* string reader */
     FILE *file;       /* file reader */
@@ -63,18 +76,24 @@ static int section_known(const char *section)
 static int store(parse_state *s, const char *section, const char *key, const char *value,
                  const char *where)
 {
-    if (!section_known(section))
+    if (!section_known(section)) {
+        if (strcmp(where, "--set"))
+            return ct_error_set(CT_EINVAL,
+                                "%s:%d: [%s]: unknown section (known: surface, material, "
+                                "impact, solver, output)",
+                                s->name, s->section_line, section);
         return ct_error_set(CT_EINVAL,
-                            "%s: [%s]: unknown section (known: surface, material, impact, "
+                            "--set: [%s]: unknown section (known: surface, material, impact, "
                             "solver, output)",
-                            where, section);
+                            section);
+    }
     int k = find_key(section, key);
     if (k < 0)
         return ct_error_set(CT_EINVAL, "%s: %s.%s: unknown key", where, section, key);
     entry *e = &s->entries[k];
     if (e->set && strcmp(where, "--set") && strncmp(e->where, "--set", 5))
-        return ct_error_set(CT_EINVAL, "%s: %s.%s: duplicate key (first set at %s)", where,
-                            section, key, e->where);
+        return ct_error_set(CT_EINVAL, "%s: %s.%s: duplicate key (first set at %s)", where, section,
+                            key, e->where);
     char *copy = strdup(value);
     if (!copy)
         return ct_error_set(CT_ENOMEM, "scene: out of memory");
@@ -89,6 +108,9 @@ static int handler(void *user, const char *section, const char *key, const char 
 {
     parse_state *s = user;
     char where[300];
+    if (s->status != CT_OK)
+        return 0; /* inih goes on after an error; the first one is reported */
+    s->error_line = s->line;
     snprintf(where, sizeof where, "%s:%d", s->name, s->line);
     if (!section[0])
         s->status = ct_error_set(CT_EINVAL, "%s: %s: key outside any section", where, key);
@@ -97,13 +119,23 @@ static int handler(void *user, const char *section, const char *key, const char 
     return s->status == CT_OK;
 }
 
-/* inih reads line by line through these readers; counting here gives every key its line. */
+/* inih reads line by line through these readers; counting here gives every key its line,
+ * and every section header its own. */
+static void note_line(parse_state *s, const char *buf)
+{
+    s->line++;
+    while (isspace((unsigned char)*buf))
+        buf++;
+    if (*buf == '[')
+        s->section_line = s->line;
+}
+
 static char *read_file_line(char *buf, int size, void *stream)
 {
     parse_state *s = stream;
     char *r = fgets(buf, size, s->file);
     if (r)
-        s->line++;
+        note_line(s, buf);
     return r;
 }
 
@@ -120,7 +152,7 @@ static char *read_string_line(char *buf, int size, void *stream)
     memcpy(buf, s->text, (size_t)n);
     buf[n] = '\0';
     s->text += n;
-    s->line++;
+    note_line(s, buf);
     return buf;
 }
 
@@ -238,8 +270,7 @@ static int velocity_list(const entry *e, const char *key, double **out, size_t *
             return ct_error_set(CT_ENOMEM, "scene: out of memory");
         for (long k = 0; k < cnt; k++) {
             double t = cnt == 1 ? 0.0 : (double)k / (double)(cnt - 1);
-            vals[k] = logscale ? from * exp(t * (log(to) - log(from)))
-                               : from + t * (to - from);
+            vals[k] = logscale ? from * exp(t * (log(to) - log(from))) : from + t * (to - from);
         }
         vals[cnt - 1] = to;
         n = (size_t)cnt;
@@ -349,8 +380,8 @@ static int interpret(parse_state *s, ct_scene *sc)
     if (ev && (em || evel))
         return bad(ev, "impact", "V_star", "give either V_star or mass + velocity, not both");
     if (!ev && !(em && evel))
-        return ct_error_set(CT_EINVAL,
-                            "%s: [impact]: needs V_star, or both mass and velocity", s->name);
+        return ct_error_set(CT_EINVAL, "%s: [impact]: needs V_star, or both mass and velocity",
+                            s->name);
     if (ev) {
         if ((st = velocity_list(ev, "V_star", &sc->V_star, &sc->nvel)))
             return st;
@@ -383,7 +414,8 @@ static int interpret(parse_state *s, ct_scene *sc)
                 found = 1;
             }
         if (!found)
-            return bad(e, "solver", "quadrature", "must be breakpoints, trapezoid, simpson or gauss");
+            return bad(e, "solver", "quadrature",
+                       "must be breakpoints, trapezoid, simpson or gauss");
     }
     long nodes = (long)sc->opts.nodes;
     if ((st = integer_key(s, "solver", "nodes", 3, 100000000, "must satisfy 3 <= nodes <= 1e8",
@@ -442,6 +474,17 @@ static int interpret(parse_state *s, ct_scene *sc)
     return CT_OK;
 }
 
+static void trim_copy(char *dst, size_t cap, const char *begin, const char *end)
+{
+    while (begin < end && isspace((unsigned char)*begin))
+        begin++;
+    while (end > begin && isspace((unsigned char)end[-1]))
+        end--;
+    size_t n = (size_t)(end - begin) < cap - 1 ? (size_t)(end - begin) : cap - 1;
+    memcpy(dst, begin, n);
+    dst[n] = '\0';
+}
+
 static int apply_overrides(parse_state *s, const char *const *overrides, size_t n)
 {
     for (size_t k = 0; k < n; k++) {
@@ -449,14 +492,14 @@ static int apply_overrides(parse_state *s, const char *const *overrides, size_t 
         const char *dot = strchr(o, '.'), *eq = strchr(o, '=');
         if (!dot || !eq || dot > eq || dot == o || eq == dot + 1)
             return ct_error_set(CT_EINVAL, "--set %s: expected section.key=value", o);
-        char section[64], key[64];
-        if ((size_t)(dot - o) >= sizeof section || (size_t)(eq - dot - 1) >= sizeof key)
-            return ct_error_set(CT_EINVAL, "--set %s: section or key too long", o);
-        memcpy(section, o, (size_t)(dot - o));
-        section[dot - o] = '\0';
-        memcpy(key, dot + 1, (size_t)(eq - dot - 1));
-        key[eq - dot - 1] = '\0';
-        int st = store(s, section, key, eq + 1, "--set");
+        char section[64], key[64], value[4096];
+        if ((size_t)(dot - o) >= sizeof section || (size_t)(eq - dot - 1) >= sizeof key ||
+            strlen(eq + 1) >= sizeof value)
+            return ct_error_set(CT_EINVAL, "--set %s: section, key or value too long", o);
+        trim_copy(section, sizeof section, o, dot);
+        trim_copy(key, sizeof key, dot + 1, eq);
+        trim_copy(value, sizeof value, eq + 1, eq + 1 + strlen(eq + 1));
+        int st = store(s, section, key, value, "--set");
         if (st)
             return st;
     }
@@ -467,7 +510,7 @@ static int finish(parse_state *s, int ini_status, ct_scene *scene, const char *c
                   size_t noverrides)
 {
     int st = CT_OK;
-    if (ini_status > 0 && s->status == CT_OK)
+    if (ini_status > 0 && (s->status == CT_OK || ini_status < s->error_line))
         st = ct_error_set(CT_EINVAL, "%s:%d: malformed line (expected [section] or key = value)",
                           s->name, ini_status);
     else if (ini_status != 0 && s->status == CT_OK)

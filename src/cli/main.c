@@ -194,8 +194,10 @@ static int write_profile(FILE *f, ct_bundle *b, const ct_params *p)
 {
     long N = ct_bundle_depth(b);
     if (N > 20) {
-        fprintf(stderr, "cantact: profile: depth %ld has 2^%ld pieces; the profile is written for "
-                        "depth <= 20 (set surface.depth)\n", N, N + 1);
+        fprintf(stderr,
+                "cantact: profile: depth %ld has 2^%ld pieces; the profile is written for "
+                "depth <= 20 (set surface.depth)\n",
+                N, N + 1);
         return CT_EINVAL;
     }
     fprintf(f, "stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0\n");
@@ -264,6 +266,9 @@ static int cmd_run(int argc, char **argv)
 
     /* open every output first: an unwritable path fails before any work is done */
     ct_out out_e = {0}, out_curve = {0}, out_profile = {0};
+    ct_bundle *b = NULL;
+    long depth;
+    double bound;
     char err[512];
     int opened_e = 0, opened_c = 0, opened_p = 0;
     const char *first_path = sc.output;
@@ -287,9 +292,6 @@ static int cmd_run(int argc, char **argv)
         opened_p = 1;
     }
 
-    long depth;
-    double bound;
-    ct_bundle *b = NULL;
     double scale = ct_energy_scale(p), vmax = 0.0;
     for (size_t k = 0; k < sc.nvel; k++)
         vmax = sc.V_star[k] > vmax ? sc.V_star[k] : vmax;
@@ -345,8 +347,7 @@ static int cmd_run(int argc, char **argv)
                 /* the loading branch follows the pre-impact state */
                 double um;
                 if ((st = ct_solve_umax(b, W, sc.opts.tolerance, &um)) ||
-                    (st = write_branch(out_curve.f, b, sc.V_star[v], i, u0, um, "load", p->h0,
-                                       PY)))
+                    (st = write_branch(out_curve.f, b, sc.V_star[v], i, u0, um, "load", p->h0, PY)))
                     break;
             }
             if ((st = ct_impact(b, W, &sc.opts, &r)))
@@ -361,8 +362,8 @@ static int cmd_run(int argc, char **argv)
             }
             if (opened_e)
                 fprintf(out_e.f, "%ld,%.17g,%.17g,%.17g,%.17g,%.3g,%.17g,%.17g,%d\n", i,
-                        sc.V_star[v], r.u_max / p->h0, r.e, r.e_closed, r.quad_error,
-                        r.V_star_crit, r.u_release / p->h0, r.elastic);
+                        sc.V_star[v], r.u_max / p->h0, r.e, r.e_closed, r.quad_error, r.V_star_crit,
+                        r.u_release / p->h0, r.elastic);
             if (opened_c && (st = write_branch(out_curve.f, b, sc.V_star[v], i, r.u_release,
                                                r.u_max, "unload", p->h0, PY)))
                 break;
@@ -447,8 +448,8 @@ static int cmd_geometry(int argc, char **argv)
     for (long i = 0; i <= shown; i++) {
         double s = i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i);
         double h = ct_stage_depth(p, (double)i);
-        printf("%ld,%.17g,%.17g,%.17g,%.17g\n", i, ct_stage_length(p, (double)i) / p->l0,
-               h / p->h0, s / p->l0, (p->Hstar - h) / p->h0);
+        printf("%ld,%.17g,%.17g,%.17g,%.17g\n", i, ct_stage_length(p, (double)i) / p->l0, h / p->h0,
+               s / p->l0, (p->Hstar - h) / p->h0);
     }
     if (shown < depth)
         printf("# ... %ld more stages\n", depth - shown);
@@ -459,7 +460,7 @@ static int cmd_geometry(int argc, char **argv)
 int main(int argc, char **argv)
 {
     if (argc < 2) {
-        fputs(main_help, stderr);
+        fputs("cantact: missing subcommand (try cantact --help)\n", stderr);
         return EXIT_USAGE;
     }
     const char *cmd = argv[1];

@@ -61,7 +61,8 @@ int ct_out_commit(ct_out *o, char *err, size_t errlen)
         return bad ? -1 : 0;
     }
     if (bad || rename(o->tmp_path, o->path) != 0) {
-        snprintf(err, errlen, "%s: cannot write: %s", o->path, bad ? "write failed" : strerror(errno));
+        snprintf(err, errlen, "%s: cannot write: %s", o->path,
+                 bad ? "write failed" : strerror(errno));
         ct_out_abort(o);
         return -1;
     }

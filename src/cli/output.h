@@ -5,10 +5,10 @@
 #include <stdio.h>
 
 typedef struct {
-    char *path;      /* final path, or NULL for stdout */
-    char *tmp_path;  /* temporary file beside it */
-    FILE *f;         /* where rows go */
-    char *mem;       /* stdout: rows are held here until commit */
+    char *path;     /* final path, or NULL for stdout */
+    char *tmp_path; /* temporary file beside it */
+    FILE *f;        /* where rows go */
+    char *mem;      /* stdout: rows are held here until commit */
     size_t mem_size;
 } ct_out;
 

@@ -1,0 +1,108 @@
+#!/usr/bin/env bash
+# CLI behaviour: exit codes (0 done, 1 computation failed, 2 bad input), one-line errors,
+# no output file left behind on failure, --set overrides, thread-count independence.
+# Usage: test_cli.sh CANTACT SOURCE_DIR
+set -u
+ct=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+failn=0
+ok() { pass=$((pass + 1)); }
+bad() { failn=$((failn + 1)); echo "FAIL: $*"; }
+
+# expect CODE DESCRIPTION -- command...
+expect() {
+    local code=$1 what=$2
+    shift 3
+    "$@" >"$tmp/out" 2>"$tmp/err"
+    local rc=$?
+    if [ "$rc" -ne "$code" ]; then
+        bad "$what: exit $rc, expected $code; stderr: $(cat "$tmp/err")"
+        return
+    fi
+    if [ "$code" -ne 0 ] && [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
+        bad "$what: expected one line on stderr, got: $(cat "$tmp/err")"
+        return
+    fi
+    ok
+}
+
+cat >"$tmp/s.ini" <<INI
+[surface]
+fx = 1.5
+fz = 1.3
+H = 10
+[material]
+E = 500
+[impact]
+V_star = 1e-5, 1e-3, 1e-2
+INI
+
+expect 0 "--help" -- "$ct" --help
+expect 0 "--version" -- "$ct" --version
+expect 0 "run --help" -- "$ct" run --help
+grep -q "Usage: cantact run" "$tmp/out" && ok || bad "run --help prints usage"
+expect 2 "unknown subcommand" -- "$ct" frobnicate
+expect 2 "no arguments" -- "$ct"
+expect 2 "unknown option" -- "$ct" run --frob "$tmp/s.ini"
+expect 2 "missing scene" -- "$ct" run "$tmp/nope.ini"
+grep -q "nope.ini: cannot open" "$tmp/err" && ok || bad "missing scene message"
+
+expect 0 "run to stdout" -- "$ct" run -q "$tmp/s.ini"
+[ "$(head -1 "$tmp/out")" = "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,V_star_crit,u_release_over_h0,elastic" ] && ok || bad "e header"
+[ "$(wc -l <"$tmp/out")" -eq 4 ] && ok || bad "one row per velocity"
+awk -F, 'NR==2 && $4 != 1 { exit 1 } NR>2 && !($4 < 1) { exit 1 }' "$tmp/out" && ok || bad "e = 1 below V*_c, < 1 above"
+
+expect 0 "run to file" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/e.csv"
+[ -s "$tmp/e.csv" ] && ok || bad "output file written"
+ls "$tmp" | grep -q tmp && bad "temporary file left behind" || ok
+
+# bad input: exit 2, one line naming file:line, no output file
+printf '[surface]\nfx = 1.5\nfz = 2.5\nH = 10\n[material]\nE = 500\n[impact]\nV_star = 1e-3\n' >"$tmp/bad.ini"
+expect 2 "fz out of range" -- "$ct" run "$tmp/bad.ini" -o "$tmp/bad.csv"
+grep -q "bad.ini:3: surface.fz = 2.5: must satisfy 1 < fz < 2" "$tmp/err" && ok || bad "fz message: $(cat "$tmp/err")"
+[ ! -e "$tmp/bad.csv" ] && ok || bad "no output on bad input"
+
+expect 2 "bad --set" -- "$ct" run "$tmp/s.ini" --set surface.fx=abc -o "$tmp/bad2.csv"
+[ ! -e "$tmp/bad2.csv" ] && ok || bad "no output on bad --set"
+expect 0 "--set override" -- "$ct" run -q "$tmp/s.ini" --set impact.V_star=1e-6
+[ "$(wc -l <"$tmp/out")" -eq 2 ] && grep -q '^1,9.99999' "$tmp/out" && ok || bad "--set changes V*"
+
+expect 2 "unwritable output" -- "$ct" run "$tmp/s.ini" -o /nonexistent/dir/out.csv
+head -c 4 /dev/urandom >/dev/null
+printf '\x00\x01\x02garbage' >"$tmp/bin.ini"
+expect 2 "binary garbage" -- "$ct" run "$tmp/bin.ini"
+
+# the crushed layer is refused (input outside the model): exit 2, no output
+expect 2 "crushed layer" -- "$ct" run "$tmp/s.ini" --set impact.V_star=5 -o "$tmp/crush.csv"
+grep -q "crushed" "$tmp/err" && ok || bad "crushed message"
+[ ! -e "$tmp/crush.csv" ] && ok || bad "no output when crushed"
+# a computation that cannot be done (a bundle too large for memory): exit 1
+expect 1 "too deep for memory" -- "$ct" run "$tmp/s.ini" --set surface.representation=segments --set surface.depth=40 -o "$tmp/deep.csv"
+[ ! -e "$tmp/deep.csv" ] && ok || bad "no output when the computation fails"
+
+# curve and profile
+expect 0 "curve+profile" -- "$ct" run -q "$tmp/s.ini" --set surface.depth=8 --set "output.what=e,curve,profile" -o "$tmp/all.csv"
+[ -s "$tmp/all.csv" ] && [ -s "$tmp/all_curve.csv" ] && [ -s "$tmp/all_profile.csv" ] && ok || bad "three outputs"
+[ "$(head -1 "$tmp/all_curve.csv")" = "V_star,impact,u_over_h0,P_over_PY,branch" ] && ok || bad "curve header"
+[ "$(tail -n +2 "$tmp/all_profile.csv" | wc -l)" -eq 511 ] && ok || bad "profile has 2^9 - 1 pieces"
+expect 2 "several outputs to stdout" -- "$ct" run "$tmp/s.ini" --set "output.what=e,curve"
+
+# segments and stages give the same e; thread count does not change a byte
+"$ct" run -q "$tmp/s.ini" --set surface.depth=14 --set surface.representation=segments -o "$tmp/seg.csv" &&
+    "$ct" run -q "$tmp/s.ini" --set surface.depth=14 -o "$tmp/stg.csv" || bad "depth 14 runs"
+paste -d, "$tmp/seg.csv" "$tmp/stg.csv" | awk -F, 'NR>1 { d = $4 - $13; if (d < 0) d = -d; if (d > 1e-12) exit 1 }' && ok || bad "segments e = stages e"
+for t in 1 2; do
+    OMP_NUM_THREADS=$t "$ct" run -q "$tmp/s.ini" --set surface.depth=17 --set surface.representation=segments -o "$tmp/t$t.csv" || bad "threads $t"
+done
+cmp -s "$tmp/t1.csv" "$tmp/t2.csv" && ok || bad "OMP_NUM_THREADS 1 and 2 differ"
+
+# the shipped scenes run
+for scene in "$src"/scripts/scenes/*.ini; do
+    expect 0 "scene $(basename "$scene")" -- "$ct" run -q "$scene" -o "$tmp/scene.csv"
+done
+
+echo "$pass passed, $failn failed"
+[ "$failn" -eq 0 ]

@@ -1,0 +1,234 @@
+/* Scene files: every class of bad input gets CT_EINVAL (or CT_EIO) with file:line and the
+ * key in the message; defaults and --set overrides. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cantact.h"
+
+static const char *good = "[surface]\n"
+                          "fx = 1.5\n"
+                          "fz = 1.3\n"
+                          "H = 10\n"
+                          "[material]\n"
+                          "E = 500\n"
+                          "[impact]\n"
+                          "V_star = 1e-3\n";
+
+static void expect_error(const char *text, const char *const *sets, size_t nsets,
+                         const char *needle1, const char *needle2)
+{
+    ct_scene sc;
+    int st = ct_scene_parse(&sc, "s.ini", text, sets, nsets);
+    if (st != CT_EINVAL)
+        fail_msg("expected CT_EINVAL, got %d for:\n%s", st, text);
+    const char *msg = ct_error_message();
+    if (!strstr(msg, needle1) || (needle2 && !strstr(msg, needle2)))
+        fail_msg("message '%s' lacks '%s' / '%s'", msg, needle1, needle2 ? needle2 : "");
+}
+
+static void with_line(char *buf, size_t n, const char *extra_surface_line)
+{
+    snprintf(buf, n,
+             "[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n%s\n[material]\nE = 500\n[impact]\n"
+             "V_star = 1e-3\n",
+             extra_surface_line);
+}
+
+static void defaults_and_values(void **state)
+{
+    (void)state;
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, NULL, 0), CT_OK);
+    assert_true(sc.params.fx == 1.5 && sc.params.fz == 1.3);
+    assert_true(sc.params.h0 == 1.0 && sc.params.l0 == 1.0 && sc.params.sigma_y == 1.0);
+    assert_true(sc.params.Hstar == 10.0 && sc.params.E == 500.0);
+    assert_int_equal(sc.depth, -1);
+    assert_int_equal(sc.representation, CT_REP_STAGES);
+    assert_int_equal(sc.nvel, 1);
+    assert_true(sc.V_star[0] == 1e-3);
+    assert_int_equal(sc.impacts, 1);
+    assert_int_equal(sc.opts.rule, CT_QUAD_BREAKPOINTS);
+    assert_string_equal(sc.output, "-");
+    assert_int_equal(sc.what, CT_OUT_E);
+    ct_scene_free(&sc);
+}
+
+static void velocity_lists(void **state)
+{
+    (void)state;
+    ct_scene sc;
+    const char *sets1[] = {"impact.V_star = 0.1, 0.3,0.2"};
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, sets1, 1), CT_OK);
+    assert_int_equal(sc.nvel, 3);
+    assert_true(sc.V_star[0] == 0.1 && sc.V_star[1] == 0.3 && sc.V_star[2] == 0.2);
+    ct_scene_free(&sc);
+    const char *sets2[] = {"impact.V_star=1e-4:1e-1:4:log"};
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, sets2, 1), CT_OK);
+    assert_int_equal(sc.nvel, 4);
+    assert_true(sc.V_star[0] == 1e-4 && sc.V_star[3] == 1e-1);
+    assert_true(fabs(sc.V_star[1] - 1e-3) < 1e-17 && fabs(sc.V_star[2] - 1e-2) < 1e-16);
+    ct_scene_free(&sc);
+    const char *sets3[] = {"impact.V_star=1:2:5"};
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, sets3, 1), CT_OK);
+    assert_true(sc.V_star[1] == 1.25 && sc.V_star[4] == 2.0);
+    ct_scene_free(&sc);
+    /* mass + velocity: V* = sqrt(m v^2 / (2 l0 E h0)) */
+    const char *text = "[surface]\nfx=1.5\nfz=1.3\nH=10\nh0=2e-6\nl0=1e-3\n[material]\n"
+                       "E=2e11\nsigma_y=4e8\n[impact]\nmass=0.5\nvelocity=0.2\n";
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", text, NULL, 0), CT_OK);
+    assert_true(fabs(sc.V_star[0] - sqrt(0.5 * 0.04 / (2 * 1e-3 * 2e11 * 2e-6))) <
+                1e-15 * sc.V_star[0]);
+    assert_true(sc.params.Hstar == 10 * 2e-6);
+    ct_scene_free(&sc);
+}
+
+static void set_overrides(void **state)
+{
+    (void)state;
+    ct_scene sc;
+    const char *sets[] = {"surface.fz=1.7", "material.sigma_y = 2", "output.what = e, curve",
+                          "surface.fz=1.6"};
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, sets, 4), CT_OK);
+    assert_true(sc.params.fz == 1.6 && sc.params.sigma_y == 2.0);
+    assert_int_equal(sc.what, CT_OUT_E | CT_OUT_CURVE);
+    ct_scene_free(&sc);
+    const char *bad1[] = {"surfacefz=1.7"};
+    expect_error(good, bad1, 1, "--set", "section.key=value");
+    const char *bad2[] = {"surface.fz=7"};
+    expect_error(good, bad2, 1, "--set: surface.fz = 7", "1 < fz < 2");
+    const char *bad3[] = {"surface.colour=red"};
+    expect_error(good, bad3, 1, "--set: surface.colour", "unknown key");
+}
+
+static void unknown_section_and_key(void **state)
+{
+    (void)state;
+    char buf[512];
+    expect_error("[surface]\nfx=1.5\n[weather]\nrain=1\n", NULL, 0, "s.ini:3: [weather]",
+                 "unknown section");
+    with_line(buf, sizeof buf, "colour = red");
+    expect_error(buf, NULL, 0, "s.ini:5: surface.colour", "unknown key");
+    expect_error("fx = 1.5\n", NULL, 0, "s.ini:1", "outside any section");
+}
+
+static void duplicate_key(void **state)
+{
+    (void)state;
+    char buf[512];
+    with_line(buf, sizeof buf, "fx = 1.6");
+    expect_error(buf, NULL, 0, "s.ini:5: surface.fx", "duplicate key (first set at s.ini:2)");
+}
+
+static void missing_required(void **state)
+{
+    (void)state;
+    expect_error("[surface]\nfx=1.5\nfz=1.3\n[material]\nE=500\n[impact]\nV_star=1\n", NULL, 0,
+                 "surface.H", "required key missing");
+    expect_error("[surface]\nfx=1.5\nfz=1.3\nH=10\n[material]\nE=500\n", NULL, 0, "[impact]",
+                 "V_star");
+}
+
+static void unparsable_numbers(void **state)
+{
+    (void)state;
+    const char *lines[] = {"h0 = 1.5x", "h0 = ",      "h0 = nan", "h0 = inf",
+                           "h0 = -inf", "h0 = 1e999", "h0 = 0x",  "h0 = 1 2"};
+    for (size_t k = 0; k < sizeof lines / sizeof lines[0]; k++) {
+        char buf[512];
+        with_line(buf, sizeof buf, lines[k]);
+        expect_error(buf, NULL, 0, "s.ini:5: surface.h0", "not a finite number");
+    }
+    char buf[512];
+    with_line(buf, sizeof buf, "depth = 12.5");
+    expect_error(buf, NULL, 0, "s.ini:5: surface.depth", "integer");
+}
+
+static void out_of_range(void **state)
+{
+    (void)state;
+    struct {
+        const char *line, *key, *why;
+    } cases[] = {
+        {"h0 = -1", "surface.h0", "> 0"},
+        {"l0 = 0", "surface.l0", "> 0"},
+        {"depth = -3", "surface.depth", "depth"},
+        {"representation = voxels", "surface.representation", "stages or segments"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        char buf[512];
+        with_line(buf, sizeof buf, cases[k].line);
+        expect_error(buf, NULL, 0, cases[k].key, cases[k].why);
+    }
+    const char *sets_fz[] = {"surface.fz=2.5"};
+    expect_error(good, sets_fz, 1, "surface.fz = 2.5", "1 < fz < 2");
+    const char *sets_fx[] = {"surface.fx=1"};
+    expect_error(good, sets_fx, 1, "surface.fx = 1", "fx > 1");
+    const char *sets_H[] = {"surface.H=0.5"};
+    expect_error(good, sets_H, 1, "surface.H", "H > 1");
+    const char *sets_E[] = {"material.E=0.5"};
+    expect_error(good, sets_E, 1, "material.E = 0.5", "sigma_y");
+    const char *sets_V[] = {"impact.V_star=0.1,-2"};
+    expect_error(good, sets_V, 1, "impact.V_star", "> 0");
+    const char *sets_r[] = {"impact.V_star=1:2:0"};
+    expect_error(good, sets_r, 1, "impact.V_star", "count");
+    const char *sets_i[] = {"impact.impacts=0"};
+    expect_error(good, sets_i, 1, "impact.impacts", "1 <= impacts");
+    const char *sets_q[] = {"solver.quadrature=magic"};
+    expect_error(good, sets_q, 1, "solver.quadrature", "breakpoints");
+    const char *sets_w[] = {"output.what=e,pictures"};
+    expect_error(good, sets_w, 1, "output.what", "e, curve, profile");
+    const char *sets_s[] = {"surface.representation=segments"};
+    expect_error(good, sets_s, 1, "segments", "integer surface.depth");
+    const char *sets_both[] = {"impact.mass=1"};
+    expect_error(good, sets_both, 1, "impact.V_star", "not both");
+}
+
+static void malformed_line(void **state)
+{
+    (void)state;
+    expect_error("[surface]\nfx = 1.5\nthis line has no equals sign\n", NULL, 0, "s.ini:3",
+                 "malformed");
+    expect_error("[surface\nfx = 1.5\n", NULL, 0, "s.ini:1", "malformed");
+}
+
+static void files_missing_and_binary(void **state)
+{
+    (void)state;
+    ct_scene sc;
+    assert_int_equal(ct_scene_load(&sc, "/nonexistent/dir/x.ini", NULL, 0), CT_EIO);
+    assert_non_null(strstr(ct_error_message(), "/nonexistent/dir/x.ini: cannot open"));
+    char path[] = "/tmp/ct_scene_binXXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "wb");
+    const unsigned char junk[] = {'[', 's', ']', '\n', 0x00, 0xff, 0x13, '\n'};
+    fwrite(junk, 1, sizeof junk, f);
+    fclose(f);
+    assert_int_equal(ct_scene_load(&sc, path, NULL, 0), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "binary"));
+    remove(path);
+    /* the shipped default scene loads */
+    assert_int_equal(ct_scene_load(&sc, CT_SOURCE_DIR "/scripts/scenes/default.ini", NULL, 0),
+                     CT_OK);
+    ct_scene_free(&sc);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(defaults_and_values), cmocka_unit_test(velocity_lists),
+        cmocka_unit_test(set_overrides),       cmocka_unit_test(unknown_section_and_key),
+        cmocka_unit_test(duplicate_key),       cmocka_unit_test(missing_required),
+        cmocka_unit_test(unparsable_numbers),  cmocka_unit_test(out_of_range),
+        cmocka_unit_test(malformed_line),      cmocka_unit_test(files_missing_and_binary),
+    };
+    return cmocka_run_group_tests_name("scene", tests, NULL, NULL);
+}
