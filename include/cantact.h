@@ -133,8 +133,12 @@ double ct_bundle_first_yield(const ct_bundle *b);
 /* Sets the number of threads of the force assembly (0: the OpenMP default); returns the
  * number that will be used (1 without OpenMP). Results do not depend on it. */
 int ct_set_threads(int threads);
-/* Bundles below this many rods are summed by one thread (measured: bench/bench_threshold). */
-#define CT_PARALLEL_MIN_RODS 32768
+/* Sets the size from which this bundle's sums use the thread team (default
+ * CT_PARALLEL_MIN_RODS; for the threshold benchmark). Results do not depend on it. */
+void ct_bundle_set_parallel_min(ct_bundle *b, size_t rods);
+/* Bundles below this many rods are summed by one thread: bench/bench_threshold measured the
+ * 2-thread team >= 10% faster from 4095 rods on the 2-core CI machine. */
+#define CT_PARALLEL_MIN_RODS 4096
 
 /* Breakpoints of P(u) in [lo, hi], sorted and distinct, in a malloc'ed array the caller
  * frees. The ends lo and hi are included. */
@@ -203,9 +207,16 @@ int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max);
  * smallest impact of energy W_min, by less than tol; *bound gets the bound reached. */
 int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound);
 
+/* The fractal limit N -> infinity to double precision: the smallest depth whose truncation
+ * bound (as for ct_auto_depth) is below 1e-15 and whose tips lie within 1e-15 eps_y H* of the
+ * reference plane (so that the first yield, hence V*_c, has converged too). */
+int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound);
+
 /* ---- scenes ---------------------------------------------------------------------- */
 
 #define CT_MAX_VELOCITIES 1000000
+#define CT_DEPTH_AUTO (-1)
+#define CT_DEPTH_FRACTAL (-2)
 
 enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
 

@@ -33,7 +33,13 @@ struct ct_bundle {
     double *top, *length, *area, *plastic_strain;
     size_t nblocks;
     double *block_sums; /* workspace of the blocked sums */
+    size_t parallel_min; /* sums of fewer rods run on one thread */
 };
+
+void ct_bundle_set_parallel_min(ct_bundle *b, size_t rods)
+{
+    b->parallel_min = rods;
+}
 
 int ct_set_threads(int threads)
 {
@@ -155,6 +161,7 @@ int ct_bundle_alloc(ct_bundle **out, const ct_params *p, ct_representation rep, 
     b->omitted = first_rod;
     b->E = p->E;
     b->eps_y = p->sigma_y / p->E;
+    b->parallel_min = CT_PARALLEL_MIN_RODS;
     if ((st = bundle_arrays(b))) {
         ct_bundle_free(b);
         return st;
@@ -216,7 +223,7 @@ int ct_bundle_clone(ct_bundle **out, const ct_bundle *src)
 
 void ct_bundle_reset(ct_bundle *b)
 {
-#pragma omp parallel for schedule(static) if (b->n >= CT_PARALLEL_MIN_RODS)
+#pragma omp parallel for schedule(static) if (b->n >= b->parallel_min)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++)
         b->plastic_strain[k] = 0.0;
 }
@@ -306,7 +313,7 @@ static double blocked_total(ct_bundle *b, enum sum_kind kind, double ua, double 
     double *ws = b->block_sums;
     if (nb == 0)
         return 0.0;
-#pragma omp parallel for schedule(static) if (b->n >= CT_PARALLEL_MIN_RODS)
+#pragma omp parallel for schedule(static) if (b->n >= b->parallel_min)
     for (ptrdiff_t j = 0; j < nb; j++) {
         size_t k0 = (size_t)j * CT_BLOCK;
         size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
@@ -337,7 +344,7 @@ double ct_bundle_elastic_energy(ct_bundle *b, double u)
 void ct_bundle_advance(ct_bundle *b, double u)
 {
     const double eps_y = b->eps_y;
-#pragma omp parallel for schedule(static) if (b->n >= CT_PARALLEL_MIN_RODS)
+#pragma omp parallel for schedule(static) if (b->n >= b->parallel_min)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++)
         b->plastic_strain[k] =
             ct_rod_advance(u, b->top[k], b->length[k], b->plastic_strain[k], eps_y);
@@ -346,7 +353,7 @@ void ct_bundle_advance(ct_bundle *b, double u)
 double ct_bundle_first_contact(const ct_bundle *b)
 {
     double m = INFINITY;
-#pragma omp parallel for schedule(static) reduction(min : m) if (b->n >= CT_PARALLEL_MIN_RODS)
+#pragma omp parallel for schedule(static) reduction(min : m) if (b->n >= b->parallel_min)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++) {
         double c = ct_rod_contact(b->top[k], b->length[k], b->plastic_strain[k]);
         if (c < m)
@@ -359,7 +366,7 @@ double ct_bundle_first_yield(const ct_bundle *b)
 {
     double m = INFINITY;
     const double eps_y = b->eps_y;
-#pragma omp parallel for schedule(static) reduction(min : m) if (b->n >= CT_PARALLEL_MIN_RODS)
+#pragma omp parallel for schedule(static) reduction(min : m) if (b->n >= b->parallel_min)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++) {
         double y = ct_rod_yield(b->top[k], b->length[k], b->plastic_strain[k], eps_y);
         if (y < m)

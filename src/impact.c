@@ -180,7 +180,7 @@ static double force_bound(const ct_params *p, long N)
     return p->E * lN * (lip < eps_y ? lip : eps_y);
 }
 
-static int depth_bound(const ct_params *p, long N, double W_min, double *bound)
+static int depth_bound(const ct_params *p, long N, double W_min, int tips, double *bound)
 {
     ct_bundle *b;
     double u;
@@ -194,12 +194,19 @@ static int depth_bound(const ct_params *p, long N, double W_min, double *bound)
         double dP = force_bound(p, N), P = ct_bundle_force(b, u);
         double rel_W = dP * u / W_min, rel_P = P > 0.0 ? dP / P : INFINITY;
         *bound = rel_W > rel_P ? rel_W : rel_P;
+        if (tips) {
+            /* first yield of the prefractal: eps_y H* + (1 - eps_y) h_N, of the fractal eps_y H* */
+            double eps_y = p->sigma_y / p->E;
+            double rel_tip = (1.0 - eps_y) * ct_stage_depth(p, (double)N) / (eps_y * p->Hstar);
+            *bound = *bound > rel_tip ? *bound : rel_tip;
+        }
     }
     ct_bundle_free(b);
     return st;
 }
 
-int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound)
+static int search_depth(const ct_params *p, double W_min, double tol, int tips, long *depth,
+                        double *bound)
 {
     int st;
     if ((st = ct_params_validate(p)))
@@ -212,7 +219,7 @@ int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, dou
     long hi = 1;
     double b_hi;
     for (;;) {
-        if ((st = depth_bound(p, hi, W_min, &b_hi)))
+        if ((st = depth_bound(p, hi, W_min, tips, &b_hi)))
             return st;
         if (b_hi <= tol)
             break;
@@ -228,7 +235,7 @@ int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, dou
     while (hi - lo > 1) {
         long mid = lo + (hi - lo) / 2;
         double b_mid;
-        if ((st = depth_bound(p, mid, W_min, &b_mid)))
+        if ((st = depth_bound(p, mid, W_min, tips, &b_mid)))
             return st;
         if (b_mid <= tol) {
             hi = mid;
@@ -240,4 +247,14 @@ int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, dou
     *depth = hi;
     *bound = b_hi;
     return CT_OK;
+}
+
+int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound)
+{
+    return search_depth(p, W_min, tol, 0, depth, bound);
+}
+
+int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound)
+{
+    return search_depth(p, W_min, 1e-15, 1, depth, bound);
 }

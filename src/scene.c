@@ -339,15 +339,13 @@ static int interpret(parse_state *s, ct_scene *sc)
     if ((st = ct_params_validate(p)))
         return ct_error_set(st, "%s: %s", s->name, ct_error_message());
 
-    sc->depth = -1;
+    sc->depth = CT_DEPTH_AUTO;
     if ((e = get(s, "surface", "depth"))) {
         long d;
         if (!strcmp(e->value, "auto"))
-            sc->depth = -1;
+            sc->depth = CT_DEPTH_AUTO;
         else if (!strcmp(e->value, "fractal"))
-            return bad(e, "surface", "depth",
-                       "the closed-form fractal tail is not implemented yet; use auto (a "
-                       "truncation depth with a stated bound) or an integer");
+            sc->depth = CT_DEPTH_FRACTAL;
         else if (!parse_integer(e->value, &d))
             return bad(e, "surface", "depth", "must be an integer >= 0, auto or fractal");
         else if (d < 0 || d > CT_MAX_STAGES_DEPTH)

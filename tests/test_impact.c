@@ -289,6 +289,42 @@ static void composite_rules_converge_to_exact(void **state)
     ct_bundle_free(b);
 }
 
+/* depth = fractal: converged to double precision against a much deeper explicit surface, in
+ * e and in V*_c (whose tip-depth error ct_auto_depth does not control). */
+static void fractal_depth_matches_deep_surface(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    double V[] = {5e-5, 2e-4, 3e-3};
+    double W_min = V[0] * V[0] * ct_energy_scale(&p);
+    long N;
+    double bound;
+    assert_int_equal(ct_fractal_depth(&p, W_min, &N, &bound), CT_OK);
+    assert_true(bound <= 1e-15);
+    ct_bundle *fr, *deep;
+    assert_int_equal(ct_bundle_alloc(&fr, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
+    assert_int_equal(ct_bundle_alloc(&deep, &p, CT_REP_STAGES, N + 300, INFINITY), CT_OK);
+    for (int k = 0; k < 3; k++) {
+        ct_impact_result a, b;
+        ct_bundle_reset(fr);
+        ct_bundle_reset(deep);
+        double W = V[k] * V[k] * ct_energy_scale(&p);
+        assert_int_equal(ct_impact(fr, W, NULL, &a), CT_OK);
+        assert_int_equal(ct_impact(deep, W, NULL, &b), CT_OK);
+        assert_true(fabs(a.e - b.e) <= 1e-14);
+        assert_rel(a.V_star_crit, b.V_star_crit, 1e-14);
+        assert_rel(a.u_max, b.u_max, 1e-14);
+    }
+    /* the first yield is eps_y H* in the limit */
+    double Wc, uy;
+    assert_int_equal(ct_critical_energy(fr, &Wc, &uy), CT_OK);
+    ct_bundle_reset(fr);
+    assert_int_equal(ct_critical_energy(fr, &Wc, &uy), CT_OK);
+    assert_rel(uy, p.sigma_y / p.E * p.Hstar, 1e-14);
+    ct_bundle_free(fr);
+    ct_bundle_free(deep);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -300,6 +336,7 @@ int main(void)
         cmocka_unit_test(repeated_impacts_shake_down),
         cmocka_unit_test(crushed_layer_refused),
         cmocka_unit_test(composite_rules_converge_to_exact),
+        cmocka_unit_test(fractal_depth_matches_deep_surface),
     };
     return cmocka_run_group_tests_name("impact", tests, NULL, NULL);
 }

@@ -120,7 +120,7 @@ static int parse_args(int argc, char **argv, cli_args *a)
 /* Depth the run uses: the scene's, or auto for the smallest impact energy. */
 static int choose_depth(const ct_scene *sc, long *depth, double *bound)
 {
-    *bound = NAN;
+    *bound = 0.0;
     if (sc->depth >= 0) {
         *depth = sc->depth;
         return CT_OK;
@@ -129,6 +129,8 @@ static int choose_depth(const ct_scene *sc, long *depth, double *bound)
     for (size_t k = 0; k < sc->nvel; k++)
         vmin = sc->V_star[k] < vmin ? sc->V_star[k] : vmin;
     double W_min = vmin * vmin * ct_energy_scale(&sc->params);
+    if (sc->depth == CT_DEPTH_FRACTAL)
+        return ct_fractal_depth(&sc->params, W_min, depth, bound);
     return ct_auto_depth(&sc->params, W_min, sc->depth_tolerance, depth, bound);
 }
 
@@ -320,14 +322,18 @@ static int cmd_run(int argc, char **argv)
         u_reach = INFINITY; /* the profile shows the whole surface */
     if ((st = ct_bundle_alloc(&b, p, sc.representation, depth, u_reach)))
         goto lib_fail;
-    if (!a.quiet)
-        fprintf(stderr,
-                "cantact: %s, depth %ld%s%.2g), %zu rods, %zu left out as never touched, "
-                "%d thread(s)\n",
-                sc.representation == CT_REP_STAGES ? "stage rods" : "segment rods", depth,
-                sc.depth < 0 ? " (auto: truncation bound " : " (given: bound n/a ",
-                sc.depth < 0 ? bound : 0.0, ct_bundle_size(b), ct_bundle_omitted(b),
-                ct_set_threads(0));
+    if (!a.quiet) {
+        char how[96];
+        if (sc.depth >= 0)
+            snprintf(how, sizeof how, "given");
+        else
+            snprintf(how, sizeof how, "%s: truncation bound %.2g",
+                     sc.depth == CT_DEPTH_FRACTAL ? "fractal limit" : "auto", bound);
+        fprintf(stderr, "cantact: %s, depth %ld (%s), %zu rods, %zu left out as never touched, "
+                        "%d thread(s)\n",
+                sc.representation == CT_REP_STAGES ? "stage rods" : "segment rods", depth, how,
+                ct_bundle_size(b), ct_bundle_omitted(b), ct_set_threads(0));
+    }
 
     if (opened_e)
         fprintf(out_e.f, "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,"

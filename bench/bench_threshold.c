@@ -1,0 +1,60 @@
+/* Measures where the OpenMP force assembly starts to pay: one force evaluation on segment
+ * bundles of 2^11 - 1 ... 2^21 - 1 rods, serial against the thread team (all threads).
+ * Prints CSV: rods,threads,serial_ns,parallel_ns,speedup; then the smallest size at which
+ * the team is at least 10% faster (the value for CT_PARALLEL_MIN_RODS). */
+#include "cantact.h"
+#include "common.h"
+
+#include <math.h>
+#include <stdint.h>
+
+static double time_force(ct_bundle *b, double *sink)
+{
+    /* calls enough to last >= 20 ms, median of 7 */
+    double t[7];
+    int calls = 1;
+    for (;;) {
+        double t0 = bench_now();
+        for (int c = 0; c < calls; c++)
+            *sink += ct_bundle_force(b, 0.2 + 1e-9 * c);
+        if (bench_now() - t0 > 0.02)
+            break;
+        calls *= 2;
+    }
+    for (int r = 0; r < 7; r++) {
+        double t0 = bench_now();
+        for (int c = 0; c < calls; c++)
+            *sink += ct_bundle_force(b, 0.2 + 1e-9 * c);
+        t[r] = (bench_now() - t0) / calls;
+    }
+    return bench_median(t, 7);
+}
+
+int main(void)
+{
+    ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
+    int threads = ct_set_threads(0);
+    double sink = 0.0;
+    size_t threshold = 0;
+    bench_machine(stdout);
+    printf("rods,threads,serial_ns,parallel_ns,speedup\n");
+    for (long depth = 10; depth <= 20; depth++) {
+        ct_bundle *b;
+        if (ct_bundle_alloc(&b, &p, CT_REP_SEGMENTS, depth, INFINITY)) {
+            fprintf(stderr, "bench_threshold: %s\n", ct_error_message());
+            return 1;
+        }
+        ct_bundle_advance(b, 0.3);
+        ct_bundle_set_parallel_min(b, SIZE_MAX);
+        double ts = time_force(b, &sink);
+        ct_bundle_set_parallel_min(b, 0);
+        double tp = time_force(b, &sink);
+        printf("%zu,%d,%.1f,%.1f,%.3f\n", ct_bundle_size(b), threads, 1e9 * ts, 1e9 * tp, ts / tp);
+        if (!threshold && ts / tp >= 1.1)
+            threshold = ct_bundle_size(b);
+        ct_bundle_free(b);
+    }
+    printf("# team >= 10%% faster from %zu rods (CT_PARALLEL_MIN_RODS = %d)%s\n", threshold,
+           CT_PARALLEL_MIN_RODS, sink == 42.0 ? " " : "");
+    return 0;
+}
