@@ -32,7 +32,7 @@ struct ct_bundle {
     double E, eps_y;
     double *top, *length, *area, *plastic_strain;
     size_t nblocks;
-    double *block_sums; /* workspace of the blocked sums */
+    double *block_sums;  /* workspace of the blocked sums */
     size_t parallel_min; /* sums of fewer rods run on one thread */
 };
 

@@ -104,6 +104,11 @@ int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max)
     return CT_OK;
 }
 
+/* Rod evaluations one quadrature may cost (about a minute on one core): beyond it the run is
+ * refused rather than left to hang. Deep stage bundles hit it first, as their breakpoint
+ * count grows with their rod count. */
+#define CT_MAX_QUAD_ROD_EVALS 5e10
+
 static int energy_quadrature(ct_bundle *b, double lo, double hi, const ct_impact_opts *opts,
                              double *result)
 {
@@ -112,6 +117,18 @@ static int energy_quadrature(ct_bundle *b, double lo, double hi, const ct_impact
     int st;
     if (opts->rule == CT_QUAD_BREAKPOINTS && (st = ct_bundle_breakpoints(b, lo, hi, &pts, &n)))
         return st;
+    double nodes = opts->rule == CT_QUAD_BREAKPOINTS ? 2.0 * (double)n : (double)opts->nodes;
+    double cost = nodes * (double)ct_bundle_size(b) * (opts->rule == CT_QUAD_BREAKPOINTS ? 1 : 1.5);
+    if (cost > CT_MAX_QUAD_ROD_EVALS) {
+        free(pts);
+        return ct_error_set(CT_ENOCONV,
+                            "%s quadrature with %.3g nodes on %zu rods would need %.2g rod "
+                            "evaluations (limit %.0e): fx and fz this close to 1 need more "
+                            "stages than this quadrature can afford; give a smaller depth or a "
+                            "larger solver.depth_tolerance",
+                            ct_quad_rule_name(opts->rule), nodes, ct_bundle_size(b), cost,
+                            CT_MAX_QUAD_ROD_EVALS);
+    }
     st = ct_integrate(force_at, b, lo, hi, opts->rule, opts->nodes, pts, n, result, &abserr);
     free(pts);
     return st;
@@ -180,29 +197,55 @@ static double force_bound(const ct_params *p, long N)
     return p->E * lN * (lip < eps_y ? lip : eps_y);
 }
 
-static int depth_bound(const ct_params *p, long N, double W_min, int tips, double *bound)
+/* Depths from here on reuse the u_max of this depth as an upper bound, so the search
+ * costs nothing more for deep surfaces. */
+#define DEPTH_PROBE 64
+
+typedef struct {
+    const ct_params *p;
+    double W_min;
+    int tips;
+    double u_up; /* u_max at DEPTH_PROBE, < 0 until computed */
+} depth_ctx;
+
+static int solve_virgin(const ct_params *p, long N, double W, double *u, double *P)
 {
     ct_bundle *b;
-    double u;
     int st = ct_bundle_alloc(&b, p, CT_REP_STAGES, N, INFINITY);
     if (st)
         return st;
-    /* The truncated surface is softer than the fractal on a virgin loading, so its u_max is
-     * an upper bound of the fractal's: the energy bound below is safe. */
-    st = ct_solve_umax(b, W_min, 1e-12, &u);
-    if (!st) {
-        double dP = force_bound(p, N), P = ct_bundle_force(b, u);
-        double rel_W = dP * u / W_min, rel_P = P > 0.0 ? dP / P : INFINITY;
-        *bound = rel_W > rel_P ? rel_W : rel_P;
-        if (tips) {
-            /* first yield of the prefractal: eps_y H* + (1 - eps_y) h_N, of the fractal eps_y H* */
-            double eps_y = p->sigma_y / p->E;
-            double rel_tip = (1.0 - eps_y) * ct_stage_depth(p, (double)N) / (eps_y * p->Hstar);
-            *bound = *bound > rel_tip ? *bound : rel_tip;
-        }
-    }
+    st = ct_solve_umax(b, W, 1e-12, u);
+    if (!st)
+        *P = ct_bundle_force(b, *u);
     ct_bundle_free(b);
     return st;
+}
+
+/* The truncated surface is softer than any deeper one on a virgin loading (deeper tips only
+ * add strain), so its u_max bounds theirs from above: the energy bound is safe. */
+static int depth_bound(depth_ctx *c, long N, double *bound)
+{
+    const ct_params *p = c->p;
+    double dP = force_bound(p, N), u, P;
+    int st;
+    if (N < DEPTH_PROBE) {
+        if ((st = solve_virgin(p, N, c->W_min, &u, &P)))
+            return st;
+        double rel_W = dP * u / c->W_min, rel_P = P > 0.0 ? dP / P : INFINITY;
+        *bound = rel_W > rel_P ? rel_W : rel_P;
+    } else {
+        if (c->u_up < 0.0 && (st = solve_virgin(p, DEPTH_PROBE, c->W_min, &c->u_up, &P)))
+            return st;
+        /* P(u_max) >= W / u_max as P rises with u: dP u_up / W bounds both ratios */
+        *bound = dP * c->u_up / c->W_min;
+    }
+    if (c->tips) {
+        /* first yield of the prefractal: eps_y H* + (1 - eps_y) h_N, of the fractal eps_y H* */
+        double eps_y = p->sigma_y / p->E;
+        double rel_tip = (1.0 - eps_y) * ct_stage_depth(p, (double)N) / (eps_y * p->Hstar);
+        *bound = *bound > rel_tip ? *bound : rel_tip;
+    }
+    return CT_OK;
 }
 
 static int search_depth(const ct_params *p, double W_min, double tol, int tips, long *depth,
@@ -216,10 +259,11 @@ static int search_depth(const ct_params *p, double W_min, double tol, int tips, 
     if (!isfinite(W_min) || !(W_min > 0.0))
         return ct_error_set(CT_EINVAL, "depth auto: impact energy %g must be finite and > 0",
                             W_min);
+    depth_ctx c = {p, W_min, tips, -1.0};
     long hi = 1;
     double b_hi;
     for (;;) {
-        if ((st = depth_bound(p, hi, W_min, tips, &b_hi)))
+        if ((st = depth_bound(&c, hi, &b_hi)))
             return st;
         if (b_hi <= tol)
             break;
@@ -235,7 +279,7 @@ static int search_depth(const ct_params *p, double W_min, double tol, int tips, 
     while (hi - lo > 1) {
         long mid = lo + (hi - lo) / 2;
         double b_mid;
-        if ((st = depth_bound(p, mid, W_min, tips, &b_mid)))
+        if ((st = depth_bound(&c, mid, &b_mid)))
             return st;
         if (b_mid <= tol) {
             hi = mid;

@@ -329,8 +329,9 @@ static int cmd_run(int argc, char **argv)
         else
             snprintf(how, sizeof how, "%s: truncation bound %.2g",
                      sc.depth == CT_DEPTH_FRACTAL ? "fractal limit" : "auto", bound);
-        fprintf(stderr, "cantact: %s, depth %ld (%s), %zu rods, %zu left out as never touched, "
-                        "%d thread(s)\n",
+        fprintf(stderr,
+                "cantact: %s, depth %ld (%s), %zu rods, %zu left out as never touched, "
+                "%d thread(s)\n",
                 sc.representation == CT_REP_STAGES ? "stage rods" : "segment rods", depth, how,
                 ct_bundle_size(b), ct_bundle_omitted(b), ct_set_threads(0));
     }
