@@ -212,6 +212,32 @@ int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, dou
  * reference plane (so that the first yield, hence V*_c, has converged too). */
 int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound);
 
+/* ---- the paper's laws (MODEL.md §5-6) -------------------------------------------- */
+/* Loads P [force] at displacement u [length] of the infinite fractal. */
+
+/* Series, Eqs. 12-21 with Eq. 15 between nodes (h_i << H* in the elastic terms, exact yield
+ * test of Eq. 29). */
+double ct_series_load(const ct_params *p, double u);
+/* Series unloading from u_max, Eqs. 22-24 (stages release at their own h-bar_i). */
+double ct_series_unload(const ct_params *p, double u_max, double u);
+/* Asymptotic law: Eq. 33 (u <= eps_y H*) and Eq. 34. */
+double ct_asym_load(const ct_params *p, double u);
+/* Asymptotic unloading, Eq. 38 as printed (consistent = 0), or with the second branch times
+ * (1 - 1/fz)/(1 - beta) as derived from Eq. 23 (consistent = 1). */
+double ct_asym_unload(const ct_params *p, double u_max, double u, int consistent);
+/* Returns the work [energy] of Eqs. 33-34 from 0 to u, closed form. */
+double ct_asym_work_load(const ct_params *p, double u);
+/* Returns the work [energy] of Eq. 38 from h-bar_inf = u_max - eps_y H* to u_max, closed form. */
+double ct_asym_work_unload(const ct_params *p, double u_max, int consistent);
+
+typedef enum { CT_LAW_SERIES = 0, CT_LAW_ASYMPTOTIC = 1, CT_LAW_ASYMPTOTIC_CONSISTENT = 2 } ct_law;
+
+/* e and u_max [length] of one impact of energy W on the virgin surface under a law: u_max
+ * from Eq. 39, unloading energy from Eq. 40, e = sqrt(W_unload / W_load); e = 1 exactly
+ * when no stage yields. */
+int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e);
+const char *ct_law_name(ct_law law);
+
 /* ---- scenes ---------------------------------------------------------------------- */
 
 #define CT_MAX_VELOCITIES 1000000

@@ -455,19 +455,19 @@ static int interpret(parse_state *s, ct_scene *sc)
                 sc->what |= CT_OUT_CURVE;
             else if (!strcmp(tok, "profile"))
                 sc->what |= CT_OUT_PROFILE;
-            else if (!strcmp(tok, "compare")) {
-                free(buf);
-                return bad(e, "output", "what",
-                           "compare needs the paper's series and asymptotic laws, which are "
-                           "not built yet; use e, curve, profile");
-            } else {
+            else if (!strcmp(tok, "compare"))
+                sc->what |= CT_OUT_COMPARE;
+            else {
                 free(buf);
                 return bad(e, "output", "what", "each item must be e, curve, profile or compare");
             }
         }
         free(buf);
         if (!sc->what)
-            return bad(e, "output", "what", "name at least one of e, curve, profile");
+            return bad(e, "output", "what", "name at least one of e, curve, profile, compare");
+        /* compare adds the paper's laws to e and curve; alone it means e with them */
+        if (sc->what == CT_OUT_COMPARE)
+            sc->what |= CT_OUT_E;
     }
     return CT_OK;
 }

@@ -20,7 +20,8 @@ static const char *main_help =
     "elastic-perfectly-plastic rods (Cantor stages built explicitly as rods).\n"
     "\n"
     "Subcommands:\n"
-    "  run SCENE        compute what the scene's [output] what asks for (e, curve, profile)\n"
+    "  run SCENE        compute what the scene's [output] what asks for (e, curve, profile,\n"
+    "                   compare)\n"
     "  geometry SCENE   print the Cantor geometry of the scene's surface\n"
     "\n"
     "Options:\n"
@@ -38,6 +39,8 @@ static const char *run_help =
     "  e:       impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,\n"
     "           V_star_crit,u_release_over_h0,elastic\n"
     "  curve:   V_star,impact,u_over_h0,P_over_PY,branch (load|unload)\n"
+    "  compare: adds e_series,e_asymptotic,e_asymptotic_consistent to e rows and the laws'\n"
+    "           P(u) to curve rows (first impact; the laws model the virgin fractal)\n"
     "  profile: stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0\n"
     "With several items in [output] what, FILE holds e and the others go to FILE with\n"
     "_curve / _profile before its extension. Outputs appear only when complete.\n"
@@ -150,8 +153,9 @@ static char *derived_path(const char *path, const char *tag)
 
 /* A curve branch: the breakpoints in [lo, hi] (when fewer than 1e5) and a uniform grid. */
 static int write_branch(FILE *f, ct_bundle *b, double V, long impact, double lo, double hi,
-                        const char *branch, double h0, double PY)
+                        const char *branch, double h0, double PY, int compare)
 {
+    const ct_params *p = ct_bundle_params(b);
     enum { GRID = 200 };
     double *pts = NULL;
     size_t n = 0;
@@ -186,7 +190,17 @@ static int write_branch(FILE *f, ct_bundle *b, double V, long impact, double lo,
         if (i > 0 && u[k] == u[unload ? k + 1 : k - 1])
             continue;
         double P = ct_bundle_force(b, u[k]);
-        fprintf(f, "%.17g,%ld,%.17g,%.17g,%s\n", V, impact, u[k] / h0, P / PY, branch);
+        fprintf(f, "%.17g,%ld,%.17g,%.17g,%s", V, impact, u[k] / h0, P / PY, branch);
+        if (compare && impact == 1) {
+            /* the laws at the same u, unloading from the exact u_max (hi) */
+            double ps = unload ? ct_series_unload(p, hi, u[k]) : ct_series_load(p, u[k]);
+            double pa = unload ? ct_asym_unload(p, hi, u[k], 0) : ct_asym_load(p, u[k]);
+            double pc = unload ? ct_asym_unload(p, hi, u[k], 1) : pa;
+            fprintf(f, ",%.17g,%.17g,%.17g", ps / PY, pa / PY, pc / PY);
+        } else if (compare) {
+            fputs(",,,", f);
+        }
+        fputc('\n', f);
     }
     free(u);
     return CT_OK;
@@ -336,11 +350,16 @@ static int cmd_run(int argc, char **argv)
                 ct_bundle_size(b), ct_bundle_omitted(b), ct_set_threads(0));
     }
 
+    int compare = !!(sc.what & CT_OUT_COMPARE);
     if (opened_e)
-        fprintf(out_e.f, "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,"
-                         "V_star_crit,u_release_over_h0,elastic\n");
+        fprintf(out_e.f,
+                "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,"
+                "V_star_crit,u_release_over_h0,elastic%s\n",
+                compare ? ",e_series,e_asymptotic,e_asymptotic_consistent" : "");
     if (opened_c)
-        fprintf(out_curve.f, "V_star,impact,u_over_h0,P_over_PY,branch\n");
+        fprintf(out_curve.f, "V_star,impact,u_over_h0,P_over_PY,branch%s\n",
+                compare ? ",P_series_over_PY,P_asymptotic_over_PY,P_asymptotic_consistent_over_PY"
+                        : "");
     ct_progress prog;
     ct_progress_start(&prog, sc.nvel * (size_t)sc.impacts);
     double PY = p->sigma_y * p->l0;
@@ -354,7 +373,8 @@ static int cmd_run(int argc, char **argv)
                 /* the loading branch follows the pre-impact state */
                 double um;
                 if ((st = ct_solve_umax(b, W, sc.opts.tolerance, &um)) ||
-                    (st = write_branch(out_curve.f, b, sc.V_star[v], i, u0, um, "load", p->h0, PY)))
+                    (st = write_branch(out_curve.f, b, sc.V_star[v], i, u0, um, "load", p->h0, PY,
+                                       compare)))
                     break;
             }
             if ((st = ct_impact(b, W, &sc.opts, &r)))
@@ -367,12 +387,28 @@ static int cmd_run(int argc, char **argv)
                 rc = EXIT_FAILED;
                 goto cleanup;
             }
-            if (opened_e)
-                fprintf(out_e.f, "%ld,%.17g,%.17g,%.17g,%.17g,%.3g,%.17g,%.17g,%d\n", i,
-                        sc.V_star[v], r.u_max / p->h0, r.e, r.e_closed, r.quad_error, r.V_star_crit,
+            if (opened_e) {
+                fprintf(out_e.f, "%ld,%.17g,%.17g,%.17g,%.17g,%.3g,%.17g,%.17g,%d", i, sc.V_star[v],
+                        r.u_max / p->h0, r.e, r.e_closed, r.quad_error, r.V_star_crit,
                         r.u_release / p->h0, r.elastic);
+                if (compare && i == 1) {
+                    /* the paper's laws model the first impact on the virgin fractal */
+                    for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT && !st;
+                         law++) {
+                        double um, el;
+                        st = ct_law_impact(p, (ct_law)law, W, &um, &el);
+                        if (!st)
+                            fprintf(out_e.f, ",%.17g", el);
+                    }
+                    if (st)
+                        break;
+                } else if (compare) {
+                    fputs(",,,", out_e.f);
+                }
+                fputc('\n', out_e.f);
+            }
             if (opened_c && (st = write_branch(out_curve.f, b, sc.V_star[v], i, r.u_release,
-                                               r.u_max, "unload", p->h0, PY)))
+                                               r.u_max, "unload", p->h0, PY, compare)))
                 break;
             ct_progress_step(&prog);
         }

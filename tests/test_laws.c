@@ -1,0 +1,359 @@
+/* The paper's series and asymptotic laws (MODEL.md §5-8): against direct stage sums, against
+ * each other at the nodes, their energies against GSL quadrature, the paper's qualitative
+ * claims in the paper's range, and the plastic-range power law of e. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+#include <math.h>
+
+#include "cantact.h"
+
+static ct_params make(double fx, double fz, double E_over_sy, double H)
+{
+    ct_params p = {
+        .fx = fx, .fz = fz, .l0 = 1.0, .h0 = 1.0, .Hstar = H, .E = E_over_sy, .sigma_y = 1.0};
+    return p;
+}
+
+#define assert_rel(a, b, rel)                                                                      \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b);                                                                 \
+        if (!(fabs(a_ - b_) <= (rel)*fmax(fabs(a_), fabs(b_))))                                    \
+            fail_msg("%s = %.17g vs %s = %.17g", #a, a_, #b, b_);                                  \
+    } while (0)
+
+/* Eq. 15 at u = h_n summed stage by stage in long double: elastic stages with the h_i << H*
+ * approximation, plastic ones (exact test, Eq. 29: h_i <= chi h0) at sigma_y. */
+static double direct_series(const ct_params *p, long n)
+{
+    long double fx = p->fx, fz = p->fz, hn = p->h0 * powl(fz, -n), eps_y = p->sigma_y / p->E;
+    long double chi = (hn - p->Hstar * eps_y) / (p->h0 * (1 - eps_y)), P = 0.0L;
+    for (long i = n + 1; i < n + 4000; i++) {
+        long double s = p->l0 * powl(fx, -i) * (1 - 1 / fx), h = p->h0 * powl(fz, -i);
+        P += (chi > 0 && h <= chi * p->h0) ? p->sigma_y * s : p->E / p->Hstar * s * (hn - h);
+    }
+    return (double)P;
+}
+
+static void eq19_at_nodes_against_direct_sum(void **state)
+{
+    (void)state;
+    double fzs[] = {1.1, 1.3, 1.7};
+    double Es[] = {100.0, 1000.0};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 2; b++) {
+            ct_params p = make(1.5, fzs[a], Es[b], 10.0);
+            for (long n = 0; n < 60; n += 3) {
+                double u = p.h0 * pow(p.fz, -(double)n);
+                /* evaluate just above the node so that stage n is surely out of contact */
+                assert_rel(ct_series_load(&p, u), direct_series(&p, n), 1e-12);
+            }
+        }
+}
+
+/* Eq. 21 (purely elastic, at u = h_n) as printed, in P_Y = sigma_y l0 units */
+static double eq21(const ct_params *p, long n)
+{
+    long double fx = p->fx, fz = p->fz, beta = 1 / (fx * fz), eps_y = p->sigma_y / p->E;
+    long double v =
+        p->h0 / (eps_y * p->Hstar) *
+        (powl(1 / fz, n) * powl(1 / fx, n + 1) - (1 - 1 / fx) * powl(beta, n + 1) / (1 - beta));
+    return (double)(v * p->sigma_y * p->l0);
+}
+
+static void eq33_equals_eq21_at_nodes(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.5, 1.9};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            ct_params p = make(fxs[a], fzs[b], 300.0, 10.0);
+            double eps_y = 1.0 / 300.0;
+            for (long n = 0; n < 80; n++) {
+                double u = pow(p.fz, -(double)n);
+                if (u > eps_y * p.Hstar)
+                    continue; /* Eq. 33 holds where no stage yields */
+                assert_rel(ct_asym_load(&p, u), eq21(&p, n), 1e-12);
+                assert_rel(ct_series_load(&p, u), eq21(&p, n), 1e-12);
+            }
+        }
+}
+
+static void stable_near_one_and_tiny_u(void **state)
+{
+    (void)state;
+    /* fx = fz -> 1: alpha = 1, K = (1 - 1/fz)/(1 - beta) -> 1/2 */
+    ct_params p = make(1.0 + 1e-9, 1.0 + 1e-9, 500.0, 10.0);
+    long double d = (long double)p.fx - 1.0L;
+    long double K = (d / (1 + d)) / ((2 * d + d * d) / ((1 + d) * (1 + d)));
+    double u = 1e-3;
+    long double eq33 = K * powl(u, 2.0L) / ((1.0L / 500.0L) * (1 + d) * 10.0L);
+    assert_rel(ct_asym_load(&p, u), (double)eq33, 1e-8);
+    /* tiny u and deep n: finite, non-negative, no NaN */
+    ct_params q = make(1.5, 1.3, 500.0, 10.0);
+    double us[] = {1e-12, 1e-30, 1e-300};
+    for (int k = 0; k < 3; k++) {
+        double v[] = {ct_series_load(&q, us[k]), ct_asym_load(&q, us[k]),
+                      ct_asym_work_load(&q, us[k]), ct_series_load(&p, us[k])};
+        for (int j = 0; j < 4; j++)
+            assert_true(isfinite(v[j]) && v[j] >= 0.0);
+    }
+    double e, um;
+    assert_int_equal(ct_law_impact(&p, CT_LAW_ASYMPTOTIC, 1e-4, &um, &e), CT_OK);
+    assert_true(isfinite(e) && e > 0.0 && e <= 1.0);
+}
+
+typedef struct {
+    const ct_params *p;
+    double u_max;
+    int consistent, unload;
+} law_ctx;
+
+static double law_f(double u, void *c)
+{
+    law_ctx *l = c;
+    return l->unload ? ct_asym_unload(l->p, l->u_max, u, l->consistent) : ct_asym_load(l->p, u);
+}
+
+static void asymptotic_energies_against_gsl(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+    ct_params p = make(1.5, 1.3, 500.0, 10.0);
+    double eps_y = 1.0 / 500.0;
+    double umaxs[] = {0.01, 0.05, 0.3};
+    for (int k = 0; k < 3; k++) {
+        double um = umaxs[k], r, err, uy = eps_y * p.Hstar;
+        law_ctx c = {&p, um, 0, 0};
+        gsl_function F = {law_f, &c};
+        /* split at the regime change u = eps_y H* where Eq. 33 meets Eq. 34 */
+        double r1 = 0.0;
+        if (um > uy) {
+            gsl_integration_qags(&F, 0.0, uy, 0.0, 1e-13, 1000, w, &r1, &err);
+            gsl_integration_qags(&F, uy, um, 0.0, 1e-13, 1000, w, &r, &err);
+        } else {
+            gsl_integration_qags(&F, 0.0, um, 0.0, 1e-13, 1000, w, &r, &err);
+        }
+        assert_rel(ct_asym_work_load(&p, um), r1 + r, 1e-11);
+        for (int cons = 0; cons < 2; cons++) {
+            c.unload = 1;
+            c.consistent = cons;
+            double chiM = (um - uy) / (1 - eps_y), hbar = um - uy, ra = 0.0, rb = 0.0;
+            if (chiM <= 0.0)
+                continue;
+            double split = chiM < um ? chiM : um;
+            gsl_integration_qags(&F, hbar, split, 0.0, 1e-13, 1000, w, &ra, &err);
+            gsl_integration_qags(&F, split, um, 0.0, 1e-13, 1000, w, &rb, &err);
+            assert_rel(ct_asym_work_unload(&p, um, cons), ra + rb, 1e-11);
+        }
+    }
+    gsl_integration_workspace_free(w);
+}
+
+/* max over a log grid of |asymptotic - series| / series on [u1, u2] */
+static double deviation(const ct_params *p, double u1, double u2)
+{
+    double m = 0.0;
+    for (int k = 0; k <= 1000; k++) {
+        double u = u1 * pow(u2 / u1, k / 1000.0), s = ct_series_load(p, u);
+        double d = fabs(ct_asym_load(p, u) - s) / s;
+        m = d > m ? d : m;
+    }
+    return m;
+}
+
+/* MODEL.md §8 (paper's Fig. 4): deviation < 10 % for u/h0 < 0.04, growing with u and with fz */
+static void paper_fig4_claims(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5};
+    double fzs[] = {1.1, 1.3, 1.5, 1.7, 1.9};
+    for (int a = 0; a < 2; a++) {
+        double prev = 0.0;
+        for (int b = 0; b < 5; b++) {
+            ct_params p = make(fxs[a], fzs[b], 300.0, 10.0);
+            double d_in = deviation(&p, 1e-4, 0.04), d_out = deviation(&p, 0.04, 1.0);
+            assert_true(d_in < 0.10);
+            assert_true(d_out > d_in); /* grows with u */
+            assert_true(d_in > prev);  /* grows with fz at fixed fx */
+            prev = d_in;
+        }
+    }
+}
+
+static double exact_force(const ct_params *p, double u)
+{
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_alloc(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    double P = ct_bundle_force(b, u);
+    ct_bundle_free(b);
+    return P;
+}
+
+static double exact_release(const ct_params *p, double u_max)
+{
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_alloc(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    ct_bundle_advance(b, u_max);
+    double r = ct_bundle_first_contact(b);
+    ct_bundle_free(b);
+    return r;
+}
+
+/* Fig. 5: load at fixed u grows with E/sigma_y; residual depth grows with E/sigma_y; Fig. 6:
+ * load grows with fz at fixed fx. Asserted for the exact rods and the asymptotic law. */
+static void paper_fig5_fig6_claims(void **state)
+{
+    (void)state;
+    double Es[] = {100.0, 300.0, 1000.0};
+    for (double u = 0.005; u <= 0.04; u += 0.005) {
+        double prevP = 0.0, prevA = 0.0, prevR = 0.0;
+        for (int k = 0; k < 3; k++) {
+            ct_params p = make(1.5, 1.3, Es[k], 10.0);
+            double P = exact_force(&p, u), A = ct_asym_load(&p, u), R = exact_release(&p, u);
+            assert_true(P > prevP && A > prevA && R >= prevR);
+            prevP = P;
+            prevA = A;
+            prevR = R;
+        }
+        assert_true(prevR > 0.0);
+        double fxs[] = {1.4, 1.8};
+        for (int a = 0; a < 2; a++) {
+            double prevF = 0.0, prevAs = 0.0;
+            double fzs[] = {1.1, 1.3, 1.5, 1.7, 1.9};
+            for (int b = 0; b < 5; b++) {
+                ct_params p = make(fxs[a], fzs[b], 300.0, 10.0);
+                double P = exact_force(&p, u), A = ct_asym_load(&p, u);
+                assert_true(P > prevF && A > prevAs);
+                prevF = P;
+                prevAs = A;
+            }
+        }
+    }
+}
+
+/* Fig. 6: the asymptotic loading curve is convex throughout for alpha > 1, convex then
+ * concave for alpha < 1 (second differences on a fine grid up to u/h0 = 0.04). */
+static void paper_convexity_claim(void **state)
+{
+    (void)state;
+    struct {
+        double fx, fz;
+    } cases[] = {{1.8, 1.3}, {1.4, 1.1}, {1.4, 1.9}, {1.2, 1.7}};
+    for (int c = 0; c < 4; c++) {
+        ct_params p = make(cases[c].fx, cases[c].fz, 1000.0, 10.0);
+        double alpha = ct_alpha(&p), h = 0.04 / 4000;
+        int concave_seen = 0, convex_after_concave = 0;
+        for (int k = 1; k < 4000; k++) {
+            double u = k * h;
+            double d2 = ct_asym_load(&p, u + h) - 2 * ct_asym_load(&p, u) + ct_asym_load(&p, u - h);
+            double scale = 1e-9 * ct_asym_load(&p, u + h);
+            if (d2 < -scale)
+                concave_seen = 1;
+            else if (d2 > scale && concave_seen)
+                convex_after_concave = 1;
+        }
+        if (alpha > 1)
+            assert_false(concave_seen);
+        else
+            assert_true(concave_seen && !convex_after_concave);
+    }
+}
+
+static double exact_e(const ct_params *p, double V, double *Vc)
+{
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_alloc(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    ct_impact_result r;
+    assert_int_equal(ct_impact(b, V * V * ct_energy_scale(p), NULL, &r), CT_OK);
+    ct_bundle_free(b);
+    if (Vc)
+        *Vc = r.V_star_crit;
+    return r.e;
+}
+
+/* Figs. 7-8: V*_c falls with E/sigma_y and rises with fz; e falls with E/sigma_y and with
+ * fx, at speeds where u_max/h0 stays below 0.04. */
+static void paper_fig7_fig8_claims(void **state)
+{
+    (void)state;
+    double Es[] = {100.0, 300.0, 1000.0}, prevVc = INFINITY, prev_e = 2.0, Vc;
+    for (int k = 0; k < 3; k++) {
+        /* H = 3 h0 so that E/sigma_y = 100 yields at all near u/h0 = 0.04 */
+        ct_params p = make(1.5, 1.5, Es[k], 3.0);
+        double e = exact_e(&p, 1.68e-3, &Vc);
+        assert_true(Vc < prevVc && e < prev_e);
+        prevVc = Vc;
+        prev_e = e;
+    }
+    double fzs[] = {1.1, 1.3, 1.5, 1.7, 1.9};
+    prevVc = 0.0;
+    for (int b = 0; b < 5; b++) {
+        ct_params p = make(1.5, fzs[b], 300.0, 10.0);
+        exact_e(&p, 1e-5, &Vc);
+        assert_true(Vc > prevVc);
+        prevVc = Vc;
+    }
+    double fxs[] = {1.2, 1.5, 1.8};
+    prev_e = 2.0;
+    for (int a = 0; a < 3; a++) {
+        ct_params p = make(fxs[a], 1.5, 300.0, 3.0);
+        double e = exact_e(&p, 6.55e-4, NULL);
+        assert_true(e < prev_e);
+        prev_e = e;
+    }
+}
+
+/* MODEL.md §7: where eps_y H* << u_max << h0 the asymptotic e ~ V*^(-1/(1+alpha)). */
+static void asymptotic_e_power_law(void **state)
+{
+    (void)state;
+    ct_params p = make(1.5, 1.3, 1e6, 10.0); /* eps_y H* = 1e-5 */
+    double V1 = 1e-6, V2 = 1.5e-6, u1, u2, e1, e2;
+    assert_int_equal(ct_law_impact(&p, CT_LAW_ASYMPTOTIC, V1 * V1 * p.E, &u1, &e1), CT_OK);
+    assert_int_equal(ct_law_impact(&p, CT_LAW_ASYMPTOTIC, V2 * V2 * p.E, &u2, &e2), CT_OK);
+    assert_true(u1 > 100 * 1e-5 && u2 < 0.02);
+    double slope = log(e2 / e1) / log(V2 / V1), expected = -1.0 / (1.0 + ct_alpha(&p));
+    assert_rel(slope, expected, 1e-3);
+}
+
+static void law_impact_elastic_below_critical(void **state)
+{
+    (void)state;
+    ct_params p = make(1.5, 1.3, 500.0, 10.0);
+    double uy = p.Hstar / p.E, um, e;
+    for (int law = 0; law < 3; law++) {
+        double Wc = law == CT_LAW_SERIES ? 0.0 : ct_asym_work_load(&p, uy);
+        if (law != CT_LAW_SERIES) {
+            assert_int_equal(ct_law_impact(&p, (ct_law)law, 0.99 * Wc, &um, &e), CT_OK);
+            assert_true(e == 1.0);
+            assert_int_equal(ct_law_impact(&p, (ct_law)law, 1.01 * Wc, &um, &e), CT_OK);
+            assert_true(e < 1.0);
+        }
+        assert_int_equal(ct_law_impact(&p, (ct_law)law, 1e3, &um, &e), CT_ERANGE);
+        assert_int_equal(ct_law_impact(&p, (ct_law)law, NAN, &um, &e), CT_EINVAL);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(eq19_at_nodes_against_direct_sum),
+        cmocka_unit_test(eq33_equals_eq21_at_nodes),
+        cmocka_unit_test(stable_near_one_and_tiny_u),
+        cmocka_unit_test(asymptotic_energies_against_gsl),
+        cmocka_unit_test(paper_fig4_claims),
+        cmocka_unit_test(paper_fig5_fig6_claims),
+        cmocka_unit_test(paper_convexity_claim),
+        cmocka_unit_test(paper_fig7_fig8_claims),
+        cmocka_unit_test(asymptotic_e_power_law),
+        cmocka_unit_test(law_impact_elastic_below_critical),
+    };
+    return cmocka_run_group_tests_name("laws", tests, NULL, NULL);
+}
