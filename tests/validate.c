@@ -10,6 +10,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 static double rel(double a, double b)
@@ -17,8 +18,41 @@ static double rel(double a, double b)
     return fabs(a - b) / fabs(b);
 }
 
+/* ct_validate curve FX FZ E H UMAX: load 0..UMAX then unload, exact rods beside the laws */
+static int curve(char **argv)
+{
+    ct_params p = {atof(argv[2]), atof(argv[3]), 1.0, 1.0, atof(argv[5]), atof(argv[4]), 1.0};
+    double um = atof(argv[6]);
+    ct_bundle *b;
+    if (ct_params_validate(&p) || ct_bundle_alloc(&b, &p, CT_REP_STAGES, 120, INFINITY)) {
+        fprintf(stderr, "ct_validate: %s\n", ct_error_message());
+        return 2;
+    }
+    printf("u_over_h0,branch,P_exact,P_series,P_asymptotic,P_asymptotic_consistent\n");
+    for (int k = 0; k <= 400; k++) {
+        double u = um * k / 400.0, pa = ct_asym_load(&p, u);
+        printf("%.10g,load,%.10g,%.10g,%.10g,%.10g\n", u, ct_bundle_force(b, u),
+               ct_series_load(&p, u), pa, pa);
+    }
+    ct_bundle_advance(b, um);
+    printf("\n\n"); /* gnuplot index 1: unloading */
+    double lo = ct_bundle_first_contact(b), hbar = um - p.Hstar * p.sigma_y / p.E;
+    lo = lo < hbar ? lo : hbar;
+    lo = lo > 0 ? lo : 0;
+    for (int k = 400; k >= 0; k--) {
+        double u = lo + (um - lo) * k / 400.0;
+        printf("%.10g,unload,%.10g,%.10g,%.10g,%.10g\n", u, ct_bundle_force(b, u),
+               ct_series_unload(&p, um, u), ct_asym_unload(&p, um, u, 0),
+               ct_asym_unload(&p, um, u, 1));
+    }
+    ct_bundle_free(b);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 7 && !strcmp(argv[1], "curve"))
+        return curve(argv);
     int quick = argc > 1 && !strcmp(argv[1], "--quick");
     double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.3, 1.5, 1.7, 1.9};
     double Es[] = {100.0, 300.0, 1000.0}, Hs[] = {3.0, 10.0, 100.0};
