@@ -184,6 +184,9 @@ typedef struct {
     double e;               /* sqrt(W_unload / W_load) by quadrature, dimensionless */
     double e_closed;        /* sqrt(W_unload_closed / W_load_closed) */
     double quad_error;      /* |e - e_closed| */
+    double e_rounding;      /* bound on the rounding error of e from u - top cancellation
+                               (stiff rods, weak impacts): 64 eps u_max / min(u_max -
+                               u_contact, u_max - u_release) */
     double V_star_crit;     /* critical V* of the pre-impact state (first yield) */
     int elastic;            /* 1 when below the critical velocity: e = 1 exactly */
 } ct_impact_result;
@@ -220,7 +223,9 @@ int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *boun
 double ct_series_load(const ct_params *p, double u);
 /* Series unloading from u_max, Eqs. 22-24 (stages release at their own h-bar_i). */
 double ct_series_unload(const ct_params *p, double u_max, double u);
-/* Asymptotic law: Eq. 33 (u <= eps_y H*) and Eq. 34. */
+/* Asymptotic law: Eq. 33 (u <= eps_y H*) and Eq. 34. Its continuous stage index
+ * n = -ln(u/h0)/ln fz is negative beyond u = h0: there the asymptotic functions return NaN
+ * and ct_law_impact refuses with CT_ERANGE. */
 double ct_asym_load(const ct_params *p, double u);
 /* Asymptotic unloading, Eq. 38 as printed (consistent = 0), or with the second branch times
  * (1 - 1/fz)/(1 - beta) as derived from Eq. 23 (consistent = 1). */

@@ -32,6 +32,8 @@ double ct_asym_load(const ct_params *p, double u)
     law_consts k = consts(p);
     if (!(u > 0.0))
         return 0.0;
+    if (u > k.h0)
+        return NAN; /* continuous stage index n < 0: outside the law */
     double x = u / k.h0, chi = chi_of(&k, u), a = k.alpha;
     if (chi <= 0.0) /* Eq. 33 */
         return k.PY * k.K * pow(x, 1.0 + a) / (k.eps_y * k.fx * k.H);
@@ -45,6 +47,8 @@ double ct_asym_work_load(const ct_params *p, double u)
     law_consts k = consts(p);
     if (!(u > 0.0))
         return 0.0;
+    if (u > k.h0)
+        return NAN;
     double a = k.alpha, h0 = k.h0, pre = k.PY / (k.eps_y * k.H * k.fx);
     double uy = k.eps_y * k.H * h0, x_end = u < uy ? u / h0 : uy / h0;
     /* Eq. 33 from 0: pre K h0 x^(2+a) / (2+a) */
@@ -69,7 +73,9 @@ double ct_asym_unload(const ct_params *p, double u_max, double u, int consistent
     law_consts k = consts(p);
     double a = k.alpha, h0 = k.h0, chiM = chi_of(&k, u_max); /* Eq. 36 */
     double hbar_inf = u_max - k.eps_y * k.H * h0;            /* Eq. 37 */
-    if (chiM <= 0.0)                                         /* no yield: unloading = loading */
+    if (u_max > h0)
+        return NAN;
+    if (chiM <= 0.0) /* no yield: unloading = loading */
         return ct_asym_load(p, u);
     if (!(u > hbar_inf))
         return 0.0;
@@ -88,6 +94,8 @@ double ct_asym_work_unload(const ct_params *p, double u_max, int consistent)
 {
     law_consts k = consts(p);
     double a = k.alpha, h0 = k.h0, chiM = chi_of(&k, u_max);
+    if (u_max > h0)
+        return NAN;
     if (chiM <= 0.0)
         return ct_asym_work_load(p, u_max);
     double hbar_inf = u_max - k.eps_y * k.H * h0, u_c = h0 * chiM;

@@ -95,6 +95,13 @@ int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max)
      * cannot fall below what a few ulps of u change; accept that rounding floor. */
     double resid = fabs(ct_bundle_work(b, u0, u) - W);
     double rounding_floor = 8.0 * DBL_EPSILON * fabs(u) * ct_bundle_force(b, u);
+    if (!(resid <= tolerance * W || resid <= rounding_floor) &&
+        u - u0 <= 16.0 * DBL_EPSILON * fabs(u0))
+        return ct_error_set(CT_ENOCONV,
+                            "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
+                            "resolution of u near %.17g: this impact is too weak to resolve on "
+                            "rods this stiff (raise V*)",
+                            u - u0, u0);
     if (!(resid <= tolerance * W || resid <= rounding_floor))
         return ct_error_set(CT_ENOCONV,
                             "u_max solve: |W(u) - W| / W = %.3g after the exact piece and Newton "
@@ -166,6 +173,7 @@ int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_resu
         res->W_unload_closed = res->W_load_closed;
         res->e = res->e_closed = 1.0;
         res->quad_error = 0.0;
+        res->e_rounding = 0.0;
         return CT_OK;
     }
     res->elastic = 0;
@@ -182,6 +190,19 @@ int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_resu
     res->e = sqrt(res->W_unload / res->W_load); /* Eq. 41, the right way up */
     res->e_closed = sqrt(res->W_unload_closed / res->W_load_closed);
     res->quad_error = fabs(res->e - res->e_closed);
+    /* W_unload <= W_load exactly. P is evaluated from u - top, which loses digits when the
+     * penetration u_max - u_contact, or the unloading interval u_max - u_release (eps_y-thin
+     * for stiff rods), is small against u itself: e carries a rounding error of about
+     * eps u_max / (that interval). Within it, e and
+     * e_closed may land above 1; that excess is rounding, not restitution. */
+    double kappa = fabs(res->u_max) / (res->u_max - res->u_contact);
+    double kappa_unload = fabs(res->u_max) / (res->u_max - res->u_release); /* eps_y-thin */
+    kappa = kappa > kappa_unload ? kappa : kappa_unload;
+    res->e_rounding = 64.0 * DBL_EPSILON * (kappa > 1.0 ? kappa : 1.0);
+    if (res->e > 1.0 && res->e <= 1.0 + res->e_rounding)
+        res->e = 1.0;
+    if (res->e_closed > 1.0 && res->e_closed <= 1.0 + res->e_rounding)
+        res->e_closed = 1.0;
     return CT_OK;
 }
 

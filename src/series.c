@@ -244,9 +244,13 @@ static double asym_residual(double u, void *ctx)
 
 static int asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e)
 {
-    double eps_y = p->sigma_y / p->E, hi = p->Hstar;
+    /* the law lives on 0 < u <= h0 (and below H*) */
+    double eps_y = p->sigma_y / p->E, hi = p->h0 < p->Hstar ? p->h0 : p->Hstar;
     if (!(ct_asym_work_load(p, hi) > W))
-        return ct_error_set(CT_ERANGE, "asymptotic law: impact energy %.6g reaches u_max >= H*", W);
+        return ct_error_set(CT_ERANGE,
+                            "asymptotic law: impact energy %.6g reaches u_max > h0 (or H*), where "
+                            "the law's stage index n = -ln(u/h0)/ln fz is negative",
+                            W);
     asym_ctx c = {p, W};
     gsl_function F = {asym_residual, &c};
     gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
@@ -286,11 +290,28 @@ int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, doubl
         return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and > 0", W);
     switch (law) {
     case CT_LAW_SERIES:
-        return series_impact(p, W, u_max, e);
+        st = series_impact(p, W, u_max, e);
+        break;
     case CT_LAW_ASYMPTOTIC:
-        return asym_impact(p, 0, W, u_max, e);
+        st = asym_impact(p, 0, W, u_max, e);
+        break;
     case CT_LAW_ASYMPTOTIC_CONSISTENT:
-        return asym_impact(p, 1, W, u_max, e);
+        st = asym_impact(p, 1, W, u_max, e);
+        break;
+    default:
+        return ct_error_set(CT_EINVAL, "law %d: unknown", (int)law);
     }
-    return ct_error_set(CT_EINVAL, "law %d: unknown", (int)law);
+    if (st)
+        return st;
+    /* The laws' unloading is not the loading's exact elastic part (h_i << H* in the elastic
+     * terms, Eq. 38's branches): where that approximation breaks, W_unload can exceed W_load.
+     * Such an e is not a coefficient of restitution: refuse it rather than print it. */
+    if (!(*e <= 1.0 + 1e-12))
+        return ct_error_set(CT_ERANGE,
+                            "the %s law gives W_unload > W_load (e = %.6g) at H*/h0 = %g, "
+                            "E/sigma_y = %g: its approximations do not hold here",
+                            ct_law_name(law), *e, p->Hstar / p->h0, p->E / p->sigma_y);
+    if (*e > 1.0)
+        *e = 1.0; /* rounding of two equal energies */
+    return CT_OK;
 }

@@ -196,7 +196,13 @@ static int write_branch(FILE *f, ct_bundle *b, double V, long impact, double lo,
             double ps = unload ? ct_series_unload(p, hi, u[k]) : ct_series_load(p, u[k]);
             double pa = unload ? ct_asym_unload(p, hi, u[k], 0) : ct_asym_load(p, u[k]);
             double pc = unload ? ct_asym_unload(p, hi, u[k], 1) : pa;
-            fprintf(f, ",%.17g,%.17g,%.17g", ps / PY, pa / PY, pc / PY);
+            double laws[3] = {ps, pa, pc};
+            for (int l = 0; l < 3; l++) {
+                if (isfinite(laws[l]))
+                    fprintf(f, ",%.17g", laws[l] / PY);
+                else
+                    fputc(',', f); /* outside the law (asymptotic beyond u = h0) */
+            }
         } else if (compare) {
             fputs(",,,", f);
         }
@@ -392,16 +398,15 @@ static int cmd_run(int argc, char **argv)
                         r.u_max / p->h0, r.e, r.e_closed, r.quad_error, r.V_star_crit,
                         r.u_release / p->h0, r.elastic);
                 if (compare && i == 1) {
-                    /* the paper's laws model the first impact on the virgin fractal */
-                    for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT && !st;
-                         law++) {
+                    /* the paper's laws model the first impact on the virgin fractal; where a
+                     * law does not apply (u_max > h0, e > 1) its field stays empty */
+                    for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT; law++) {
                         double um, el;
-                        st = ct_law_impact(p, (ct_law)law, W, &um, &el);
-                        if (!st)
+                        if (ct_law_impact(p, (ct_law)law, W, &um, &el) == CT_OK)
                             fprintf(out_e.f, ",%.17g", el);
+                        else
+                            fputc(',', out_e.f);
                     }
-                    if (st)
-                        break;
                 } else if (compare) {
                     fputs(",,,", out_e.f);
                 }

@@ -1,0 +1,174 @@
+/* The extreme grid of scripts/stability (issue 7): every case either computes e that is finite,
+ * in [0, 1], exactly 1 below V*_c, with energies balancing, or is refused with a message;
+ * never a NaN or a wrong number. One CSV row per surface and a summary line.
+ * Usage: ct_stability [--quick]   (exit 1 when any case fails a check) */
+#include "cantact.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+typedef struct {
+    int computed, refused, failed;
+} tally;
+
+static void csv_message(const char *m)
+{
+    putchar('"');
+    for (; *m; m++)
+        putchar(*m == '"' ? '\'' : *m);
+    putchar('"');
+}
+
+/* the series on [0, H*], the asymptotic law on its domain [0, h0] */
+static int finite_laws(const ct_params *p)
+{
+    double top_a = p->h0 < p->Hstar ? p->h0 : p->Hstar;
+    for (int k = 0; k <= 16; k++) {
+        double t = pow(1e-12, k / 16.0);
+        double v[] = {ct_series_load(p, p->Hstar * t), ct_asym_load(p, top_a * t),
+                      ct_asym_work_load(p, top_a * t), ct_series_unload(p, p->Hstar * 0.5, p->Hstar * 0.5 * t),
+                      ct_asym_unload(p, top_a, top_a * t, 0), ct_asym_work_unload(p, top_a, 1)};
+        for (int j = 0; j < 6; j++)
+            if (!isfinite(v[j]) || v[j] < 0.0)
+                return 0;
+    }
+    return 1;
+}
+
+/* Returns 0 computed, 1 refused, 2 failed. */
+static int run_case(const ct_params *p, int nv)
+{
+    ct_bundle *probe = NULL, *b = NULL;
+    long depth;
+    double bound, Wc, uy;
+    int st;
+    printf("%.17g,%.17g,%.17g,%.17g,", p->fx, p->fz, p->E / p->sigma_y, p->Hstar / p->h0);
+    /* depth auto (as the CLI's default) for the smallest impact, 1e-12 of the first-yield
+     * energy of a shallow probe */
+    if ((st = ct_bundle_alloc(&probe, p, CT_REP_STAGES, 64, INFINITY)) ||
+        (st = ct_critical_energy(probe, &Wc, &uy)) ||
+        ((st = ct_auto_depth(p, 1e-12 * Wc, 1e-12, &depth, &bound)) &&
+         (st = ct_auto_depth(p, 1e-6 * Wc, 1e-12, &depth, &bound)))) {
+        ct_bundle_free(probe);
+        printf(",refused,,,,,,,,,");
+        csv_message(ct_error_message());
+        putchar('\n');
+        return st == CT_EINVAL ? 2 : 1;
+    }
+    ct_bundle_free(probe);
+    if ((st = ct_bundle_alloc(&b, p, CT_REP_STAGES, depth, INFINITY)) ||
+        (st = ct_critical_energy(b, &Wc, &uy))) {
+        printf("%ld,refused,,,,,,,,,", depth);
+        csv_message(ct_error_message());
+        putchar('\n');
+        ct_bundle_free(b);
+        return 1;
+    }
+    double scale = ct_energy_scale(p), Vc = sqrt(Wc / scale);
+    double u0 = ct_bundle_first_contact(b);
+    double W_crush = ct_bundle_work(b, u0, p->Hstar);
+    double V_top = sqrt(0.999 * W_crush / scale);
+    int failed = 0, refused = 0, rises = 0, n = 0;
+    double e_min = 1.0, bal = 0.0, qerr = 0.0, rnd = 0.0, prev_e = 2.0;
+    char why[300] = "";
+    for (int k = 0; k < nv && !failed; k++) {
+        /* 1e-6 V*_c .. V_top, with V*_c (1 -+ 1e-9) among them */
+        double V = k == 0 ? Vc * (1 - 1e-9)
+                   : k == 1 ? Vc * (1 + 1e-9)
+                            : 1e-6 * Vc * pow(V_top / (1e-6 * Vc), (k - 2.0) / (nv - 3.0));
+        if (!(V > 0.0) || V > V_top)
+            continue;
+        double W = V * V * scale;
+        ct_impact_result r;
+        ct_bundle_reset(b);
+        st = ct_impact(b, W, NULL, &r);
+        if (st) {
+            if (st == CT_EINVAL) {
+                failed = 1;
+            } else {
+                refused++;
+            }
+            snprintf(why, sizeof why, "V*=%.3g: %s", V, ct_error_message());
+            if (strstr(ct_error_message(), "rod evaluations"))
+                break; /* the quadrature budget: every faster impact costs as much */
+            continue;
+        }
+        n++;
+        int bad = !isfinite(r.e) || r.e < 0.0 || r.e > 1.0 || !isfinite(r.u_max) ||
+                  r.quad_error > 1e-12 + r.e_rounding ||
+                  (V < Vc * (1 - 1e-12) && r.e != 1.0);
+        double b_err = fabs(r.W_load_closed - W) / W;
+        /* the balance holds to 1e-12 or to the rounding floor of u next to first contact */
+        double floor = 8.0 * 2.2e-16 * r.u_max * ct_bundle_force(b, r.u_max) / W;
+        if (!(b_err <= 1e-12 || b_err <= 4 * floor))
+            bad = 1;
+        if (bad) {
+            failed = 1;
+            snprintf(why, sizeof why, "V*=%.3g: e=%.17g, balance %.3g", V, r.e, b_err);
+        }
+        bal = b_err > bal ? b_err : bal;
+        qerr = r.quad_error > qerr ? r.quad_error : qerr;
+        rnd = r.e_rounding > rnd ? r.e_rounding : rnd;
+        e_min = r.e < e_min ? r.e : e_min;
+        if (k >= 2 && r.e > prev_e + 1e-12)
+            rises++;
+        if (k >= 2)
+            prev_e = r.e;
+        for (int law = 0; law < 3 && !failed; law++) {
+            double um, el;
+            int ls = ct_law_impact(p, (ct_law)law, W, &um, &el);
+            if (ls == CT_OK && !(isfinite(el) && el >= 0.0 && el <= 1.0)) {
+                failed = 1;
+                snprintf(why, sizeof why, "V*=%.3g: %s law e=%g", V, ct_law_name((ct_law)law), el);
+            }
+        }
+    }
+    if (!failed && !finite_laws(p)) {
+        failed = 1;
+        snprintf(why, sizeof why, "a law's P(u) is not finite");
+    }
+    printf("%ld,%s,%d,%.6g,%.6g,%.3g,%.3g,%.3g,%d,%d,", depth,
+           failed ? "FAILED" : (n ? "computed" : "refused"), n, Vc, e_min, bal, qerr, rnd, rises,
+           refused);
+    csv_message(why);
+    putchar('\n');
+    ct_bundle_free(b);
+    return failed ? 2 : (n ? 0 : 1);
+}
+
+int main(int argc, char **argv)
+{
+    int quick = argc > 1 && !strcmp(argv[1], "--quick");
+    double fx_all[] = {1 + 1e-9, 1 + 1e-6, 1.001, 1.5, 10, 1000};
+    double fz_all[] = {1 + 1e-9, 1 + 1e-6, 1.001, 1.5, 1.999};
+    double E_all[] = {1.5, 10, 1e3, 1e6, 1e9};
+    double H_all[] = {1 + 1e-9, 1.01, 10, 1e6};
+    /* the quick subset: every extreme once, without the cases whose depth runs to 10^7 */
+    double fx_q[] = {1 + 1e-9, 1.5, 1000}, fz_q[] = {1 + 1e-9, 1.5, 1.999};
+    double E_q[] = {1.5, 1e9}, H_q[] = {1 + 1e-9, 1e6};
+    double *fx = quick ? fx_q : fx_all, *fz = quick ? fz_q : fz_all;
+    double *Es = quick ? E_q : E_all, *Hs = quick ? H_q : H_all;
+    int nfx = quick ? 3 : 6, nfz = quick ? 3 : 5, nE = quick ? 2 : 5, nH = quick ? 2 : 4;
+    int nv = quick ? 12 : 40;
+    tally t = {0, 0, 0};
+    printf("fx,fz,E_over_sigma_y,H_over_h0,depth,status,impacts,V_star_crit,e_min,"
+           "max_balance_error,max_quadrature_error,max_e_rounding,e_rises,refused_impacts,message\n");
+    for (int a = 0; a < nfx; a++)
+        for (int b = 0; b < nfz; b++)
+            for (int c = 0; c < nE; c++)
+                for (int d = 0; d < nH; d++) {
+                    ct_params p = {fx[a], fz[b], 1.0, 1.0, Hs[d], Es[c], 1.0};
+                    int r = run_case(&p, nv);
+                    fflush(stdout);
+                    if (r == 0)
+                        t.computed++;
+                    else if (r == 1)
+                        t.refused++;
+                    else
+                        t.failed++;
+                }
+    fprintf(stderr, "stability: %d cases computed, %d refused with a message, %d failed\n",
+            t.computed, t.refused, t.failed);
+    return t.failed ? 1 : 0;
+}
