@@ -26,9 +26,12 @@ static int finite_laws(const ct_params *p)
     double top_a = p->h0 < p->Hstar ? p->h0 : p->Hstar;
     for (int k = 0; k <= 16; k++) {
         double t = pow(1e-12, k / 16.0);
-        double v[] = {ct_series_load(p, p->Hstar * t), ct_asym_load(p, top_a * t),
-                      ct_asym_work_load(p, top_a * t), ct_series_unload(p, p->Hstar * 0.5, p->Hstar * 0.5 * t),
-                      ct_asym_unload(p, top_a, top_a * t, 0), ct_asym_work_unload(p, top_a, 1)};
+        double v[] = {ct_series_load(p, p->Hstar * t),
+                      ct_asym_load(p, top_a * t),
+                      ct_asym_work_load(p, top_a * t),
+                      ct_series_unload(p, p->Hstar * 0.5, p->Hstar * 0.5 * t),
+                      ct_asym_unload(p, top_a, top_a * t, 0),
+                      ct_asym_work_unload(p, top_a, 1)};
         for (int j = 0; j < 6; j++)
             if (!isfinite(v[j]) || v[j] < 0.0)
                 return 0;
@@ -74,7 +77,7 @@ static int run_case(const ct_params *p, int nv)
     char why[300] = "";
     for (int k = 0; k < nv && !failed; k++) {
         /* 1e-6 V*_c .. V_top, with V*_c (1 -+ 1e-9) among them */
-        double V = k == 0 ? Vc * (1 - 1e-9)
+        double V = k == 0   ? Vc * (1 - 1e-9)
                    : k == 1 ? Vc * (1 + 1e-9)
                             : 1e-6 * Vc * pow(V_top / (1e-6 * Vc), (k - 2.0) / (nv - 3.0));
         if (!(V > 0.0) || V > V_top)
@@ -96,8 +99,7 @@ static int run_case(const ct_params *p, int nv)
         }
         n++;
         int bad = !isfinite(r.e) || r.e < 0.0 || r.e > 1.0 || !isfinite(r.u_max) ||
-                  r.quad_error > 1e-12 + r.e_rounding ||
-                  (V < Vc * (1 - 1e-12) && r.e != 1.0);
+                  r.quad_error > 1e-12 + r.e_rounding || (V < Vc * (1 - 1e-12) && r.e != 1.0);
         double b_err = fabs(r.W_load_closed - W) / W;
         /* the balance holds to 1e-12 or to the rounding floor of u next to first contact */
         double floor = 8.0 * 2.2e-16 * r.u_max * ct_bundle_force(b, r.u_max) / W;
@@ -152,8 +154,9 @@ int main(int argc, char **argv)
     int nfx = quick ? 3 : 6, nfz = quick ? 3 : 5, nE = quick ? 2 : 5, nH = quick ? 2 : 4;
     int nv = quick ? 12 : 40;
     tally t = {0, 0, 0};
-    printf("fx,fz,E_over_sigma_y,H_over_h0,depth,status,impacts,V_star_crit,e_min,"
-           "max_balance_error,max_quadrature_error,max_e_rounding,e_rises,refused_impacts,message\n");
+    printf(
+        "fx,fz,E_over_sigma_y,H_over_h0,depth,status,impacts,V_star_crit,e_min,"
+        "max_balance_error,max_quadrature_error,max_e_rounding,e_rises,refused_impacts,message\n");
     for (int a = 0; a < nfx; a++)
         for (int b = 0; b < nfz; b++)
             for (int c = 0; c < nE; c++)
