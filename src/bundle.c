@@ -375,12 +375,6 @@ double ct_bundle_first_yield(const ct_bundle *b)
     return m;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **points, size_t *count)
 {
     *points = NULL;
@@ -418,12 +412,7 @@ int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **poi
             pts[n++] = cand[t];
         }
     }
-    qsort(pts, n, sizeof(double), cmp_double);
-    size_t m = 0;
-    for (size_t k = 0; k < n; k++)
-        if (m == 0 || pts[k] != pts[m - 1])
-            pts[m++] = pts[k];
     *points = pts;
-    *count = m;
+    *count = ct_sort_unique(pts, n);
     return CT_OK;
 }

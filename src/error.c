@@ -2,6 +2,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 static _Thread_local char error_message[512];
 
@@ -37,4 +38,20 @@ const char *ct_strerror(int status)
     default:
         return "unknown error";
     }
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+size_t ct_sort_unique(double *v, size_t n)
+{
+    qsort(v, n, sizeof(double), cmp_double);
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (m == 0 || v[k] != v[m - 1])
+            v[m++] = v[k];
+    return m;
 }

@@ -15,4 +15,8 @@
  * a breakpoint on it catches them all. */
 int ct_error_set(int status, const char *fmt, ...) CT_PRINTF(2, 3);
 
+/* Sorts v ascending and drops repeated values; returns the new count. Breakpoint lists of
+ * the bundle and of the series go through here. */
+size_t ct_sort_unique(double *v, size_t n);
+
 #endif

@@ -100,12 +100,6 @@ static long series_stages(const ct_params *p)
     return M > 200000.0 ? 200000 : (long)M;
 }
 
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 typedef double (*law_force)(const ct_params *p, double u_max, double u);
 
 static double load_force(const ct_params *p, double u_max, double u)
@@ -161,12 +155,7 @@ static size_t series_load_points(const ct_params *p, double hi, double *pts)
             pts[n++] = y;
     }
     pts[n++] = eps_y * p->Hstar < hi ? eps_y * p->Hstar : 0.0;
-    qsort(pts, n, sizeof(double), cmp_double);
-    size_t m = 0;
-    for (size_t k = 0; k < n; k++)
-        if (m == 0 || pts[k] != pts[m - 1])
-            pts[m++] = pts[k];
-    return m;
+    return ct_sort_unique(pts, n);
 }
 
 static int series_impact(const ct_params *p, double W, double *u_max, double *e)
@@ -179,9 +168,10 @@ static int series_impact(const ct_params *p, double W, double *u_max, double *e)
     size_t n = series_load_points(p, p->Hstar, pts);
     piece *pc = NULL;
     int st = build_pieces(p, load_force, 0.0, pts, n, &pc);
-    if (st) {
+    if (st || n < 2) { /* n >= 2: 0 and H* are always there */
         free(pts);
-        return st;
+        free(pc);
+        return st ? st : ct_error_set(CT_EINVAL, "series: no interval to integrate");
     }
     if (!(W < pc[n - 1].W_before)) {
         free(pts);
@@ -219,7 +209,7 @@ static int series_impact(const ct_params *p, double W, double *u_max, double *e)
         if (b > hbar && b < *u_max)
             pts[m++] = b;
     }
-    qsort(pts, m, sizeof(double), cmp_double);
+    m = ct_sort_unique(pts, m);
     piece *pu = NULL;
     st = build_pieces(p, ct_series_unload, *u_max, pts, m, &pu);
     if (!st && pu && m >= 2) {

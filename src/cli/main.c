@@ -255,28 +255,41 @@ static int write_profile(FILE *f, ct_bundle *b, const ct_params *p)
     return CT_OK;
 }
 
-static int cmd_run(int argc, char **argv)
+/* Parses a subcommand's arguments and loads its scene. Returns -1 when the scene is loaded
+ * into *sc (the caller goes on), else the exit status to return (help shown, or an error). */
+static int load_scene_args(int argc, char **argv, const char *cmd, const char *help, ct_scene *sc,
+                           int *quiet)
 {
     cli_args a;
     int rc = parse_args(argc, argv, &a);
     if (rc || a.help) {
         if (a.help)
-            fputs(run_help, stdout);
+            fputs(help, stdout);
         free(a.sets);
         return rc;
     }
     if (!a.scene) {
-        fprintf(stderr, "cantact: run: missing SCENE.ini (see cantact run --help)\n");
+        fprintf(stderr, "cantact: %s: missing SCENE.ini (see cantact %s --help)\n", cmd, cmd);
         free(a.sets);
         return EXIT_USAGE;
     }
-    ct_scene sc;
-    int st = ct_scene_load(&sc, a.scene, a.sets, a.nsets);
+    int st = ct_scene_load(sc, a.scene, a.sets, a.nsets);
     free(a.sets);
     if (st) {
         fail_line(ct_error_message());
         return EXIT_USAGE;
     }
+    *quiet = a.quiet;
+    return -1;
+}
+
+static int cmd_run(int argc, char **argv)
+{
+    ct_scene sc;
+    int quiet, st;
+    int rc = load_scene_args(argc, argv, "run", run_help, &sc, &quiet);
+    if (rc >= 0)
+        return rc;
     const ct_params *p = &sc.params;
     ct_set_threads(sc.threads);
     int nitems = !!(sc.what & CT_OUT_E) + !!(sc.what & CT_OUT_CURVE) + !!(sc.what & CT_OUT_PROFILE);
@@ -342,7 +355,7 @@ static int cmd_run(int argc, char **argv)
         u_reach = INFINITY; /* the profile shows the whole surface */
     if ((st = ct_bundle_alloc(&b, p, sc.representation, depth, u_reach)))
         goto lib_fail;
-    if (!a.quiet) {
+    if (!quiet) {
         char how[96];
         if (sc.depth >= 0)
             snprintf(how, sizeof how, "given");
@@ -459,26 +472,12 @@ cleanup:
 
 static int cmd_geometry(int argc, char **argv)
 {
-    cli_args a;
-    int rc = parse_args(argc, argv, &a);
-    if (rc || a.help) {
-        if (a.help)
-            fputs(geometry_help, stdout);
-        free(a.sets);
-        return rc;
-    }
-    if (!a.scene) {
-        fprintf(stderr, "cantact: geometry: missing SCENE.ini (see cantact geometry --help)\n");
-        free(a.sets);
-        return EXIT_USAGE;
-    }
     ct_scene sc;
-    int st = ct_scene_load(&sc, a.scene, a.sets, a.nsets);
-    free(a.sets);
-    if (st) {
-        fail_line(ct_error_message());
-        return EXIT_USAGE;
-    }
+    int quiet, st;
+    int rc = load_scene_args(argc, argv, "geometry", geometry_help, &sc, &quiet);
+    if (rc >= 0)
+        return rc;
+    (void)quiet;
     const ct_params *p = &sc.params;
     long depth;
     double bound;
