@@ -48,11 +48,13 @@ static int run_case(const ct_params *p, int nv)
     int st;
     printf("%.17g,%.17g,%.17g,%.17g,", p->fx, p->fz, p->E / p->sigma_y, p->Hstar / p->h0);
     /* depth auto (as the CLI's default) for the smallest impact, 1e-12 of the first-yield
-     * energy of a shallow probe */
+     * energy of a shallow probe; where so weak an impact cannot be resolved (stiff rods), for
+     * 1e-6 of it, then for the first-yield energy itself */
     if ((st = ct_bundle_alloc(&probe, p, CT_REP_STAGES, 64, INFINITY)) ||
         (st = ct_critical_energy(probe, &Wc, &uy)) ||
         ((st = ct_auto_depth(p, 1e-12 * Wc, 1e-12, &depth, &bound)) &&
-         (st = ct_auto_depth(p, 1e-6 * Wc, 1e-12, &depth, &bound)))) {
+         (st = ct_auto_depth(p, 1e-6 * Wc, 1e-12, &depth, &bound)) &&
+         (st = ct_auto_depth(p, Wc, 1e-12, &depth, &bound)))) {
         ct_bundle_free(probe);
         printf(",refused,,,,,,,,,");
         csv_message(ct_error_message());
