@@ -62,6 +62,15 @@ static int run_case(const ct_params *p, int nv)
         return st == CT_EINVAL ? 2 : 1;
     }
     ct_bundle_free(probe);
+    if (depth > 200000) {
+        /* about 2 depth breakpoints and depth rods: past 2e5 stages any impact touching most
+         * of them exceeds the library's quadrature budget (5e10 rod evaluations), which would
+         * refuse it only after building and sorting; say so up front */
+        printf("%ld,refused,,,,,,,,,\"depth %ld stage rods: breakpoint quadrature would exceed "
+               "its budget of 5e10 rod evaluations\"\n",
+               depth, depth);
+        return 1;
+    }
     if ((st = ct_bundle_alloc(&b, p, CT_REP_STAGES, depth, INFINITY)) ||
         (st = ct_critical_energy(b, &Wc, &uy))) {
         printf("%ld,refused,,,,,,,,,", depth);
