@@ -12,6 +12,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "assert_rel.h"
 #include "cantact.h"
 
 static ct_params base(void)
@@ -20,13 +21,6 @@ static ct_params base(void)
         .fx = 1.5, .fz = 1.3, .l0 = 1.0, .h0 = 1.0, .Hstar = 10.0, .E = 500.0, .sigma_y = 1.0};
     return p;
 }
-
-#define assert_rel(a, b, rel)                                                                      \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b);                                                                 \
-        if (!(fabs(a_ - b_) <= (rel)*fmax(fabs(a_), fabs(b_))))                                    \
-            fail_msg("%s = %.17g vs %s = %.17g", #a, a_, #b, b_);                                  \
-    } while (0)
 
 /* ---- an independent virgin-surface model, straight from MODEL.md §2-3 ---- */
 typedef struct {

@@ -11,6 +11,7 @@
 #include <gsl/gsl_integration.h>
 #include <math.h>
 
+#include "assert_rel.h"
 #include "cantact.h"
 
 static ct_params make(double fx, double fz, double E_over_sy, double H)
@@ -19,13 +20,6 @@ static ct_params make(double fx, double fz, double E_over_sy, double H)
         .fx = fx, .fz = fz, .l0 = 1.0, .h0 = 1.0, .Hstar = H, .E = E_over_sy, .sigma_y = 1.0};
     return p;
 }
-
-#define assert_rel(a, b, rel)                                                                      \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b);                                                                 \
-        if (!(fabs(a_ - b_) <= (rel)*fmax(fabs(a_), fabs(b_))))                                    \
-            fail_msg("%s = %.17g vs %s = %.17g", #a, a_, #b, b_);                                  \
-    } while (0)
 
 /* Eq. 15 at u = h_n summed stage by stage in long double: elastic stages with the h_i << H*
  * approximation, plastic ones (exact test, Eq. 29: h_i <= chi h0) at sigma_y. */
