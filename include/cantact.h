@@ -118,6 +118,11 @@ int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info);
 
 /* Returns the total force P(u) [force] at the current state, without changing it. */
 double ct_bundle_force(ct_bundle *b, double u);
+/* P at m displacements in one pass over the rods (the quadrature's way to assemble);
+ * P[i] is bitwise ct_bundle_force(b, u[i]). Fails only with CT_ENOMEM (workspace). */
+int ct_bundle_force_many(ct_bundle *b, const double *u, size_t m, double *P);
+/* ct_bundle_work(b, u_a, u_b[i]) for m end points in one pass, bitwise the same. */
+int ct_bundle_work_many(ct_bundle *b, double u_a, const double *u_b, size_t m, double *W);
 /* Advances every rod's state along the displacement path to u (loading or unloading). */
 void ct_bundle_advance(ct_bundle *b, double u);
 /* Returns the work [energy] of P(u) at the current state from u_a to u_b (closed form per
@@ -147,7 +152,7 @@ int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **poi
 /* ---- quadrature ------------------------------------------------------------------ */
 
 typedef enum {
-    CT_QUAD_BREAKPOINTS = 0, /* 2-point Gauss-Legendre between breakpoints: exact for P */
+    CT_QUAD_BREAKPOINTS = 0, /* trapezoid on the breakpoints: exact for P */
     CT_QUAD_TRAPEZOID = 1,   /* composite, K nodes, ignores breakpoints, order 2 */
     CT_QUAD_SIMPSON = 2,     /* composite, K nodes (odd), ignores breakpoints, order 4 */
     CT_QUAD_GAUSS = 3,       /* composite 3-point Gauss-Legendre, K nodes, order 6 */
@@ -160,6 +165,12 @@ typedef double (*ct_function)(double x, void *ctx);
  * estimate of the absolute error (rounding for the exact rule). */
 int ct_integrate(ct_function f, void *ctx, double a, double b, ct_quad_rule rule, size_t nodes,
                  const double *points, size_t npoints, double *result, double *abserr);
+/* The integrand at m nodes at once: y[k] = f(x[k]). Returns CT_OK or a status. */
+typedef int (*ct_batch_function)(const double *x, size_t m, double *y, void *ctx);
+/* ct_integrate with an integrand that takes all nodes in one call. */
+int ct_integrate_batch(ct_batch_function f, void *ctx, double a, double b, ct_quad_rule rule,
+                       size_t nodes, const double *points, size_t npoints, double *result,
+                       double *abserr);
 /* Returns the rule's name, or NULL for an unknown rule. */
 const char *ct_quad_rule_name(ct_quad_rule rule);
 

@@ -23,9 +23,9 @@ int ct_critical_energy(ct_bundle *b, double *energy, double *u_yield)
     return CT_OK;
 }
 
-static double force_at(double u, void *ctx)
+static int force_batch(const double *u, size_t m, double *P, void *ctx)
 {
-    return ct_bundle_force((ct_bundle *)ctx, u);
+    return ct_bundle_force_many((ct_bundle *)ctx, u, m, P);
 }
 
 int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max)
@@ -57,20 +57,43 @@ int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max)
     int st = ct_bundle_breakpoints(b, u0, p->Hstar, &pts, &n);
     if (st)
         return st;
-    /* W(u) is convex and piecewise quadratic with knots at the breakpoints: bisect for the
-     * piece holding the target, then solve that quadratic exactly. */
+    /* W(u) is convex and piecewise quadratic with knots at the breakpoints: find the piece
+     * holding the target, then solve that quadratic exactly. Large bundles are memory-bound,
+     * so each pass over their rods evaluates W at up to 63 breakpoints (a 64-section); small
+     * ones are compute-bound and bisect. */
+    const size_t per_pass = ct_bundle_size(b) >= CT_PARALLEL_MIN_RODS ? 63 : 1;
+    double x[63], Wx[63], Wa = 0.0; /* W(pts[0]) = W(u0) = 0 */
+    size_t idx[63];
     size_t lo = 0, hi = n - 1; /* W(pts[lo]) <= W < W(pts[hi]) */
     while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (ct_bundle_work(b, u0, pts[mid]) <= W)
-            lo = mid;
-        else
-            hi = mid;
+        size_t span = hi - lo, k = span - 1 < per_pass ? span - 1 : per_pass;
+        for (size_t j = 0; j < k; j++) {
+            idx[j] = lo + (j + 1) * span / (k + 1);
+            x[j] = pts[idx[j]];
+        }
+        if ((st = ct_bundle_work_many(b, u0, x, k, Wx))) {
+            free(pts);
+            return st;
+        }
+        size_t new_lo = lo, new_hi = hi;
+        for (size_t j = 0; j < k; j++) {
+            if (Wx[j] <= W) {
+                new_lo = idx[j];
+                Wa = Wx[j];
+            } else {
+                new_hi = idx[j];
+                break;
+            }
+        }
+        lo = new_lo;
+        hi = new_hi;
     }
     double a = pts[lo], c = pts[hi];
     free(pts);
-    double Wa = ct_bundle_work(b, u0, a);
-    double Pa = ct_bundle_force(b, a), Pc = ct_bundle_force(b, c);
+    double ac[2] = {a, c}, Pac[2];
+    if ((st = ct_bundle_force_many(b, ac, 2, Pac)))
+        return st;
+    double Pa = Pac[0], Pc = Pac[1];
     double slope = (Pc - Pa) / (c - a);
     double R = W - Wa;
     double disc = Pa * Pa + 2.0 * slope * R;
@@ -124,7 +147,7 @@ static int energy_quadrature(ct_bundle *b, double lo, double hi, const ct_impact
     int st;
     if (opts->rule == CT_QUAD_BREAKPOINTS && (st = ct_bundle_breakpoints(b, lo, hi, &pts, &n)))
         return st;
-    double nodes = opts->rule == CT_QUAD_BREAKPOINTS ? 2.0 * (double)n : (double)opts->nodes;
+    double nodes = opts->rule == CT_QUAD_BREAKPOINTS ? (double)n : (double)opts->nodes;
     double cost = nodes * (double)ct_bundle_size(b) * (opts->rule == CT_QUAD_BREAKPOINTS ? 1 : 1.5);
     if (cost > CT_MAX_QUAD_ROD_EVALS) {
         free(pts);
@@ -136,7 +159,8 @@ static int energy_quadrature(ct_bundle *b, double lo, double hi, const ct_impact
                             ct_quad_rule_name(opts->rule), nodes, ct_bundle_size(b), cost,
                             CT_MAX_QUAD_ROD_EVALS);
     }
-    st = ct_integrate(force_at, b, lo, hi, opts->rule, opts->nodes, pts, n, result, &abserr);
+    st = ct_integrate_batch(force_batch, b, lo, hi, opts->rule, opts->nodes, pts, n, result,
+                            &abserr);
     free(pts);
     return st;
 }

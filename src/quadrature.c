@@ -1,10 +1,15 @@
 /* Integration rules over a 1-D function with known breakpoints. The breakpoint rule is
- * exact (up to rounding) for piecewise-linear integrands such as a bundle's P(u); the
- * composite rules ignore breakpoints and exist for the error-versus-time study. */
+ * exact (up to rounding) for continuous piecewise-linear integrands such as a bundle's P(u);
+ * the composite rules ignore breakpoints and exist for the error-versus-time study.
+ *
+ * Every rule is a list of nodes and weights: the integrand is asked for all nodes at once
+ * (a bundle then assembles P at every node in one pass over its rods) and the weighted
+ * values are summed in node order. */
 #include "internal.h"
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 
 const char *ct_quad_rule_name(ct_quad_rule rule)
 {
@@ -19,63 +24,6 @@ const char *ct_quad_rule_name(ct_quad_rule rule)
         return "gauss";
     }
     return NULL;
-}
-
-/* 2-point Gauss-Legendre on [a, b]: exact for cubics, so for every linear piece. */
-static double gauss2(ct_function f, void *ctx, double a, double b, double *abs_sum)
-{
-    const double x = 0.57735026918962576451; /* 1/sqrt(3) */
-    double mid = 0.5 * (a + b), half = 0.5 * (b - a);
-    double f1 = f(mid - half * x, ctx), f2 = f(mid + half * x, ctx);
-    *abs_sum += half * (fabs(f1) + fabs(f2));
-    return half * (f1 + f2);
-}
-
-static double breakpoint_rule(ct_function f, void *ctx, double a, double b, const double *pts,
-                              size_t npts, double *abs_sum)
-{
-    double sum = 0.0, left = a;
-    for (size_t k = 0; k < npts; k++) {
-        if (!(pts[k] > left && pts[k] < b))
-            continue;
-        sum += gauss2(f, ctx, left, pts[k], abs_sum);
-        left = pts[k];
-    }
-    return sum + gauss2(f, ctx, left, b, abs_sum);
-}
-
-static double trapezoid(ct_function f, void *ctx, double a, double b, size_t K)
-{
-    size_t m = K - 1;
-    double h = (b - a) / (double)m;
-    double s = 0.5 * (f(a, ctx) + f(b, ctx));
-    for (size_t k = 1; k < m; k++)
-        s += f(a + (double)k * h, ctx);
-    return s * h;
-}
-
-static double simpson(ct_function f, void *ctx, double a, double b, size_t K)
-{
-    size_t m = K - 1; /* even */
-    double h = (b - a) / (double)m;
-    double s = f(a, ctx) + f(b, ctx);
-    for (size_t k = 1; k < m; k++)
-        s += (k % 2 ? 4.0 : 2.0) * f(a + (double)k * h, ctx);
-    return s * h / 3.0;
-}
-
-static double gauss3(ct_function f, void *ctx, double a, double b, size_t K)
-{
-    const double x = 0.77459666924148337704; /* sqrt(3/5) */
-    size_t panels = K / 3;
-    double h = (b - a) / (double)panels, s = 0.0;
-    for (size_t k = 0; k < panels; k++) {
-        double mid = a + ((double)k + 0.5) * h, half = 0.5 * h;
-        s += half *
-             (5.0 * f(mid - half * x, ctx) + 8.0 * f(mid, ctx) + 5.0 * f(mid + half * x, ctx)) /
-             9.0;
-    }
-    return s;
 }
 
 /* The usable node count of a composite rule: trapezoid K >= 2, Simpson odd K >= 3,
@@ -95,49 +43,135 @@ static size_t usable_nodes(ct_quad_rule rule, size_t K)
     }
 }
 
-static double composite(ct_function f, void *ctx, double a, double b, ct_quad_rule rule, size_t K)
+/* Nodes x[0..K) and weights w of a composite rule with K usable nodes on [a, b]. */
+static void composite_nodes(ct_quad_rule rule, double a, double b, size_t K, double *x, double *w)
 {
-    switch (rule) {
-    case CT_QUAD_TRAPEZOID:
-        return trapezoid(f, ctx, a, b, K);
-    case CT_QUAD_SIMPSON:
-        return simpson(f, ctx, a, b, K);
-    default:
-        return gauss3(f, ctx, a, b, K);
+    if (rule == CT_QUAD_GAUSS) {
+        const double g = 0.77459666924148337704; /* sqrt(3/5) */
+        size_t panels = K / 3;
+        double h = (b - a) / (double)panels, half = 0.5 * h;
+        for (size_t k = 0; k < panels; k++) {
+            double mid = a + ((double)k + 0.5) * h;
+            x[3 * k] = mid - half * g;
+            x[3 * k + 1] = mid;
+            x[3 * k + 2] = mid + half * g;
+            w[3 * k] = w[3 * k + 2] = half * 5.0 / 9.0;
+            w[3 * k + 1] = half * 8.0 / 9.0;
+        }
+        return;
+    }
+    size_t m = K - 1;
+    double h = (b - a) / (double)m;
+    for (size_t k = 0; k < K; k++) {
+        x[k] = k == m ? b : a + (double)k * h;
+        if (rule == CT_QUAD_TRAPEZOID)
+            w[k] = (k == 0 || k == m ? 0.5 : 1.0) * h;
+        else /* Simpson */
+            w[k] = (k == 0 || k == m ? 1.0 : k % 2 ? 4.0 : 2.0) * h / 3.0;
     }
 }
 
-int ct_integrate(ct_function f, void *ctx, double a, double b, ct_quad_rule rule, size_t nodes,
-                 const double *points, size_t npoints, double *result, double *abserr)
+/* Breakpoint rule: the trapezoid rule on a, the sorted points inside (a, b), and b. Exact
+ * for a continuous integrand that is linear between breakpoints. Returns the node count. */
+static size_t breakpoint_nodes(double a, double b, const double *pts, size_t npts, double *x,
+                               double *w)
+{
+    size_t K = 0;
+    x[K++] = a;
+    for (size_t k = 0; k < npts; k++)
+        if (pts[k] > x[K - 1] && pts[k] < b)
+            x[K++] = pts[k];
+    x[K++] = b;
+    for (size_t k = 0; k < K; k++)
+        w[k] = 0.5 * ((k + 1 < K ? x[k + 1] : x[k]) - (k > 0 ? x[k - 1] : x[k]));
+    return K;
+}
+
+/* sum w f(x) over nodes; *abs_sum gets sum |w f(x)| */
+static int weighted_sum(ct_batch_function f, void *ctx, const double *x, const double *w, size_t K,
+                        double *y, double *result, double *abs_sum)
+{
+    int st = f(x, K, y, ctx);
+    if (st)
+        return st;
+    double s = 0.0, a = 0.0;
+    for (size_t k = 0; k < K; k++) {
+        s += w[k] * y[k];
+        a += fabs(w[k] * y[k]);
+    }
+    *result = s;
+    if (abs_sum)
+        *abs_sum = a;
+    return CT_OK;
+}
+
+int ct_integrate_batch(ct_batch_function f, void *ctx, double a, double b, ct_quad_rule rule,
+                       size_t nodes, const double *points, size_t npoints, double *result,
+                       double *abserr)
 {
     if (!isfinite(a) || !isfinite(b) || a > b)
         return ct_error_set(CT_EINVAL, "integral over [%g, %g]: need finite a <= b", a, b);
+    if (!ct_quad_rule_name(rule))
+        return ct_error_set(CT_EINVAL, "quadrature rule %d: unknown", (int)rule);
+    size_t K = rule == CT_QUAD_BREAKPOINTS ? npoints + 2 : usable_nodes(rule, nodes);
+    if (K == 0)
+        return ct_error_set(CT_EINVAL, "%s with %zu nodes: needs at least %d nodes",
+                            ct_quad_rule_name(rule), nodes, rule == CT_QUAD_TRAPEZOID ? 2 : 3);
     if (a == b) {
         *result = 0.0;
         if (abserr)
             *abserr = 0.0;
         return CT_OK;
     }
+    double *buf = malloc(3 * K * sizeof(double));
+    if (!buf)
+        return ct_error_set(CT_ENOMEM, "%s with %zu nodes: out of memory", ct_quad_rule_name(rule),
+                            K);
+    double *x = buf, *w = buf + K, *y = buf + 2 * K, abs_sum;
+    int st;
     if (rule == CT_QUAD_BREAKPOINTS) {
-        double abs_sum = 0.0;
-        *result = breakpoint_rule(f, ctx, a, b, points, npoints, &abs_sum);
-        if (abserr)
+        K = breakpoint_nodes(a, b, points, npoints, x, w);
+        st = weighted_sum(f, ctx, x, w, K, y, result, &abs_sum);
+        if (!st && abserr)
             *abserr = 4.0 * DBL_EPSILON * abs_sum; /* exact rule: only rounding remains */
     } else {
-        if (!ct_quad_rule_name(rule))
-            return ct_error_set(CT_EINVAL, "quadrature rule %d: unknown", (int)rule);
-        size_t K = usable_nodes(rule, nodes);
-        if (K == 0)
-            return ct_error_set(CT_EINVAL, "%s with %zu nodes: needs at least %d nodes",
-                                ct_quad_rule_name(rule), nodes, rule == CT_QUAD_TRAPEZOID ? 2 : 3);
-        *result = composite(f, ctx, a, b, rule, K);
-        if (abserr) {
+        composite_nodes(rule, a, b, K, x, w);
+        st = weighted_sum(f, ctx, x, w, K, y, result, NULL);
+        if (!st && abserr) {
             /* the same rule on about half the nodes: a cheap, honest error indicator */
             size_t Kc = usable_nodes(rule, (K + 1) / 2);
-            *abserr = Kc ? fabs(*result - composite(f, ctx, a, b, rule, Kc)) : INFINITY;
+            double coarse = 0.0;
+            if (Kc) {
+                composite_nodes(rule, a, b, Kc, x, w);
+                st = weighted_sum(f, ctx, x, w, Kc, y, &coarse, NULL);
+            }
+            *abserr = Kc ? fabs(*result - coarse) : INFINITY;
         }
     }
+    free(buf);
+    if (st)
+        return st;
     if (!isfinite(*result))
         return ct_error_set(CT_ENOCONV, "integral over [%g, %g] is not finite", a, b);
     return CT_OK;
+}
+
+typedef struct {
+    ct_function f;
+    void *ctx;
+} scalar_ctx;
+
+static int scalar_batch(const double *x, size_t m, double *y, void *ctx)
+{
+    const scalar_ctx *c = ctx;
+    for (size_t k = 0; k < m; k++)
+        y[k] = c->f(x[k], c->ctx);
+    return CT_OK;
+}
+
+int ct_integrate(ct_function f, void *ctx, double a, double b, ct_quad_rule rule, size_t nodes,
+                 const double *points, size_t npoints, double *result, double *abserr)
+{
+    scalar_ctx c = {f, ctx};
+    return ct_integrate_batch(scalar_batch, &c, a, b, rule, nodes, points, npoints, result, abserr);
 }

@@ -150,6 +150,44 @@ static void bitwise_identical_for_any_thread_count(void **state)
     ct_bundle_free(b);
 }
 
+/* One pass for many nodes must give, node by node, the very bits of the single-node sums:
+ * the quadrature and the u_max search use the former, the closed forms the latter. 150
+ * nodes cross two chunk boundaries; they include points below contact, on the plateau and
+ * exactly at breakpoints. */
+static void many_nodes_match_single_nodes(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    const ct_representation rep[2] = {CT_REP_SEGMENTS, CT_REP_STAGES};
+    const long depth[2] = {17, 40};
+    for (int r = 0; r < 2; r++) {
+        ct_bundle *b;
+        assert_int_equal(ct_bundle_alloc(&b, &p, rep[r], depth[r], INFINITY), CT_OK);
+        ct_bundle_advance(b, 0.33);
+        ct_bundle_advance(b, 0.2);
+        double *bp;
+        size_t nbp;
+        assert_int_equal(ct_bundle_breakpoints(b, 0.0, 1.0, &bp, &nbp), CT_OK);
+        enum { M = 150 };
+        double u[M], P[M], W[M];
+        for (size_t i = 0; i < M; i++)
+            u[i] = i < nbp ? bp[i] : -0.1 + 1.2 * (double)i / M;
+        free(bp);
+        for (int threads = 1; threads <= 2; threads++) {
+            ct_set_threads(threads);
+            assert_int_equal(ct_bundle_force_many(b, u, M, P), CT_OK);
+            assert_int_equal(ct_bundle_work_many(b, 0.01, u, M, W), CT_OK);
+            for (size_t i = 0; i < M; i++) {
+                double Pi = ct_bundle_force(b, u[i]), Wi = ct_bundle_work(b, 0.01, u[i]);
+                assert_memory_equal(&P[i], &Pi, sizeof Pi);
+                assert_memory_equal(&W[i], &Wi, sizeof Wi);
+            }
+        }
+        ct_set_threads(0);
+        ct_bundle_free(b);
+    }
+}
+
 static void truncation_bound_holds(void **state)
 {
     (void)state;
@@ -259,6 +297,7 @@ int main(void)
         cmocka_unit_test(elastic_force_against_long_double_sum),
         cmocka_unit_test(work_against_gsl_quadrature),
         cmocka_unit_test(bitwise_identical_for_any_thread_count),
+        cmocka_unit_test(many_nodes_match_single_nodes),
         cmocka_unit_test(truncation_bound_holds),
         cmocka_unit_test(too_deep_is_refused_before_allocating),
         cmocka_unit_test(untouched_rods_are_left_out),
