@@ -374,12 +374,12 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua,
     for (size_t i = 0; i < m; i++)
         s[i] = c[i] = 0.0;
     for (size_t k = k0; k < k1; k++) {
-        const double tk = top[k], lk = length[k], ak = area[k], pk = eps_p[k];
+        const double tk = top[k], lk = length[k], ak = area[k], pk = eps_p[k], rl = 1.0 / lk;
         const double Ea = E * ak, EaL = E * ak * lk;
         const double wa = ct_rod_work_density(ct_rod_elastic_strain(ua, tk, lk, pk), eps_y);
         if (kind == SUM_FORCE) {
             for (size_t i = 0; i < m; i++) {
-                double d = (ub[i] - tk) / lk - pk;
+                double d = (ub[i] - tk) * rl - pk;
                 d = d > 0.0 ? d : 0.0;
                 d = d > eps_y ? eps_y : d;
                 double x = Ea * d, t = s[i] + x;
@@ -389,7 +389,7 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua,
             }
         } else {
             for (size_t i = 0; i < m; i++) {
-                double d = (ub[i] - tk) / lk - pk;
+                double d = (ub[i] - tk) * rl - pk;
                 double plateau = eps_y * (d - 0.5 * eps_y), elastic = 0.5 * d * d;
                 double w = d > eps_y ? plateau : elastic;
                 w = d > 0.0 ? w : 0.0;
@@ -528,7 +528,9 @@ int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **poi
     if (b->n >= b->parallel_min)
         nt = omp_get_max_threads();
 #endif
-    point_list *lists = calloc((size_t)nt, sizeof *lists);
+    /* per thread: contacts, then yields; each list is one monotone run on a virgin stage
+     * bundle, which is what lets the sort below merge instead of sorting */
+    point_list *lists = calloc(2 * (size_t)nt, sizeof *lists);
     if (!lists)
         return ct_error_set(CT_ENOMEM, "breakpoints: out of memory");
     const ptrdiff_t nb = (ptrdiff_t)b->nblocks;
@@ -539,7 +541,7 @@ int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **poi
 #ifdef _OPENMP
         t = omp_get_thread_num();
 #endif
-        point_list *l = &lists[t];
+        point_list *lc = &lists[2 * t], *ly = &lists[2 * t + 1];
 #pragma omp for schedule(static)
         for (ptrdiff_t j = 0; j < nb; j++) {
             size_t k0 = (size_t)j * CT_BLOCK;
@@ -551,9 +553,9 @@ int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **poi
                 double c = ct_rod_contact(b->top[k], b->length[k], b->plastic_strain[k]);
                 double y = ct_rod_yield(b->top[k], b->length[k], b->plastic_strain[k], b->eps_y);
                 if (c != last_c && c > lo && c < hi)
-                    point_push(l, c);
+                    point_push(lc, c);
                 if (y != last_y && y > lo && y < hi)
-                    point_push(l, y);
+                    point_push(ly, y);
                 last_c = c;
                 last_y = y;
             }
@@ -561,7 +563,7 @@ int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **poi
     }
     size_t n = 2;
     int oom = 0;
-    for (int t = 0; t < nt; t++) {
+    for (int t = 0; t < 2 * nt; t++) {
         n += lists[t].n;
         oom |= lists[t].oom;
     }
@@ -570,13 +572,13 @@ int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **poi
         pts[0] = lo;
         pts[1] = hi;
         n = 2;
-        for (int t = 0; t < nt; t++) {
+        for (int t = 0; t < 2 * nt; t++) {
             if (lists[t].n)
                 memcpy(pts + n, lists[t].v, lists[t].n * sizeof(double));
             n += lists[t].n;
         }
     }
-    for (int t = 0; t < nt; t++)
+    for (int t = 0; t < 2 * nt; t++)
         free(lists[t].v);
     free(lists);
     if (!pts)

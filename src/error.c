@@ -3,6 +3,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static _Thread_local char error_message[512];
 
@@ -46,9 +47,53 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/* Merges the sorted runs v[0..m) and v[m..n) through tmp. */
+static void merge_runs(double *v, size_t m, size_t n, double *tmp)
+{
+    size_t i = 0, j = m, k = 0;
+    while (i < m && j < n)
+        tmp[k++] = v[j] < v[i] ? v[j++] : v[i++];
+    while (i < m)
+        tmp[k++] = v[i++];
+    while (j < n)
+        tmp[k++] = v[j++];
+    memcpy(v, tmp, n * sizeof(double));
+}
+
+/* Breakpoint lists come as a few monotone runs (a stage bundle's contacts and yields both
+ * fall with the stage index); sorting them by merging those runs is O(n) instead of the
+ * O(n log n) of qsort, which dominated a sweep of many velocities. Lists of many runs,
+ * or where the buffer cannot be had, go to qsort. */
+#define CT_MAX_RUNS 8
+
 size_t ct_sort_unique(double *v, size_t n)
 {
-    qsort(v, n, sizeof(double), cmp_double);
+    size_t ends[CT_MAX_RUNS], runs = 0, start = 0;
+    double *tmp = NULL;
+    while (start < n && runs < CT_MAX_RUNS) {
+        size_t end = start + 1;
+        if (end < n && v[end] < v[start]) {
+            while (end < n && v[end] < v[end - 1])
+                end++;
+            for (size_t a = start, b = end - 1; a < b; a++, b--) { /* strictly falling: reverse */
+                double t = v[a];
+                v[a] = v[b];
+                v[b] = t;
+            }
+        } else {
+            while (end < n && v[end] >= v[end - 1])
+                end++;
+        }
+        ends[runs++] = end;
+        start = end;
+    }
+    if (start < n || (runs > 1 && !(tmp = malloc(n * sizeof(double))))) {
+        qsort(v, n, sizeof(double), cmp_double);
+    } else {
+        for (size_t r = 1; r < runs; r++)
+            merge_runs(v, ends[r - 1], ends[r], tmp);
+        free(tmp);
+    }
     size_t m = 0;
     for (size_t k = 0; k < n; k++)
         if (m == 0 || v[k] != v[m - 1])

@@ -15,7 +15,7 @@
 static inline double ct_rod_elastic_strain(double u, double top, double length,
                                            double plastic_strain)
 {
-    return (u - top) / length - plastic_strain;
+    return (u - top) * (1.0 / length) - plastic_strain;
 }
 
 /* Returns the force [force] P = E s clamp(d, 0, eps_y). */
@@ -34,7 +34,7 @@ static inline double ct_rod_force(double u, double top, double length, double ar
 static inline double ct_rod_advance(double u, double top, double length, double plastic_strain,
                                     double eps_y)
 {
-    double strain = (u - top) / length;
+    double strain = (u - top) * (1.0 / length);
     if (strain - plastic_strain > eps_y)
         return strain - eps_y;
     return plastic_strain;

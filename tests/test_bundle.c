@@ -168,6 +168,25 @@ static void many_nodes_match_single_nodes(void **state)
         double *bp;
         size_t nbp;
         assert_int_equal(ct_bundle_breakpoints(b, 0.0, 1.0, &bp, &nbp), CT_OK);
+        /* the merge sort of the breakpoint runs: strictly increasing, and every rod's contact
+         * and yield point inside (0, 1) is there */
+        for (size_t k = 1; k < nbp; k++)
+            assert_true(bp[k] > bp[k - 1]);
+        double eps_y = p.sigma_y / p.E;
+        for (size_t k = 0; k < ct_bundle_size(b); k += 97) {
+            ct_rod_info in;
+            assert_int_equal(ct_bundle_rod(b, k, &in), CT_OK);
+            double cy[2] = {in.top + in.plastic_strain * in.length,
+                            in.top + (in.plastic_strain + eps_y) * in.length};
+            for (int t = 0; t < 2; t++) {
+                if (!(cy[t] > 0.0 && cy[t] < 1.0))
+                    continue;
+                int found = 0;
+                for (size_t q = 0; q < nbp && !found; q++)
+                    found = bp[q] == cy[t];
+                assert_true(found);
+            }
+        }
         enum { M = 150 };
         double u[M], P[M], W[M];
         for (size_t i = 0; i < M; i++)
