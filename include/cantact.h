@@ -156,6 +156,7 @@ typedef enum {
     CT_QUAD_TRAPEZOID = 1,   /* composite, K nodes, ignores breakpoints, order 2 */
     CT_QUAD_SIMPSON = 2,     /* composite, K nodes (odd), ignores breakpoints, order 4 */
     CT_QUAD_GAUSS = 3,       /* composite 3-point Gauss-Legendre, K nodes, order 6 */
+    CT_QUAD_CLOSED = 4,      /* ct_impact only: closed-form energies per rod, no quadrature */
 } ct_quad_rule;
 
 typedef double (*ct_function)(double x, void *ctx);

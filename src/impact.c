@@ -145,6 +145,10 @@ static int energy_quadrature(ct_bundle *b, double lo, double hi, const ct_impact
     double *pts = NULL, abserr;
     size_t n = 0;
     int st;
+    if (opts->rule == CT_QUAD_CLOSED) { /* the caller takes the closed forms */
+        *result = NAN;
+        return CT_OK;
+    }
     if (opts->rule == CT_QUAD_BREAKPOINTS && (st = ct_bundle_breakpoints(b, lo, hi, &pts, &n)))
         return st;
     double nodes = opts->rule == CT_QUAD_BREAKPOINTS ? (double)n : (double)opts->nodes;
@@ -188,6 +192,8 @@ int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_resu
     if ((st = energy_quadrature(b, res->u_contact, res->u_max, opts, &res->W_load)))
         return st;
     res->W_load_closed = ct_bundle_work(b, res->u_contact, res->u_max);
+    if (opts->rule == CT_QUAD_CLOSED)
+        res->W_load = res->W_load_closed;
 
     if (W <= W_crit) {
         /* No rod yields: the state is unchanged and every joule comes back (e = 1 exactly). */
@@ -206,6 +212,8 @@ int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_resu
     if ((st = energy_quadrature(b, res->u_release, res->u_max, opts, &res->W_unload)))
         return st;
     res->W_unload_closed = ct_bundle_elastic_energy(b, res->u_max); /* Eq. 40 in closed form */
+    if (opts->rule == CT_QUAD_CLOSED)
+        res->W_unload = res->W_unload_closed;
     if (!(res->W_load > 0.0) || !(res->W_unload >= 0.0))
         return ct_error_set(CT_ENOCONV,
                             "%s quadrature gave W_load = %g, W_unload = %g: not a valid "

@@ -22,6 +22,8 @@ const char *ct_quad_rule_name(ct_quad_rule rule)
         return "simpson";
     case CT_QUAD_GAUSS:
         return "gauss";
+    case CT_QUAD_CLOSED:
+        return "closed";
     }
     return NULL;
 }
@@ -111,7 +113,7 @@ int ct_integrate_batch(ct_batch_function f, void *ctx, double a, double b, ct_qu
 {
     if (!isfinite(a) || !isfinite(b) || a > b)
         return ct_error_set(CT_EINVAL, "integral over [%g, %g]: need finite a <= b", a, b);
-    if (!ct_quad_rule_name(rule))
+    if (!ct_quad_rule_name(rule) || rule == CT_QUAD_CLOSED)
         return ct_error_set(CT_EINVAL, "quadrature rule %d: unknown", (int)rule);
     size_t K = rule == CT_QUAD_BREAKPOINTS ? npoints + 2 : usable_nodes(rule, nodes);
     if (K == 0)

@@ -406,14 +406,14 @@ static int interpret(parse_state *s, ct_scene *sc)
     ct_impact_opts_default(&sc->opts);
     if ((e = get(s, "solver", "quadrature"))) {
         int found = 0;
-        for (int r = CT_QUAD_BREAKPOINTS; r <= CT_QUAD_GAUSS; r++)
+        for (int r = CT_QUAD_BREAKPOINTS; r <= CT_QUAD_CLOSED; r++)
             if (!strcmp(e->value, ct_quad_rule_name((ct_quad_rule)r))) {
                 sc->opts.rule = (ct_quad_rule)r;
                 found = 1;
             }
         if (!found)
             return bad(e, "solver", "quadrature",
-                       "must be breakpoints, trapezoid, simpson or gauss");
+                       "must be breakpoints, trapezoid, simpson, gauss or closed");
     }
     long nodes = (long)sc->opts.nodes;
     if ((st = integer_key(s, "solver", "nodes", 3, 100000000, "must satisfy 3 <= nodes <= 1e8",
