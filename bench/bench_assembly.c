@@ -18,7 +18,7 @@
 #include <omp.h>
 #endif
 
-static int runs = 5;
+static int runs = 7;
 
 /* Median seconds of one call of fn over `runs` timed runs after a warm-up. */
 #define MEDIAN_OF(result, stmt)                                                                    \
@@ -75,7 +75,8 @@ static double triad(double *a, const double *b, const double *c, size_t n, int t
 static double *huge_array(size_t n)
 {
     void *p = NULL;
-    size_t bytes = (n * sizeof(double) + ((size_t)2 << 20) - 1) / ((size_t)2 << 20) * ((size_t)2 << 20);
+    size_t bytes =
+        (n * sizeof(double) + ((size_t)2 << 20) - 1) / ((size_t)2 << 20) * ((size_t)2 << 20);
     if (posix_memalign(&p, (size_t)2 << 20, bytes))
         return NULL;
 #ifdef MADV_HUGEPAGE

@@ -177,8 +177,8 @@ static void rod_rows(const char *method, ct_bundle *b, double build, int threads
              * half-node error estimate) against nl + nu for the breakpoint rule */
             double predicted = t_bp * (1.0 + 3.0 * (double)K / (double)(nl + nu));
             if (predicted * (runs + 1) > budget) {
-                skipped(method, depth, rods, ct_quad_rule_name(rules[q]), (size_t)K, threads,
-                        build, predicted, perr);
+                skipped(method, depth, rods, ct_quad_rule_name(rules[q]), (size_t)K, threads, build,
+                        predicted, perr);
                 continue;
             }
             c.opts.rule = rules[q];
@@ -195,8 +195,8 @@ static void rod_rows(const char *method, ct_bundle *b, double build, int threads
                        ct_quad_rule_name(rules[q]), K, threads, build, perr, note);
                 continue;
             }
-            row(method, depth, rods, ct_quad_rule_name(rules[q]), (size_t)K, threads, build, t,
-                e, perr, "");
+            row(method, depth, rods, ct_quad_rule_name(rules[q]), (size_t)K, threads, build, t, e,
+                perr, "");
         }
     }
     /* the closed-form energies on the same rods: no quadrature at all */
