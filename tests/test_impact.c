@@ -283,6 +283,31 @@ static void composite_rules_converge_to_exact(void **state)
     ct_bundle_free(b);
 }
 
+/* quadrature = closed: the closed-form energies and nothing else. Its e must match the
+ * independent model as the quadrature does, and equal the e_closed of a quadrature run. */
+static void closed_rule_is_the_closed_form(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ref_model m = {p, 20};
+    double W = 2e-3 * 2e-3 * ct_energy_scale(&p);
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 20, INFINITY), CT_OK);
+    ct_impact_opts o;
+    ct_impact_opts_default(&o);
+    ct_impact_result rq, rc;
+    assert_int_equal(ct_impact(b, W, &o, &rq), CT_OK);
+    ct_bundle_reset(b);
+    o.rule = CT_QUAD_CLOSED;
+    assert_int_equal(ct_impact(b, W, &o, &rc), CT_OK);
+    assert_true(rc.e == rc.e_closed && rc.quad_error == 0.0);
+    assert_true(rc.W_load == rc.W_load_closed && rc.W_unload == rc.W_unload_closed);
+    assert_true(rc.e_closed == rq.e_closed);
+    double umax = ref_umax(&m, W);
+    assert_rel(rc.e, sqrt(ref_recoverable(&m, umax) / W), 1e-11);
+    ct_bundle_free(b);
+}
+
 /* depth = fractal: converged to double precision against a much deeper explicit surface, in
  * e and in V*_c (whose tip-depth error ct_auto_depth does not control). */
 static void fractal_depth_matches_deep_surface(void **state)
@@ -330,6 +355,7 @@ int main(void)
         cmocka_unit_test(repeated_impacts_shake_down),
         cmocka_unit_test(crushed_layer_refused),
         cmocka_unit_test(composite_rules_converge_to_exact),
+        cmocka_unit_test(closed_rule_is_the_closed_form),
         cmocka_unit_test(fractal_depth_matches_deep_surface),
     };
     return cmocka_run_group_tests_name("impact", tests, NULL, NULL);
