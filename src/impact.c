@@ -139,14 +139,16 @@ int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max)
  * count grows with their rod count. */
 #define CT_MAX_QUAD_ROD_EVALS 5e10
 
+/* The energy over [lo, hi] by the chosen rule; `closed` is its closed form, which the
+ * closed rule returns as it is. */
 static int energy_quadrature(ct_bundle *b, double lo, double hi, const ct_impact_opts *opts,
-                             double *result)
+                             double closed, double *result)
 {
     double *pts = NULL, abserr;
     size_t n = 0;
     int st;
-    if (opts->rule == CT_QUAD_CLOSED) { /* the caller takes the closed forms */
-        *result = NAN;
+    if (opts->rule == CT_QUAD_CLOSED) {
+        *result = closed;
         return CT_OK;
     }
     if (opts->rule == CT_QUAD_BREAKPOINTS && (st = ct_bundle_breakpoints(b, lo, hi, &pts, &n)))
@@ -189,11 +191,10 @@ int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_resu
     res->u_contact = ct_bundle_first_contact(b);
     if ((st = ct_solve_umax(b, W, opts->tolerance, &res->u_max)))
         return st;
-    if ((st = energy_quadrature(b, res->u_contact, res->u_max, opts, &res->W_load)))
-        return st;
     res->W_load_closed = ct_bundle_work(b, res->u_contact, res->u_max);
-    if (opts->rule == CT_QUAD_CLOSED)
-        res->W_load = res->W_load_closed;
+    if ((st = energy_quadrature(b, res->u_contact, res->u_max, opts, res->W_load_closed,
+                                &res->W_load)))
+        return st;
 
     if (W <= W_crit) {
         /* No rod yields: the state is unchanged and every joule comes back (e = 1 exactly). */
@@ -209,11 +210,10 @@ int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_resu
     res->elastic = 0;
     ct_bundle_advance(b, res->u_max);
     res->u_release = ct_bundle_first_contact(b);
-    if ((st = energy_quadrature(b, res->u_release, res->u_max, opts, &res->W_unload)))
-        return st;
     res->W_unload_closed = ct_bundle_elastic_energy(b, res->u_max); /* Eq. 40 in closed form */
-    if (opts->rule == CT_QUAD_CLOSED)
-        res->W_unload = res->W_unload_closed;
+    if ((st = energy_quadrature(b, res->u_release, res->u_max, opts, res->W_unload_closed,
+                                &res->W_unload)))
+        return st;
     if (!(res->W_load > 0.0) || !(res->W_unload >= 0.0))
         return ct_error_set(CT_ENOCONV,
                             "%s quadrature gave W_load = %g, W_unload = %g: not a valid "
