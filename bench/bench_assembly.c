@@ -162,7 +162,7 @@ int main(int argc, char **argv)
     ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
     for (long depth = 19; depth <= max_depth; depth++) {
         ct_bundle *b;
-        if (ct_bundle_alloc(&b, &p, CT_REP_SEGMENTS, depth, INFINITY)) {
+        if (ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, depth, INFINITY)) {
             fprintf(stderr, "bench_assembly: %s\n", ct_error_message());
             return 1;
         }
@@ -170,7 +170,7 @@ int main(int argc, char **argv)
         size_t rods = ct_bundle_size(b);
         double t1 = 0.0;
         for (int t = 1; t <= 2; t++) {
-            ct_set_threads(t);
+            ct_bundle_set_threads(b, t);
             double sec, many;
             MEDIAN_OF(sec, sink += ct_bundle_force(b, 0.25));
             double u[64], P[64];
@@ -186,7 +186,6 @@ int main(int argc, char **argv)
                    t1 / sec, 1e9 * many / ((double)rods * 64.0) * t);
             fflush(stdout);
         }
-        ct_set_threads(0);
         ct_bundle_free(b);
     }
     printf("# checksum %g\n", sink);

@@ -141,6 +141,20 @@ static void skipped(const char *method, long depth, size_t rods, const char *rul
     fflush(stdout);
 }
 
+/* Breakpoints of b's load curve in [lo, hi], ends included. */
+static size_t curve_points_in(const ct_bundle *b, double lo, double hi)
+{
+    ct_curve *c;
+    if (ct_curve_alloc(&c) || ct_curve_build(c, b))
+        fail("curve");
+    const double *x = ct_curve_points(c);
+    size_t n = 2;
+    for (size_t k = 0; k < ct_curve_size(c); k++)
+        n += x[k] > lo && x[k] < hi;
+    ct_curve_free(c);
+    return n;
+}
+
 /* All quadrature variants on one bundle. */
 static void rod_rows(const char *method, ct_bundle *b, double build, int threads, long Kmax,
                      double budget)
@@ -148,7 +162,7 @@ static void rod_rows(const char *method, ct_bundle *b, double build, int threads
     double W = V_STAR * V_STAR * ct_energy_scale(&P);
     double perr = p_error_rods(b);
     size_t rods = ct_bundle_size(b);
-    long depth = ct_bundle_depth(b);
+    long depth = ct_cantor_depth(b);
     rod_ctx c = {b, {0}, W, 0};
     ct_impact_opts_default(&c.opts);
     double e, t_bp;
@@ -159,15 +173,9 @@ static void rod_rows(const char *method, ct_bundle *b, double build, int threads
     ct_bundle_reset(b);
     if (ct_impact(b, W, &c.opts, &r))
         fail(method);
-    double *pts;
-    size_t nl, nu;
-    if (ct_bundle_breakpoints(b, r.u_release, r.u_max, &pts, &nu))
-        fail("breakpoints");
-    free(pts);
+    size_t nu = curve_points_in(b, r.u_release, r.u_max);
     ct_bundle_reset(b);
-    if (ct_bundle_breakpoints(b, r.u_contact, r.u_max, &pts, &nl))
-        fail("breakpoints");
-    free(pts);
+    size_t nl = curve_points_in(b, r.u_contact, r.u_max);
     row(method, depth, rods, "breakpoints", nl + nu, threads, build, t_bp, e, perr, "");
 
     const ct_quad_rule rules[3] = {CT_QUAD_TRAPEZOID, CT_QUAD_SIMPSON, CT_QUAD_GAUSS};
@@ -232,7 +240,7 @@ int main(int argc, char **argv)
     if (quick && budget > 3.0)
         budget = 3.0;
     const long max_depth = quick ? 20 : 26, Kmax = quick ? 1024 : 4096;
-    int threads = ct_set_threads(0);
+    int threads = ct_default_threads();
     double W = V_STAR * V_STAR * ct_energy_scale(&P);
 
     /* reference: stage rods at the fractal depth, closed-form energies */
@@ -242,7 +250,7 @@ int main(int argc, char **argv)
         fail("depth");
     ct_bundle *ref;
     ct_impact_result r;
-    if (ct_bundle_alloc(&ref, &P, CT_REP_STAGES, Nf, INFINITY) || ct_impact(ref, W, NULL, &r))
+    if (ct_cantor_bundle(&ref, &P, CT_REP_STAGES, Nf, INFINITY) || ct_impact(ref, W, NULL, &r))
         fail("reference");
     e_ref = r.e_closed;
     u_ref = r.u_max;
@@ -278,7 +286,7 @@ int main(int argc, char **argv)
     for (int k = 0; k < 2; k++) {
         ct_bundle *b;
         double t0 = bench_now();
-        if (ct_bundle_alloc(&b, &P, CT_REP_STAGES, stage_runs[k].depth, INFINITY))
+        if (ct_cantor_bundle(&b, &P, CT_REP_STAGES, stage_runs[k].depth, INFINITY))
             fail("stages");
         double build = bench_now() - t0;
         rod_rows(stage_runs[k].name, b, build, threads, Kmax, budget);
@@ -287,7 +295,7 @@ int main(int argc, char **argv)
     for (long N = 8; N <= max_depth; N += 2) {
         ct_bundle *b;
         double t0 = bench_now();
-        if (ct_bundle_alloc(&b, &P, CT_REP_SEGMENTS, N, INFINITY))
+        if (ct_cantor_bundle(&b, &P, CT_REP_SEGMENTS, N, INFINITY))
             fail("segments");
         double build = bench_now() - t0;
         fprintf(stderr, "bench_methods: segments depth %ld (%zu rods)\n", N, ct_bundle_size(b));

@@ -33,14 +33,14 @@ static double time_force(ct_bundle *b, double *sink)
 int main(void)
 {
     ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
-    int threads = ct_set_threads(0);
+    int threads = ct_default_threads();
     double sink = 0.0;
     size_t threshold = 0;
     bench_machine(stdout);
     printf("rods,threads,serial_ns,parallel_ns,speedup\n");
     for (long depth = 10; depth <= 20; depth++) {
         ct_bundle *b;
-        if (ct_bundle_alloc(&b, &p, CT_REP_SEGMENTS, depth, INFINITY)) {
+        if (ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, depth, INFINITY)) {
             fprintf(stderr, "bench_threshold: %s\n", ct_error_message());
             return 1;
         }

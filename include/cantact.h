@@ -18,15 +18,21 @@
 extern "C" {
 #endif
 
+/* The library is built with hidden visibility: what this header declares is its API. */
+#if defined(__GNUC__)
+#pragma GCC visibility push(default)
+#endif
+
 /* ---- status ---------------------------------------------------------------------- */
 
 enum {
     CT_OK = 0,
-    CT_EINVAL = 1,  /* a parameter or input is outside its valid range */
-    CT_ENOMEM = 2,  /* allocation failed, or the request would not fit in memory */
-    CT_ERANGE = 3,  /* the physics leaves the model (e.g. crushed layer, u_max >= H*) */
-    CT_ENOCONV = 4, /* a solve did not meet its tolerance */
-    CT_EIO = 5,     /* a file could not be read or written */
+    CT_EINVAL = 1,   /* a parameter or input is outside its valid range */
+    CT_ENOMEM = 2,   /* allocation failed, or the request would not fit in memory */
+    CT_ERANGE = 3,   /* the physics leaves the model (e.g. crushed layer, u_max >= H*) */
+    CT_ENOCONV = 4,  /* a solve did not meet its tolerance */
+    CT_EIO = 5,      /* a file could not be read or written */
+    CT_ESKIPPED = 6, /* not run: an earlier impact of the same speed failed */
 };
 
 /* Returns a static, generic description of a status code. */
@@ -73,42 +79,48 @@ int ct_piece_extent(const ct_params *p, long depth, long stage, size_t j, double
 /* Returns the critical speed parameter's energy scale l0 E h0 [energy]: V*^2 = W / scale. */
 double ct_energy_scale(const ct_params *p);
 
-/* ---- rod bundles (MODEL.md §2-4) ------------------------------------------------- */
+/* ---- rod sets (MODEL.md §3-4) ---------------------------------------------------- */
+/* A bundle is a set of rods (top, length = H* - top, area, plastic strain) in one Winkler
+ * layer. It knows nothing of the surface that made it: every kind of surface (Cantor below,
+ * measured and random ones) only makes rods. */
 
 typedef struct ct_bundle ct_bundle;
 
-typedef enum {
-    CT_REP_STAGES = 0,   /* one rod per Cantor stage (pieces merged): N + 1 rods */
-    CT_REP_SEGMENTS = 1, /* one rod per Cantor piece: 2^(N+1) - 1 rods */
-} ct_representation;
+/* The layer all rods of a bundle share, and the units of its outputs. */
+typedef struct {
+    double E;       /* Young's modulus [force/length^2], > 0 */
+    double sigma_y; /* yield stress [force/length^2], 0 < sigma_y < E */
+    double Hstar;   /* layer thickness H*: every rod reaches from its top down to H* [length] */
+    double l0;      /* reference length (the surface's extent) [length], > 0: V*, P_Y */
+    double h0;      /* reference depth [length], > 0: u/h0 and V* */
+} ct_layer;
+
+/* Returns CT_OK if every field is finite and in range, else CT_EINVAL with a message. */
+int ct_layer_validate(const ct_layer *layer);
 
 /* Memory per rod in bytes: top, length, area and plastic strain, 4 doubles. */
 #define CT_BYTES_PER_ROD 32
 
-/* Largest depth accepted by the builders. */
-#define CT_MAX_STAGES_DEPTH 100000000
-#define CT_MAX_SEGMENTS_DEPTH 40
-
-/* Builds the depth-N prefractal (stages 0..N-1 carry s_i, the 2^N tips carry l_N) as a
- * virgin bundle. Rods whose top is deeper than u_reach (they can never be touched) are
- * left out; pass INFINITY to keep all. A segments bundle that would not fit in the
- * available memory is refused with CT_ENOMEM before anything is allocated. */
-int ct_bundle_alloc(ct_bundle **out, const ct_params *p, ct_representation rep, long depth,
-                    double u_reach);
+/* Builds a virgin bundle of n rods from tops [length] (depth below the reference plane,
+ * 0 <= top < H*) and areas [length] (> 0), both copied. */
+int ct_bundle_from_rods(ct_bundle **out, const ct_layer *layer, size_t n, const double *top,
+                        const double *area);
 void ct_bundle_free(ct_bundle *b);
-/* Returns a new bundle with the same rods and state. */
+/* Returns a new bundle with the same rods, state and surface metadata. */
 int ct_bundle_clone(ct_bundle **out, const ct_bundle *b);
 /* Forgets all plastic strain (back to the virgin surface). */
 void ct_bundle_reset(ct_bundle *b);
 
 size_t ct_bundle_size(const ct_bundle *b);    /* rods held */
-size_t ct_bundle_omitted(const ct_bundle *b); /* rods left out as never touched */
-long ct_bundle_depth(const ct_bundle *b);     /* prefractal depth N */
-ct_representation ct_bundle_representation(const ct_bundle *b);
-const ct_params *ct_bundle_params(const ct_bundle *b);
+size_t ct_bundle_omitted(const ct_bundle *b); /* rods the surface left out as never touched */
+const ct_layer *ct_bundle_layer(const ct_bundle *b); /* E, sigma_y, H*, l0, h0 */
+/* Returns the name of the kind of surface that made the bundle ("rods" when built from
+ * arrays, "cantor" for ct_cantor_bundle). */
+const char *ct_bundle_surface(const ct_bundle *b);
 
-/* Rod k's data [length, length, length, dimensionless] and, for segments, its x-extent
- * [length] (derived from the index, not stored); stage is the Cantor stage (N = tip). */
+/* Rod k's data [length, length, length, dimensionless] and what its surface knows of it:
+ * stage (-1 when the surface has no stages) and x-extent [length] (NaN when the rod stands
+ * for pieces at several places, e.g. a merged Cantor stage). */
 typedef struct {
     double top, length, area, plastic_strain;
     double x_left, x_right;
@@ -116,47 +128,87 @@ typedef struct {
 } ct_rod_info;
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info);
 
-/* Returns the total force P(u) [force] at the current state, without changing it. */
-double ct_bundle_force(ct_bundle *b, double u);
-/* P at m displacements in one pass over the rods (the quadrature's way to assemble);
- * P[i] is bitwise ct_bundle_force(b, u[i]). Fails only with CT_ENOMEM (workspace). */
-int ct_bundle_force_many(ct_bundle *b, const double *u, size_t m, double *P);
-/* ct_bundle_work(b, u_a, u_b[i]) for m end points in one pass, bitwise the same. */
-int ct_bundle_work_many(ct_bundle *b, double u_a, const double *u_b, size_t m, double *W);
-/* Advances every rod's state along the displacement path to u (loading or unloading). */
-void ct_bundle_advance(ct_bundle *b, double u);
-/* Returns the work [energy] of P(u) at the current state from u_a to u_b (closed form per
- * rod; along a loading path from the current state this is the work done). */
-double ct_bundle_work(ct_bundle *b, double u_a, double u_b);
-/* Returns the recoverable elastic energy [energy] stored at displacement u. */
-double ct_bundle_elastic_energy(ct_bundle *b, double u);
-/* Returns the displacement [length] of first contact at the current state. */
-double ct_bundle_first_contact(const ct_bundle *b);
-/* Returns the smallest displacement [length] at which some rod yields (loading from the
- * current state). */
-double ct_bundle_first_yield(const ct_bundle *b);
-/* Sets the number of threads of the force assembly (0: the OpenMP default); returns the
- * number that will be used (1 without OpenMP). Results do not depend on it. */
-int ct_set_threads(int threads);
-/* Sets the size from which this bundle's sums use the thread team (default
+/* Threads of this bundle's sums over rods (0: the OpenMP default). Results do not depend
+ * on it; nothing process-wide is changed. Returns the number that will be used. */
+int ct_bundle_set_threads(ct_bundle *b, int threads);
+/* Returns the OpenMP default thread count (OMP_NUM_THREADS), 1 without OpenMP. */
+int ct_default_threads(void);
+/* Sets the size from which this bundle's sums use a thread team (default
  * CT_PARALLEL_MIN_RODS; for the threshold benchmark). Results do not depend on it. */
 void ct_bundle_set_parallel_min(ct_bundle *b, size_t rods);
 /* Bundles below this many rods are summed by one thread: bench/bench_threshold measured the
  * 2-thread team >= 10% faster from 4095 rods on the 2-core CI machine. */
 #define CT_PARALLEL_MIN_RODS 4096
 
-/* Breakpoints of P(u) in [lo, hi], sorted and distinct, in a malloc'ed array the caller
- * frees. The ends lo and hi are included. */
-int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **points, size_t *count);
+/* Rod-by-rod assembly (the cross-check of the curve, the composite rules' integrand and the
+ * deep-segments workload). Every sum is blocked and combined in a fixed order: bitwise the
+ * same for any thread count. None of these changes the bundle. */
+
+/* Returns the total force P(u) [force] at the current state. */
+double ct_bundle_force(const ct_bundle *b, double u);
+/* P at m displacements in one pass over the rods; P[i] is bitwise ct_bundle_force(b, u[i]).
+ * Fails only with CT_ENOMEM. */
+int ct_bundle_force_many(const ct_bundle *b, const double *u, size_t m, double *P);
+/* P at m displacements [force] of the state the bundle would have after being taken to
+ * u_adv (its unloading curve from u_adv), without changing it. */
+int ct_bundle_force_after(const ct_bundle *b, double u_adv, const double *u, size_t m, double *P);
+/* ct_bundle_work(b, u_a, u_b[i]) for m end points in one pass, bitwise the same. */
+int ct_bundle_work_many(const ct_bundle *b, double u_a, const double *u_b, size_t m, double *W);
+/* Returns the work [energy] of P(u) at the current state from u_a to u_b (closed form per
+ * rod; along a loading path from the current state this is the work done). */
+double ct_bundle_work(const ct_bundle *b, double u_a, double u_b);
+/* Returns the recoverable elastic energy [energy] at u of the state after being taken to
+ * u (Eq. 40 in closed form: the unloading work from u). */
+double ct_bundle_elastic_energy(const ct_bundle *b, double u);
+/* Returns the displacement [length] of first contact at the current state. */
+double ct_bundle_first_contact(const ct_bundle *b);
+/* Returns the first contact [length] after being taken to u_adv (the release point). */
+double ct_bundle_release(const ct_bundle *b, double u_adv);
+/* Returns the smallest displacement [length] at which some rod yields (loading from the
+ * current state). */
+double ct_bundle_first_yield(const ct_bundle *b);
+/* Advances every rod's state along the displacement path to u (Eq. 10). */
+void ct_bundle_advance(ct_bundle *b, double u);
+
+/* ---- the load curve P(u) (MODEL.md §4) ------------------------------------------- */
+/* For a bundle's state P(u) is continuous and piecewise linear, with breakpoints at each
+ * rod's contact and yield points. A curve holds it exactly: sorted breakpoints x_j, P_j, the
+ * cumulative work W_j = int_{x_0}^{x_j} P du (the trapezoid rule on the breakpoints, exact for
+ * P) and the dissipation D_j = sum over yielded rods of P_Y,rod (x_j - yield point): loaded
+ * from the state to u, W(u) - D(u) comes back on unloading (Eq. 40). Built in one event
+ * sweep: monotone runs of events are merged (O(n) for Cantor stages), arbitrary tops sorted
+ * (O(n log n)); the result does not depend on the thread count. A built curve is read-only:
+ * several threads may evaluate it at once. */
+
+typedef struct ct_curve ct_curve;
+
+/* Returns an empty curve (its arrays grow as needed and are reused by later builds). */
+int ct_curve_alloc(ct_curve **out);
+void ct_curve_free(ct_curve *c);
+/* Builds P(u) of b's current state into c. */
+int ct_curve_build(ct_curve *c, const ct_bundle *b);
+size_t ct_curve_size(const ct_curve *c); /* breakpoints */
+/* The sorted, distinct breakpoints [length] (x_0 is the first contact). */
+const double *ct_curve_points(const ct_curve *c);
+double ct_curve_first_contact(const ct_curve *c); /* [length] */
+double ct_curve_first_yield(const ct_curve *c);   /* [length] */
+/* Returns P(u) [force]; 0 below the first contact. */
+double ct_curve_force(const ct_curve *c, double u);
+/* Returns W(u) = int from the first contact to u of P [energy]. */
+double ct_curve_work(const ct_curve *c, double u);
+/* Returns the energy [energy] dissipated if loaded from the state to u (plastic work). */
+double ct_curve_dissipation(const ct_curve *c, double u);
+/* The u [length] where W(u) = W (W >= 0): the piece by binary search, then its quadratic. */
+double ct_curve_inverse_work(const ct_curve *c, double W);
 
 /* ---- quadrature ------------------------------------------------------------------ */
 
 typedef enum {
-    CT_QUAD_BREAKPOINTS = 0, /* trapezoid on the breakpoints: exact for P */
+    CT_QUAD_BREAKPOINTS = 0, /* the curve: trapezoid on the breakpoints, exact for P */
     CT_QUAD_TRAPEZOID = 1,   /* composite, K nodes, ignores breakpoints, order 2 */
     CT_QUAD_SIMPSON = 2,     /* composite, K nodes (odd), ignores breakpoints, order 4 */
     CT_QUAD_GAUSS = 3,       /* composite 3-point Gauss-Legendre, K nodes, order 6 */
-    CT_QUAD_CLOSED = 4,      /* ct_impact only: closed-form energies per rod, no quadrature */
+    CT_QUAD_CLOSED = 4,      /* closed-form energies per rod, summed rod by rod */
 } ct_quad_rule;
 
 typedef double (*ct_function)(double x, void *ctx);
@@ -178,9 +230,10 @@ const char *ct_quad_rule_name(ct_quad_rule rule);
 /* ---- impact (MODEL.md §7) -------------------------------------------------------- */
 
 typedef struct {
-    ct_quad_rule rule; /* quadrature of the energies */
+    ct_quad_rule rule; /* how W_load and W_unload are computed */
     size_t nodes;      /* K for the composite rules */
     double tolerance;  /* relative tolerance of the u_max solve (1e-14 by default) */
+    int check;         /* 1 (default): also the closed forms rod by rod (e_closed, quad_error) */
 } ct_impact_opts;
 
 typedef struct {
@@ -189,13 +242,13 @@ typedef struct {
     double u_contact;       /* first contact at impact [length] */
     double u_max;           /* maximum displacement [length], Eq. 39 */
     double u_release;       /* last contact on rebound [length] */
-    double W_load;          /* loading work by quadrature [energy] */
-    double W_unload;        /* unloading work by quadrature [energy], Eq. 40 */
-    double W_load_closed;   /* the same in closed form per rod [energy] */
-    double W_unload_closed; /* [energy] */
-    double e;               /* sqrt(W_unload / W_load) by quadrature, dimensionless */
-    double e_closed;        /* sqrt(W_unload_closed / W_load_closed) */
-    double quad_error;      /* |e - e_closed| */
+    double W_load;          /* loading work by the rule [energy] */
+    double W_unload;        /* unloading work by the rule [energy], Eq. 40 */
+    double W_load_closed;   /* the same in closed form rod by rod [energy] (NaN: check off) */
+    double W_unload_closed; /* [energy] (NaN: check off) */
+    double e;               /* sqrt(W_unload / W_load), dimensionless */
+    double e_closed;        /* sqrt(W_unload_closed / W_load_closed) (NaN: check off) */
+    double quad_error;      /* |e - e_closed| (NaN: check off) */
     double e_rounding;      /* bound on the rounding error of e from u - top cancellation
                                (stiff rods, weak impacts): 64 eps u_max / min(u_max -
                                u_contact, u_max - u_release) */
@@ -203,30 +256,118 @@ typedef struct {
     int elastic;            /* 1 when below the critical velocity: e = 1 exactly */
 } ct_impact_result;
 
-/* Fills opts with the defaults (breakpoints rule, 1e-14). */
+/* Fills opts with the defaults (breakpoints rule, 1e-14, check on). */
 void ct_impact_opts_default(ct_impact_opts *opts);
 /* Returns the energy [energy] needed to make the first rod yield from the current state,
  * and that displacement [length]. */
-int ct_critical_energy(ct_bundle *b, double *energy, double *u_yield);
-/* One impact of kinetic energy kinetic_energy on the bundle's current state: loads to
- * u_max, unloads, and leaves the plastic strain in the bundle. */
-int ct_impact(ct_bundle *b, double kinetic_energy, const ct_impact_opts *opts,
-              ct_impact_result *res);
-/* Returns the u_max [length] reached from the current state by kinetic energy W, without
- * changing the state. */
-int ct_solve_umax(ct_bundle *b, double W, double tolerance, double *u_max);
+int ct_critical_energy(const ct_bundle *b, double *energy, double *u_yield);
+/* One impact of kinetic energy W [energy] on the bundle's current state: loads to u_max,
+ * unloads, and leaves the plastic strain in the bundle. */
+int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_result *res);
+/* The same impact evaluated on a curve built from b's current state, without changing b
+ * (b is read for the closed-form check, the release point and the composite rules). */
+int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_impact_opts *opts,
+                   ct_impact_result *res);
+/* Returns the u_max [length] reached from the current state by kinetic energy W [energy],
+ * without changing the state. */
+int ct_solve_umax(const ct_bundle *b, double W, double tolerance, double *u_max);
 
-/* ---- depth selection ------------------------------------------------------------- */
+/* ---- the Cantor surface (MODEL.md §2, src/surface/cantor.c) ---------------------- */
+
+typedef enum {
+    CT_REP_STAGES = 0,   /* one rod per Cantor stage (pieces merged): N + 1 rods */
+    CT_REP_SEGMENTS = 1, /* one rod per Cantor piece: 2^(N+1) - 1 rods */
+} ct_representation;
+
+/* Largest depth accepted by the builder. */
+#define CT_MAX_STAGES_DEPTH 100000000
+#define CT_MAX_SEGMENTS_DEPTH 40
+
+/* The layer of a Cantor surface: E, sigma_y, H*, l0, h0 of p. */
+void ct_cantor_layer(const ct_params *p, ct_layer *layer);
+/* Builds the depth-N prefractal (stages 0..N-1 carry s_i, the 2^N tips carry l_N) as a
+ * virgin bundle. Rods whose top is deeper than u_reach (they can never be touched) are left
+ * out; pass INFINITY to keep all. A bundle that would not fit in the available memory is
+ * refused with CT_ENOMEM (the figure in the message) before anything is allocated. */
+int ct_cantor_bundle(ct_bundle **out, const ct_params *p, ct_representation rep, long depth,
+                     double u_reach);
+/* The Cantor depth N and representation of a bundle ct_cantor_bundle made (-1 otherwise). */
+long ct_cantor_depth(const ct_bundle *b);
+int ct_cantor_representation(const ct_bundle *b);
 
 /* Smallest depth N whose truncation changes forces and energies, relative to the
  * smallest impact of energy W_min, by less than tol; *bound gets the bound reached. */
 int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound);
-
 /* The fractal limit N -> infinity to double precision: the smallest depth whose truncation
  * bound (as for ct_auto_depth) is below 1e-15 and whose tips lie within 1e-15 eps_y H* of the
  * reference plane (so that the first yield, hence V*_c, has converged too). */
 int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound);
 
+/* ---- planning and sweeps (src/sweep.c) ------------------------------------------- */
+
+#define CT_DEPTH_AUTO (-1)
+#define CT_DEPTH_FRACTAL (-2)
+
+/* What a Cantor scene needs built. */
+typedef struct {
+    ct_params params;
+    long depth; /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
+    ct_representation representation;
+    double depth_tolerance; /* relative tolerance of depth auto */
+    const double *V_star;   /* the speeds the bundle will see, dimensionless */
+    size_t nvel;
+    long impacts; /* impacts per speed */
+    ct_impact_opts opts;
+    int keep_all_rods; /* 1: leave out nothing (e.g. to write the whole profile) */
+    int threads;       /* threads of the bundle's sums, 0: OpenMP default */
+} ct_cantor_plan;
+
+typedef struct {
+    long depth;     /* the depth chosen */
+    double bound;   /* its truncation bound (0 when the depth was given) */
+    size_t rods;    /* rods built */
+    size_t omitted; /* rods left out: no impact of the plan reaches them, and none of them
+                       can be the first to yield, so no reported number changes */
+    double u_reach; /* rods with tops below this were built [length] */
+} ct_plan_info;
+
+/* Chooses the depth, finds the deepest displacement any impact of the plan reaches (and the
+ * first yield of the virgin surface), and builds the bundle without the rods beyond both. */
+int ct_cantor_plan_build(const ct_cantor_plan *plan, ct_bundle **out, ct_plan_info *info);
+
+/* One row of a sweep: one impact of one speed. */
+typedef struct {
+    size_t speed;  /* index of the speed in the input */
+    long impact;   /* 1 for the first impact on the virgin surface */
+    double V_star; /* dimensionless */
+    int status;    /* CT_OK, or why this impact failed (the speed's later impacts are not run) */
+    char message[240];  /* the error's message when status != CT_OK */
+    ct_impact_result r; /* valid when status == CT_OK */
+} ct_sweep_row;
+
+typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);
+/* Called around every impact of a speed: phase 0 before it (b in the pre-impact state, c its
+ * curve), phase 1 after it (b in the post-impact state, c NULL). Return non-zero to stop. */
+typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundle *b,
+                              const ct_curve *c, void *ctx);
+
+typedef struct {
+    const double *V_star; /* speeds, dimensionless, any order */
+    size_t nvel;
+    long impacts; /* impacts per speed from the bundle's state, >= 1 */
+    ct_impact_opts opts;
+    int stop_on_error;       /* 1: return at the first failed impact */
+    ct_progress_fn progress; /* optional, called after each speed */
+    void *progress_ctx;
+    ct_observer_fn observe; /* optional */
+    void *observe_ctx;
+} ct_sweep_spec;
+
+/* Runs every speed from b's state (b itself is not changed): rows[speed * impacts + i - 1]
+ * gets impact i of that speed. The first impact of every speed reads one curve built once,
+ * so each costs O(log n) plus the closed-form check. Returns CT_OK when the sweep ran (rows
+ * carry their own statuses), a row's status under stop_on_error, or CT_ENOMEM. */
+int ct_sweep(const ct_bundle *b, const ct_sweep_spec *spec, ct_sweep_row *rows);
 /* ---- the paper's laws (MODEL.md §5-6) -------------------------------------------- */
 /* Loads P [force] at displacement u [length] of the infinite fractal. */
 
@@ -255,36 +396,9 @@ typedef enum { CT_LAW_SERIES = 0, CT_LAW_ASYMPTOTIC = 1, CT_LAW_ASYMPTOTIC_CONSI
 int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e);
 const char *ct_law_name(ct_law law);
 
-/* ---- scenes ---------------------------------------------------------------------- */
-
-#define CT_MAX_VELOCITIES 1000000
-#define CT_DEPTH_AUTO (-1)
-#define CT_DEPTH_FRACTAL (-2)
-
-enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
-
-typedef struct {
-    ct_params params;
-    long depth; /* >= 0, or -1 for auto */
-    ct_representation representation;
-    double *V_star; /* velocities, dimensionless, in input order */
-    size_t nvel;
-    long impacts; /* impacts per velocity, >= 1 */
-    ct_impact_opts opts;
-    double depth_tolerance; /* relative tolerance of depth auto */
-    int threads;            /* 0: OpenMP default */
-    char *output;           /* CSV path, "-" for stdout */
-    unsigned what;          /* CT_OUT_* bits */
-} ct_scene;
-
-/* Reads a scene file, then applies overrides "section.key=value"; on error returns
- * CT_EINVAL (or CT_EIO) with "file:line: section.key = value: reason" as the message. */
-int ct_scene_load(ct_scene *scene, const char *path, const char *const *overrides,
-                  size_t noverrides);
-/* Same from a string (name is used in messages). */
-int ct_scene_parse(ct_scene *scene, const char *name, const char *text,
-                   const char *const *overrides, size_t noverrides);
-void ct_scene_free(ct_scene *scene);
+#if defined(__GNUC__)
+#pragma GCC visibility pop
+#endif
 
 #ifdef __cplusplus
 }

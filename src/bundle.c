@@ -1,10 +1,14 @@
-/* Rod bundles (MODEL.md §4): rods as arrays, force assembly, state advance, energies and
- * breakpoints. This is the only file with OpenMP pragmas.
+/* Rod sets (MODEL.md §3-4): rods as arrays, rod-by-rod force assembly, state advance,
+ * closed-form energies. A bundle knows nothing of the surface that made it. This file and
+ * the event sort of curve.c are the only ones with OpenMP pragmas.
  *
  * Determinism: every sum over rods is split into fixed blocks of CT_BLOCK rods, each block
  * summed in rod order, and the block sums combined pairwise in a fixed tree. Threads only
  * decide who computes which block, so results are bitwise identical for any thread count,
- * and the serial path (small bundles) uses the very same blocks. */
+ * and the serial path (small bundles) uses the very same blocks and tree.
+ *
+ * Reentrancy: nothing here that takes a const bundle writes to it; workspaces live on the
+ * stack or are allocated per call, so several threads may evaluate one bundle at once. */
 #define _DEFAULT_SOURCE /* madvise(MADV_HUGEPAGE) */
 #include "internal.h"
 #include "rod.h"
@@ -24,39 +28,74 @@
 #define CT_BLOCK 2048
 
 struct ct_bundle {
-    ct_params params;
-    ct_representation rep;
-    long depth;       /* prefractal depth N */
-    long first_stage; /* stages below this were left out (never touched) */
-    size_t first_rod; /* global index of rod 0 (segments: 2^first_stage - 1) */
-    size_t n;         /* rods held */
-    size_t omitted;   /* rods left out */
+    ct_layer layer;
+    size_t n;       /* rods held */
+    size_t omitted; /* rods the surface left out */
     double E, eps_y;
     double *top, *length, *area, *plastic_strain;
     size_t nblocks;
-    double *block_sums;  /* workspace of the blocked sums */
-    double *many_sums;   /* workspace of the multi-node sums: nblocks x CT_NODE_CHUNK */
+    int threads;         /* 0: the OpenMP default */
     size_t parallel_min; /* sums of fewer rods run on one thread */
+    const ct_surface_kind *kind;
+    void *meta;
 };
+
+int ct_layer_validate(const ct_layer *l)
+{
+    if (!l)
+        return ct_error_set(CT_EINVAL, "layer: NULL");
+    const double v[] = {l->E, l->sigma_y, l->Hstar, l->l0, l->h0};
+    const char *names[] = {"E", "sigma_y", "H*", "l0", "h0"};
+    for (int k = 0; k < 5; k++)
+        if (!isfinite(v[k]) || !(v[k] > 0.0))
+            return ct_error_set(CT_EINVAL, "%s = %g: must be finite and > 0", names[k], v[k]);
+    if (!(l->sigma_y < l->E))
+        return ct_error_set(CT_EINVAL,
+                            "sigma_y = %g: yield strain sigma_y/E must satisfy 0 < eps_y < 1 "
+                            "(E = %g)",
+                            l->sigma_y, l->E);
+    if (!isfinite(l->l0 * l->E * l->h0) || !(l->l0 * l->E * l->h0 > 0.0))
+        return ct_error_set(CT_EINVAL, "l0 E h0 = %g: must be a finite positive number",
+                            l->l0 * l->E * l->h0);
+    return CT_OK;
+}
 
 void ct_bundle_set_parallel_min(ct_bundle *b, size_t rods)
 {
     b->parallel_min = rods;
 }
 
-int ct_set_threads(int threads)
+int ct_bundle_set_threads(ct_bundle *b, int threads)
 {
+    b->threads = threads > 0 ? threads : 0;
 #ifdef _OPENMP
-    if (threads > 0)
-        omp_set_num_threads(threads);
-    return omp_get_max_threads();
+    return b->threads ? b->threads : omp_get_max_threads();
 #else
-    (void)threads;
     return 1;
 #endif
 }
 
-static size_t available_memory(void)
+int ct_default_threads(void)
+{
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+int ct_bundle_team(const ct_bundle *b)
+{
+    if (b->n < b->parallel_min)
+        return 1;
+#ifdef _OPENMP
+    return b->threads ? b->threads : omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
+size_t ct_available_memory(void)
 {
     /* MemAvailable is what the kernel can give without swapping. */
     FILE *f = fopen("/proc/meminfo", "r");
@@ -77,15 +116,6 @@ static size_t available_memory(void)
     return SIZE_MAX;
 }
 
-/* Stage of segment rod with global index g: g = 2^i - 1 + j, 0 <= j < 2^i. */
-static long segment_stage(size_t g)
-{
-    long i = 0;
-    while (((size_t)1 << (i + 1)) - 1 <= g)
-        i++;
-    return i;
-}
-
 void ct_bundle_free(ct_bundle *b)
 {
     if (!b)
@@ -94,8 +124,8 @@ void ct_bundle_free(ct_bundle *b)
     free(b->length);
     free(b->area);
     free(b->plastic_strain);
-    free(b->block_sums);
-    free(b->many_sums);
+    if (b->kind && b->kind->free)
+        b->kind->free(b->meta);
     free(b);
 }
 
@@ -117,106 +147,95 @@ static double *rod_array(size_t n)
     return p;
 }
 
-static int bundle_arrays(ct_bundle *b)
-{
-    size_t n = b->n ? b->n : 1;
-    b->nblocks = (b->n + CT_BLOCK - 1) / CT_BLOCK;
-    b->top = rod_array(n);
-    b->length = rod_array(n);
-    b->area = rod_array(n);
-    b->plastic_strain = rod_array(n);
-    b->block_sums = malloc((b->nblocks ? b->nblocks : 1) * sizeof(double));
-    if (!b->top || !b->length || !b->area || !b->plastic_strain || !b->block_sums)
-        return ct_error_set(CT_ENOMEM, "bundle of %zu rods: out of memory", b->n);
-    return CT_OK;
-}
-
-int ct_bundle_alloc(ct_bundle **out, const ct_params *p, ct_representation rep, long depth,
-                    double u_reach)
+int ct_bundle_create(ct_bundle **out, const ct_layer *layer, size_t n, const char *what)
 {
     int st;
     *out = NULL;
-    if ((st = ct_params_validate(p)))
+    if ((st = ct_layer_validate(layer)))
         return st;
-    if (rep != CT_REP_STAGES && rep != CT_REP_SEGMENTS)
-        return ct_error_set(CT_EINVAL, "representation %d: must be stages or segments", rep);
-    long max_depth = rep == CT_REP_STAGES ? CT_MAX_STAGES_DEPTH : CT_MAX_SEGMENTS_DEPTH;
-    if (depth < 0 || depth > max_depth)
-        return ct_error_set(CT_EINVAL, "depth = %ld: must satisfy 0 <= depth <= %ld for %s", depth,
-                            max_depth, rep == CT_REP_STAGES ? "stages" : "segments");
-    if (isnan(u_reach))
-        return ct_error_set(CT_EINVAL, "u_reach is NaN");
-
-    /* Stages whose top lies deeper than u_reach can never be touched. Tops decrease with
-     * the stage index, so these are the first stages. */
-    long first = 0;
-    while (first < depth + 1 && ct_stage_depth(p, (double)first) > u_reach)
-        first++;
-
-    size_t total, first_rod;
-    if (rep == CT_REP_STAGES) {
-        total = (size_t)depth + 1;
-        first_rod = (size_t)first;
-    } else {
-        total = ((size_t)1 << (depth + 1)) - 1;
-        first_rod = ((size_t)1 << first) - 1;
-    }
-    size_t n = total - first_rod;
-    size_t need = n * CT_BYTES_PER_ROD + (n / CT_BLOCK + 1) * sizeof(double);
-    size_t avail = available_memory();
-    if (need > avail / 10 * 9) /* depth <= 40 keeps need far from overflow */
+    if (n > SIZE_MAX / CT_BYTES_PER_ROD / 2)
+        return ct_error_set(CT_ENOMEM, "%s: %zu rods cannot be addressed", what, n);
+    size_t need = n * CT_BYTES_PER_ROD, avail = ct_available_memory();
+    if (need > avail / 10 * 9)
         return ct_error_set(CT_ENOMEM,
-                            "depth %ld %s: %zu rods need %.3g GiB, more than the %.3g GiB "
-                            "of memory available",
-                            depth, rep == CT_REP_STAGES ? "stages" : "segments", n,
-                            (double)need / 1073741824.0, (double)avail / 1073741824.0);
-
+                            "%s: %zu rods need %.3g GiB, more than the %.3g GiB of memory "
+                            "available",
+                            what, n, (double)need / 1073741824.0, (double)avail / 1073741824.0);
     ct_bundle *b = calloc(1, sizeof *b);
     if (!b)
-        return ct_error_set(CT_ENOMEM, "bundle: out of memory");
-    b->params = *p;
-    b->rep = rep;
-    b->depth = depth;
-    b->first_stage = first;
-    b->first_rod = first_rod;
+        return ct_error_set(CT_ENOMEM, "%s: out of memory", what);
+    b->layer = *layer;
     b->n = n;
-    b->omitted = first_rod;
-    b->E = p->E;
-    b->eps_y = p->sigma_y / p->E;
+    b->E = layer->E;
+    b->eps_y = layer->sigma_y / layer->E;
     b->parallel_min = CT_PARALLEL_MIN_RODS;
-    if ((st = bundle_arrays(b))) {
+    b->nblocks = (n + CT_BLOCK - 1) / CT_BLOCK;
+    size_t m = n ? n : 1;
+    b->top = rod_array(m);
+    b->length = rod_array(m);
+    b->area = rod_array(m);
+    b->plastic_strain = rod_array(m);
+    if (!b->top || !b->length || !b->area || !b->plastic_strain) {
         ct_bundle_free(b);
-        return st;
+        return ct_error_set(CT_ENOMEM, "%s: %zu rods: out of memory", what, n);
     }
+    *out = b;
+    return CT_OK;
+}
 
-    if (rep == CT_REP_STAGES) {
-        for (long i = first; i <= depth; i++) {
-            size_t k = (size_t)(i - first);
-            double top = ct_stage_depth(p, (double)i);
-            b->top[k] = top;
-            b->length[k] = p->Hstar - top;
-            b->area[k] = i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i);
-            b->plastic_strain[k] = 0.0;
-        }
-    } else {
-        for (long i = first; i <= depth; i++) {
-            size_t pieces = (size_t)1 << i;
-            size_t k0 = pieces - 1 - first_rod;
-            double top = ct_stage_depth(p, (double)i);
-            double length = p->Hstar - top;
-            /* middles carry s_i / 2^i, the tips l_N / 2^N */
-            double area =
-                (i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i)) *
-                ldexp(1.0, (int)-i);
-            /* first touch in parallel, so pages land where the threads will read them */
-#pragma omp parallel for schedule(static) if (pieces >= CT_PARALLEL_MIN_RODS)
-            for (ptrdiff_t j = 0; j < (ptrdiff_t)pieces; j++) {
-                b->top[k0 + (size_t)j] = top;
-                b->length[k0 + (size_t)j] = length;
-                b->area[k0 + (size_t)j] = area;
-                b->plastic_strain[k0 + (size_t)j] = 0.0;
-            }
-        }
+void ct_bundle_arrays(ct_bundle *b, double **top, double **length, double **area,
+                      double **plastic_strain)
+{
+    *top = b->top;
+    *length = b->length;
+    *area = b->area;
+    *plastic_strain = b->plastic_strain;
+}
+
+void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted)
+{
+    if (b->kind && b->kind->free)
+        b->kind->free(b->meta);
+    b->kind = kind;
+    b->meta = meta;
+    b->omitted = omitted;
+}
+
+const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_surface_kind *kind)
+{
+    return b->kind == kind ? b->meta : NULL;
+}
+
+const char *ct_bundle_surface(const ct_bundle *b)
+{
+    return b->kind ? b->kind->name : "rods";
+}
+
+int ct_bundle_from_rods(ct_bundle **out, const ct_layer *layer, size_t n, const double *top,
+                        const double *area)
+{
+    int st;
+    *out = NULL;
+    if ((st = ct_layer_validate(layer)))
+        return st;
+    if (n && (!top || !area))
+        return ct_error_set(CT_EINVAL, "rods: NULL arrays for %zu rods", n);
+    for (size_t k = 0; k < n; k++) {
+        if (!isfinite(top[k]) || !(top[k] >= 0.0) || !(top[k] < layer->Hstar))
+            return ct_error_set(CT_EINVAL, "rod %zu: top = %g: must satisfy 0 <= top < H* = %g", k,
+                                top[k], layer->Hstar);
+        if (!isfinite(area[k]) || !(area[k] > 0.0))
+            return ct_error_set(CT_EINVAL, "rod %zu: area = %g: must be finite and > 0", k,
+                                area[k]);
+    }
+    ct_bundle *b;
+    if ((st = ct_bundle_create(&b, layer, n, "rods")))
+        return st;
+    for (size_t k = 0; k < n; k++) {
+        b->top[k] = top[k];
+        b->length[k] = layer->Hstar - top[k];
+        b->area[k] = area[k];
+        b->plastic_strain[k] = 0.0;
     }
     *out = b;
     return CT_OK;
@@ -225,27 +244,33 @@ int ct_bundle_alloc(ct_bundle **out, const ct_params *p, ct_representation rep, 
 int ct_bundle_clone(ct_bundle **out, const ct_bundle *src)
 {
     int st;
+    ct_bundle *b;
     *out = NULL;
-    ct_bundle *b = calloc(1, sizeof *b);
-    if (!b)
-        return ct_error_set(CT_ENOMEM, "bundle: out of memory");
-    *b = *src;
-    b->top = b->length = b->area = b->plastic_strain = b->block_sums = b->many_sums = NULL;
-    if ((st = bundle_arrays(b))) {
-        ct_bundle_free(b);
+    if ((st = ct_bundle_create(&b, &src->layer, src->n, "bundle clone")))
         return st;
-    }
     memcpy(b->top, src->top, src->n * sizeof(double));
     memcpy(b->length, src->length, src->n * sizeof(double));
     memcpy(b->area, src->area, src->n * sizeof(double));
     memcpy(b->plastic_strain, src->plastic_strain, src->n * sizeof(double));
+    b->threads = src->threads;
+    b->parallel_min = src->parallel_min;
+    if (src->kind) {
+        void *meta = src->kind->clone ? src->kind->clone(src->meta) : NULL;
+        if (src->meta && !meta) {
+            ct_bundle_free(b);
+            return ct_error_set(CT_ENOMEM, "bundle clone: out of memory");
+        }
+        ct_bundle_set_surface(b, src->kind, meta, src->omitted);
+    }
     *out = b;
     return CT_OK;
 }
 
 void ct_bundle_reset(ct_bundle *b)
 {
-#pragma omp parallel for schedule(static) if (b->n >= b->parallel_min)
+    const int team = ct_bundle_team(b);
+    (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++)
         b->plastic_strain[k] = 0.0;
 }
@@ -260,19 +285,9 @@ size_t ct_bundle_omitted(const ct_bundle *b)
     return b->omitted;
 }
 
-long ct_bundle_depth(const ct_bundle *b)
+const ct_layer *ct_bundle_layer(const ct_bundle *b)
 {
-    return b->depth;
-}
-
-ct_representation ct_bundle_representation(const ct_bundle *b)
-{
-    return b->rep;
-}
-
-const ct_params *ct_bundle_params(const ct_bundle *b)
-{
-    return &b->params;
+    return &b->layer;
 }
 
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
@@ -283,17 +298,14 @@ int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
     info->length = b->length[k];
     info->area = b->area[k];
     info->plastic_strain = b->plastic_strain[k];
-    if (b->rep == CT_REP_STAGES) {
-        info->stage = (long)(k + b->first_rod);
-        info->x_left = info->x_right = NAN; /* merged pieces have no single position */
-        return CT_OK;
-    }
-    size_t g = k + b->first_rod;
-    long i = segment_stage(g);
-    info->stage = i;
-    return ct_piece_extent(&b->params, b->depth, i, g - (((size_t)1 << i) - 1), &info->x_left,
-                           &info->x_right);
+    info->stage = -1;
+    info->x_left = info->x_right = NAN;
+    if (b->kind && b->kind->rod_info)
+        b->kind->rod_info(b->meta, k, info);
+    return CT_OK;
 }
+
+/* ---- blocked sums ---- */
 
 enum sum_kind { SUM_FORCE, SUM_WORK, SUM_ELASTIC };
 
@@ -306,16 +318,19 @@ enum sum_kind { SUM_FORCE, SUM_WORK, SUM_ELASTIC };
         s = t_;                                                                                    \
     } while (0)
 
-static double block_sum(const ct_bundle *b, enum sum_kind kind, double ua, double ub, size_t k0,
-                        size_t k1)
+/* Force at ua of the state after being taken to adv (-INFINITY: the current state). */
+static double block_sum(const ct_bundle *b, enum sum_kind kind, double ua, double ub, double adv,
+                        size_t k0, size_t k1)
 {
     const double *top = b->top, *length = b->length, *area = b->area, *eps_p = b->plastic_strain;
     const double E = b->E, eps_y = b->eps_y;
     double s = 0.0, c = 0.0;
     switch (kind) {
     case SUM_FORCE:
-        for (size_t k = k0; k < k1; k++)
-            CT_ADD(ct_rod_force(ua, top[k], length[k], area[k], eps_p[k], E, eps_y));
+        for (size_t k = k0; k < k1; k++) {
+            double p = ct_rod_advance(adv, top[k], length[k], eps_p[k], eps_y);
+            CT_ADD(ct_rod_force(ua, top[k], length[k], area[k], p, E, eps_y));
+        }
         break;
     case SUM_WORK:
         for (size_t k = k0; k < k1; k++)
@@ -329,23 +344,63 @@ static double block_sum(const ct_bundle *b, enum sum_kind kind, double ua, doubl
     return s + c;
 }
 
-static double blocked_total(ct_bundle *b, enum sum_kind kind, double ua, double ub)
+/* The fixed pairwise tree over block sums: ws[i] += ws[i + stride] for stride 1, 2, 4, ...
+ * A left-to-right binary counter (merge equal levels as they appear, then the remaining
+ * levels right to left) adds exactly the same pairs, so the serial path needs no array. */
+typedef struct {
+    double v[64];
+    int level[64];
+    int sp;
+} tree_counter;
+
+static void counter_push(tree_counter *t, double x)
+{
+    t->v[t->sp] = x;
+    t->level[t->sp++] = 0;
+    while (t->sp >= 2 && t->level[t->sp - 1] == t->level[t->sp - 2]) {
+        t->v[t->sp - 2] += t->v[t->sp - 1];
+        t->level[t->sp - 2]++;
+        t->sp--;
+    }
+}
+
+static double counter_total(const tree_counter *t)
+{
+    if (t->sp == 0)
+        return 0.0;
+    double x = t->v[t->sp - 1];
+    for (int j = t->sp - 2; j >= 0; j--)
+        x = t->v[j] + x;
+    return x;
+}
+
+static double blocked_total(const ct_bundle *b, enum sum_kind kind, double ua, double ub,
+                            double adv)
 {
     const ptrdiff_t nb = (ptrdiff_t)b->nblocks;
-    double *ws = b->block_sums;
-    if (nb == 0)
-        return 0.0;
-#pragma omp parallel for schedule(static) if (b->n >= b->parallel_min)
+    const int team = ct_bundle_team(b);
+    double *ws = team > 1 && nb > 0 ? malloc((size_t)nb * sizeof(double)) : NULL;
+    if (!ws) { /* serial (or no memory for the block sums): the same tree as a counter */
+        tree_counter t = {.sp = 0};
+        for (ptrdiff_t j = 0; j < nb; j++) {
+            size_t k0 = (size_t)j * CT_BLOCK;
+            size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
+            counter_push(&t, block_sum(b, kind, ua, ub, adv, k0, k1));
+        }
+        return counter_total(&t);
+    }
+#pragma omp parallel for schedule(static) num_threads(team)
     for (ptrdiff_t j = 0; j < nb; j++) {
         size_t k0 = (size_t)j * CT_BLOCK;
         size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
-        ws[j] = block_sum(b, kind, ua, ub, k0, k1);
+        ws[j] = block_sum(b, kind, ua, ub, adv, k0, k1);
     }
-    /* fixed pairwise tree */
     for (ptrdiff_t stride = 1; stride < nb; stride *= 2)
         for (ptrdiff_t i = 0; i + stride < nb; i += 2 * stride)
             ws[i] += ws[i + stride];
-    return ws[0];
+    double total = ws[0];
+    free(ws);
+    return total;
 }
 
 /* Multi-node sums: one pass over the rods serves up to CT_NODE_CHUNK nodes. Each block
@@ -364,7 +419,7 @@ static double blocked_total(ct_bundle *b, enum sum_kind kind, double ua, double 
 #endif
 
 CT_CLONES
-static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua,
+static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua, double adv,
                            const double *restrict ub, size_t m, size_t k0, size_t k1,
                            double *restrict out)
 {
@@ -374,7 +429,8 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua,
     for (size_t i = 0; i < m; i++)
         s[i] = c[i] = 0.0;
     for (size_t k = k0; k < k1; k++) {
-        const double tk = top[k], lk = length[k], ak = area[k], pk = eps_p[k], rl = 1.0 / lk;
+        const double tk = top[k], lk = length[k], ak = area[k], rl = 1.0 / lk;
+        const double pk = ct_rod_advance(adv, tk, lk, eps_p[k], eps_y);
         const double Ea = E * ak, EaL = E * ak * lk;
         const double wa = ct_rod_work_density(ct_rod_elastic_strain(ua, tk, lk, pk), eps_y);
         if (kind == SUM_FORCE) {
@@ -404,25 +460,43 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua,
         out[i] = s[i] + c[i];
 }
 
-static int blocked_many(ct_bundle *b, enum sum_kind kind, double ua, const double *ub, size_t m,
-                        double *out)
+static int blocked_many(const ct_bundle *b, enum sum_kind kind, double ua, double adv,
+                        const double *ub, size_t m, double *out)
 {
     const ptrdiff_t nb = (ptrdiff_t)b->nblocks;
-    if (nb == 0) {
-        for (size_t i = 0; i < m; i++)
-            out[i] = 0.0;
-        return CT_OK;
-    }
-    if (!b->many_sums && !(b->many_sums = malloc((size_t)nb * CT_NODE_CHUNK * sizeof(double))))
-        return ct_error_set(CT_ENOMEM, "multi-node sum over %zu rods: out of memory", b->n);
-    double *ws = b->many_sums;
+    const int team = ct_bundle_team(b);
+    double *ws = team > 1 && nb > 0 ? malloc((size_t)nb * CT_NODE_CHUNK * sizeof(double)) : NULL;
     for (size_t i0 = 0; i0 < m; i0 += CT_NODE_CHUNK) {
         const size_t mc = m - i0 < CT_NODE_CHUNK ? m - i0 : CT_NODE_CHUNK;
-#pragma omp parallel for schedule(static) if (b->n >= b->parallel_min)
+        if (!ws) { /* serial: the same tree, one counter per node */
+            double v[64][CT_NODE_CHUNK], blk[CT_NODE_CHUNK];
+            int level[64], sp = 0;
+            for (ptrdiff_t j = 0; j < nb; j++) {
+                size_t k0 = (size_t)j * CT_BLOCK;
+                size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
+                block_sum_many(b, kind, ua, adv, ub + i0, mc, k0, k1, blk);
+                memcpy(v[sp], blk, mc * sizeof(double));
+                level[sp++] = 0;
+                while (sp >= 2 && level[sp - 1] == level[sp - 2]) {
+                    for (size_t i = 0; i < mc; i++)
+                        v[sp - 2][i] += v[sp - 1][i];
+                    level[sp - 2]++;
+                    sp--;
+                }
+            }
+            for (size_t i = 0; i < mc; i++) {
+                double x = sp ? v[sp - 1][i] : 0.0;
+                for (int j = sp - 2; j >= 0; j--)
+                    x = v[j][i] + x;
+                out[i0 + i] = x;
+            }
+            continue;
+        }
+#pragma omp parallel for schedule(static) num_threads(team)
         for (ptrdiff_t j = 0; j < nb; j++) {
             size_t k0 = (size_t)j * CT_BLOCK;
             size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
-            block_sum_many(b, kind, ua, ub + i0, mc, k0, k1, ws + (size_t)j * CT_NODE_CHUNK);
+            block_sum_many(b, kind, ua, adv, ub + i0, mc, k0, k1, ws + (size_t)j * CT_NODE_CHUNK);
         }
         for (ptrdiff_t stride = 1; stride < nb; stride *= 2)
             for (ptrdiff_t j = 0; j + stride < nb; j += 2 * stride)
@@ -432,158 +506,84 @@ static int blocked_many(ct_bundle *b, enum sum_kind kind, double ua, const doubl
         for (size_t i = 0; i < mc; i++)
             out[i0 + i] = ws[i];
     }
+    free(ws);
     return CT_OK;
 }
 
-int ct_bundle_force_many(ct_bundle *b, const double *u, size_t m, double *P)
+int ct_bundle_force_many(const ct_bundle *b, const double *u, size_t m, double *P)
 {
-    return blocked_many(b, SUM_FORCE, 0.0, u, m, P);
+    return blocked_many(b, SUM_FORCE, 0.0, -INFINITY, u, m, P);
 }
 
-int ct_bundle_work_many(ct_bundle *b, double u_a, const double *u_b, size_t m, double *W)
+int ct_bundle_force_after(const ct_bundle *b, double u_adv, const double *u, size_t m, double *P)
 {
-    return blocked_many(b, SUM_WORK, u_a, u_b, m, W);
+    return blocked_many(b, SUM_FORCE, 0.0, u_adv, u, m, P);
 }
 
-double ct_bundle_force(ct_bundle *b, double u)
+int ct_bundle_work_many(const ct_bundle *b, double u_a, const double *u_b, size_t m, double *W)
 {
-    return blocked_total(b, SUM_FORCE, u, u);
+    return blocked_many(b, SUM_WORK, u_a, -INFINITY, u_b, m, W);
 }
 
-double ct_bundle_work(ct_bundle *b, double u_a, double u_b)
+double ct_bundle_force(const ct_bundle *b, double u)
 {
-    return blocked_total(b, SUM_WORK, u_a, u_b);
+    return blocked_total(b, SUM_FORCE, u, u, -INFINITY);
 }
 
-double ct_bundle_elastic_energy(ct_bundle *b, double u)
+double ct_bundle_work(const ct_bundle *b, double u_a, double u_b)
 {
-    return blocked_total(b, SUM_ELASTIC, u, u);
+    return blocked_total(b, SUM_WORK, u_a, u_b, -INFINITY);
+}
+
+double ct_bundle_elastic_energy(const ct_bundle *b, double u)
+{
+    return blocked_total(b, SUM_ELASTIC, u, u, -INFINITY);
 }
 
 void ct_bundle_advance(ct_bundle *b, double u)
 {
     const double eps_y = b->eps_y;
-#pragma omp parallel for schedule(static) if (b->n >= b->parallel_min)
+    const int team = ct_bundle_team(b);
+    (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++)
         b->plastic_strain[k] =
             ct_rod_advance(u, b->top[k], b->length[k], b->plastic_strain[k], eps_y);
 }
 
-double ct_bundle_first_contact(const ct_bundle *b)
+/* Minima are exact: any order, any thread count, the same value. */
+double ct_bundle_release(const ct_bundle *b, double u_adv)
 {
     double m = INFINITY;
-#pragma omp parallel for schedule(static) reduction(min : m) if (b->n >= b->parallel_min)
+    const double eps_y = b->eps_y;
+    const int team = ct_bundle_team(b);
+    (void)team;
+#pragma omp parallel for schedule(static) reduction(min : m) num_threads(team) if (team > 1)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++) {
-        double c = ct_rod_contact(b->top[k], b->length[k], b->plastic_strain[k]);
+        double p = ct_rod_advance(u_adv, b->top[k], b->length[k], b->plastic_strain[k], eps_y);
+        double c = ct_rod_contact(b->top[k], b->length[k], p);
         if (c < m)
             m = c;
     }
     return m;
 }
 
+double ct_bundle_first_contact(const ct_bundle *b)
+{
+    return ct_bundle_release(b, -INFINITY);
+}
+
 double ct_bundle_first_yield(const ct_bundle *b)
 {
     double m = INFINITY;
     const double eps_y = b->eps_y;
-#pragma omp parallel for schedule(static) reduction(min : m) if (b->n >= b->parallel_min)
+    const int team = ct_bundle_team(b);
+    (void)team;
+#pragma omp parallel for schedule(static) reduction(min : m) num_threads(team) if (team > 1)
     for (ptrdiff_t k = 0; k < (ptrdiff_t)b->n; k++) {
         double y = ct_rod_yield(b->top[k], b->length[k], b->plastic_strain[k], eps_y);
         if (y < m)
             m = y;
     }
     return m;
-}
-
-typedef struct {
-    double *v;
-    size_t n, cap;
-    int oom;
-} point_list;
-
-static void point_push(point_list *l, double x)
-{
-    if (l->oom)
-        return;
-    if (l->n == l->cap) {
-        size_t cap = l->cap ? 2 * l->cap : 64;
-        double *grown = realloc(l->v, cap * sizeof(double));
-        if (!grown) {
-            l->oom = 1;
-            return;
-        }
-        l->v = grown;
-        l->cap = cap;
-    }
-    l->v[l->n++] = x;
-}
-
-int ct_bundle_breakpoints(const ct_bundle *b, double lo, double hi, double **points, size_t *count)
-{
-    *points = NULL;
-    *count = 0;
-    if (!(lo <= hi))
-        return ct_error_set(CT_EINVAL, "breakpoints: interval [%g, %g] is empty", lo, hi);
-    int nt = 1;
-#ifdef _OPENMP
-    if (b->n >= b->parallel_min)
-        nt = omp_get_max_threads();
-#endif
-    /* per thread: contacts, then yields; each list is one monotone run on a virgin stage
-     * bundle, which is what lets the sort below merge instead of sorting */
-    point_list *lists = calloc(2 * (size_t)nt, sizeof *lists);
-    if (!lists)
-        return ct_error_set(CT_ENOMEM, "breakpoints: out of memory");
-    const ptrdiff_t nb = (ptrdiff_t)b->nblocks;
-    /* Each thread gathers its blocks' points; the sort below makes the order irrelevant. */
-#pragma omp parallel num_threads(nt) if (nt > 1)
-    {
-        int t = 0;
-#ifdef _OPENMP
-        t = omp_get_thread_num();
-#endif
-        point_list *lc = &lists[2 * t], *ly = &lists[2 * t + 1];
-#pragma omp for schedule(static)
-        for (ptrdiff_t j = 0; j < nb; j++) {
-            size_t k0 = (size_t)j * CT_BLOCK;
-            size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
-            /* Rods of one stage share their state through any common history; skipping a
-             * value equal to the previous one of its kind keeps segment lists short. */
-            double last_c = NAN, last_y = NAN;
-            for (size_t k = k0; k < k1; k++) {
-                double c = ct_rod_contact(b->top[k], b->length[k], b->plastic_strain[k]);
-                double y = ct_rod_yield(b->top[k], b->length[k], b->plastic_strain[k], b->eps_y);
-                if (c != last_c && c > lo && c < hi)
-                    point_push(lc, c);
-                if (y != last_y && y > lo && y < hi)
-                    point_push(ly, y);
-                last_c = c;
-                last_y = y;
-            }
-        }
-    }
-    size_t n = 2;
-    int oom = 0;
-    for (int t = 0; t < 2 * nt; t++) {
-        n += lists[t].n;
-        oom |= lists[t].oom;
-    }
-    double *pts = oom ? NULL : malloc(n * sizeof(double));
-    if (pts) {
-        pts[0] = lo;
-        pts[1] = hi;
-        n = 2;
-        for (int t = 0; t < 2 * nt; t++) {
-            if (lists[t].n)
-                memcpy(pts + n, lists[t].v, lists[t].n * sizeof(double));
-            n += lists[t].n;
-        }
-    }
-    for (int t = 0; t < 2 * nt; t++)
-        free(lists[t].v);
-    free(lists);
-    if (!pts)
-        return ct_error_set(CT_ENOMEM, "breakpoints: out of memory");
-    *points = pts;
-    *count = ct_sort_unique(pts, n);
-    return CT_OK;
 }

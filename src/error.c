@@ -36,6 +36,8 @@ const char *ct_strerror(int status)
         return "tolerance not met";
     case CT_EIO:
         return "input/output error";
+    case CT_ESKIPPED:
+        return "not run: an earlier impact of the same speed failed";
     default:
         return "unknown error";
     }

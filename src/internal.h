@@ -1,4 +1,4 @@
-/* Internal helpers shared by the library's modules. */
+/* Internal helpers shared by the library's modules; none of these is exported. */
 #ifndef CT_INTERNAL_H
 #define CT_INTERNAL_H
 
@@ -15,8 +15,32 @@
  * a breakpoint on it catches them all. */
 int ct_error_set(int status, const char *fmt, ...) CT_PRINTF(2, 3);
 
-/* Sorts v ascending and drops repeated values; returns the new count. Breakpoint lists of
- * the bundle and of the series go through here. */
+/* Sorts v ascending and drops repeated values; returns the new count. */
 size_t ct_sort_unique(double *v, size_t n);
+
+/* ---- for surface builders (src/surface/) ---- */
+
+/* What a kind of surface knows of its rods beyond top and area. */
+typedef struct {
+    const char *name;
+    /* fills info->stage, x_left, x_right of rod k */
+    void (*rod_info)(const void *meta, size_t k, ct_rod_info *info);
+    void *(*clone)(const void *meta); /* NULL on failure */
+    void (*free)(void *meta);
+} ct_surface_kind;
+
+/* A bundle of n rods with uninitialised arrays (filled by the caller through
+ * ct_bundle_arrays), or CT_ENOMEM naming the bytes and the memory available. */
+int ct_bundle_create(ct_bundle **out, const ct_layer *layer, size_t n, const char *what);
+void ct_bundle_arrays(ct_bundle *b, double **top, double **length, double **area,
+                      double **plastic_strain);
+/* Hands the surface's metadata to the bundle (freed with it); omitted rods are counted. */
+void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted);
+/* The metadata if b was made by this kind of surface, else NULL. */
+const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_surface_kind *kind);
+/* Bytes the kernel can give without swapping. */
+size_t ct_available_memory(void);
+/* The thread count a sum over b's rods uses (1 below the parallel threshold). */
+int ct_bundle_team(const ct_bundle *b);
 
 #endif

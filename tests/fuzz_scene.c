@@ -1,6 +1,7 @@
 /* libFuzzer target: scene parsing plus validation on arbitrary bytes, with and without an
  * override. Build and run: scripts/fuzz [SECONDS]. */
 #include "cantact.h"
+#include "scene.h"
 
 #include <stdint.h>
 #include <stdlib.h>

@@ -50,7 +50,7 @@ static int run_case(const ct_params *p, int nv)
     /* depth auto (as the CLI's default) for the smallest impact, 1e-12 of the first-yield
      * energy of a shallow probe; where so weak an impact cannot be resolved (stiff rods), for
      * 1e-6 of it, then for the first-yield energy itself */
-    if ((st = ct_bundle_alloc(&probe, p, CT_REP_STAGES, 64, INFINITY)) ||
+    if ((st = ct_cantor_bundle(&probe, p, CT_REP_STAGES, 64, INFINITY)) ||
         (st = ct_critical_energy(probe, &Wc, &uy)) ||
         ((st = ct_auto_depth(p, 1e-12 * Wc, 1e-12, &depth, &bound)) &&
          (st = ct_auto_depth(p, 1e-6 * Wc, 1e-12, &depth, &bound)) &&
@@ -71,7 +71,7 @@ static int run_case(const ct_params *p, int nv)
                depth, depth);
         return 1;
     }
-    if ((st = ct_bundle_alloc(&b, p, CT_REP_STAGES, depth, INFINITY)) ||
+    if ((st = ct_cantor_bundle(&b, p, CT_REP_STAGES, depth, INFINITY)) ||
         (st = ct_critical_energy(b, &Wc, &uy))) {
         printf("%ld,refused,,,,,,,,,", depth);
         csv_message(ct_error_message());

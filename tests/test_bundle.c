@@ -43,8 +43,8 @@ static void stages_agree_with_segments(void **state)
     const double history[] = {0.4, 0.2, 0.7, 0.05};
     for (long N = 0; N <= 18; N++) {
         ct_bundle *st, *sg;
-        assert_int_equal(ct_bundle_alloc(&st, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
-        assert_int_equal(ct_bundle_alloc(&sg, &p, CT_REP_SEGMENTS, N, INFINITY), CT_OK);
+        assert_int_equal(ct_cantor_bundle(&st, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
+        assert_int_equal(ct_cantor_bundle(&sg, &p, CT_REP_SEGMENTS, N, INFINITY), CT_OK);
         assert_int_equal(ct_bundle_size(sg), ((size_t)1 << (N + 1)) - 1);
         for (int h = 0; h < 4; h++) {
             for (int k = 0; k <= 8; k++) {
@@ -74,7 +74,7 @@ static void elastic_force_against_long_double_sum(void **state)
     p.sigma_y = 1e5;
     long N = 40;
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
     for (int k = 1; k <= 20; k++) {
         double u = 0.01 * k;
         long double sum = 0.0L;
@@ -100,7 +100,7 @@ static void work_against_gsl_quadrature(void **state)
     (void)state;
     ct_params p = base();
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 25, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 25, INFINITY), CT_OK);
     ct_bundle_advance(b, 0.6);
     gsl_set_error_handler_off();
     gsl_integration_workspace *w = gsl_integration_workspace_alloc(2000);
@@ -120,12 +120,33 @@ static void work_against_gsl_quadrature(void **state)
     ct_bundle_free(b);
 }
 
+/* The load curve's breakpoints inside (lo, hi), with lo and hi, in a malloc'ed array. */
+static int curve_points(const ct_bundle *b, double lo, double hi, double **pts, size_t *n)
+{
+    ct_curve *c;
+    int st = ct_curve_alloc(&c);
+    if (st || (st = ct_curve_build(c, b)))
+        return st;
+    const double *x = ct_curve_points(c);
+    *pts = malloc((ct_curve_size(c) + 2) * sizeof(double));
+    assert_non_null(*pts);
+    size_t m = 0;
+    (*pts)[m++] = lo;
+    for (size_t k = 0; k < ct_curve_size(c); k++)
+        if (x[k] > lo && x[k] < hi)
+            (*pts)[m++] = x[k];
+    (*pts)[m++] = hi;
+    *n = m;
+    ct_curve_free(c);
+    return CT_OK;
+}
+
 static void bitwise_identical_for_any_thread_count(void **state)
 {
     (void)state;
     ct_params p = base();
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_SEGMENTS, 19, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 19, INFINITY), CT_OK);
     assert_int_equal(ct_bundle_size(b), ((size_t)1 << 20) - 1);
     /* give the rods different states: load a clone region by region is not possible, so
      * perturb through a history that yields some stages and not others */
@@ -133,7 +154,7 @@ static void bitwise_identical_for_any_thread_count(void **state)
     double ref[12];
     int threads[] = {1, 2, 3, 4};
     for (int t = 0; t < 4; t++) {
-        ct_set_threads(threads[t]);
+        ct_bundle_set_threads(b, threads[t]);
         double v[12];
         for (int k = 0; k < 4; k++) {
             double u = 0.05 + 0.1 * k;
@@ -146,7 +167,6 @@ static void bitwise_identical_for_any_thread_count(void **state)
         else
             assert_memory_equal(ref, v, sizeof v);
     }
-    ct_set_threads(0);
     ct_bundle_free(b);
 }
 
@@ -162,12 +182,12 @@ static void many_nodes_match_single_nodes(void **state)
     const long depth[2] = {17, 40};
     for (int r = 0; r < 2; r++) {
         ct_bundle *b;
-        assert_int_equal(ct_bundle_alloc(&b, &p, rep[r], depth[r], INFINITY), CT_OK);
+        assert_int_equal(ct_cantor_bundle(&b, &p, rep[r], depth[r], INFINITY), CT_OK);
         ct_bundle_advance(b, 0.33);
         ct_bundle_advance(b, 0.2);
         double *bp;
         size_t nbp;
-        assert_int_equal(ct_bundle_breakpoints(b, 0.0, 1.0, &bp, &nbp), CT_OK);
+        assert_int_equal(curve_points(b, 0.0, 1.0, &bp, &nbp), CT_OK);
         /* the merge sort of the breakpoint runs: strictly increasing, and every rod's contact
          * and yield point inside (0, 1) is there */
         for (size_t k = 1; k < nbp; k++)
@@ -193,7 +213,7 @@ static void many_nodes_match_single_nodes(void **state)
             u[i] = i < nbp ? bp[i] : -0.1 + 1.2 * (double)i / M;
         free(bp);
         for (int threads = 1; threads <= 2; threads++) {
-            ct_set_threads(threads);
+            ct_bundle_set_threads(b, threads);
             assert_int_equal(ct_bundle_force_many(b, u, M, P), CT_OK);
             assert_int_equal(ct_bundle_work_many(b, 0.01, u, M, W), CT_OK);
             for (size_t i = 0; i < M; i++) {
@@ -202,7 +222,6 @@ static void many_nodes_match_single_nodes(void **state)
                 assert_memory_equal(&W[i], &Wi, sizeof Wi);
             }
         }
-        ct_set_threads(0);
         ct_bundle_free(b);
     }
 }
@@ -219,8 +238,8 @@ static void truncation_bound_holds(void **state)
         assert_int_equal(ct_auto_depth(&p, W, 1e-10, &N, &bound), CT_OK);
         assert_true(bound <= 1e-10);
         ct_bundle *shallow, *deep;
-        assert_int_equal(ct_bundle_alloc(&shallow, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
-        assert_int_equal(ct_bundle_alloc(&deep, &p, CT_REP_STAGES, N + 60, INFINITY), CT_OK);
+        assert_int_equal(ct_cantor_bundle(&shallow, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
+        assert_int_equal(ct_cantor_bundle(&deep, &p, CT_REP_STAGES, N + 60, INFINITY), CT_OK);
         double u;
         assert_int_equal(ct_solve_umax(deep, W, 1e-14, &u), CT_OK);
         double Ws = ct_bundle_work(shallow, 0.0, u), Wd = ct_bundle_work(deep, 0.0, u);
@@ -238,11 +257,11 @@ static void too_deep_is_refused_before_allocating(void **state)
     (void)state;
     ct_params p = base();
     ct_bundle *b = (ct_bundle *)&p; /* must be overwritten with NULL */
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_SEGMENTS, 40, INFINITY), CT_ENOMEM);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 40, INFINITY), CT_ENOMEM);
     assert_null(b);
     assert_non_null(strstr(ct_error_message(), "GiB"));
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_SEGMENTS, 41, INFINITY), CT_EINVAL);
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, -1, INFINITY), CT_EINVAL);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 41, INFINITY), CT_EINVAL);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, -1, INFINITY), CT_EINVAL);
 }
 
 static void untouched_rods_are_left_out(void **state)
@@ -251,9 +270,9 @@ static void untouched_rods_are_left_out(void **state)
     ct_params p = base();
     double reach = 0.99 * ct_stage_depth(&p, 3); /* stages 0..3 lie deeper */
     ct_bundle *full, *part, *seg;
-    assert_int_equal(ct_bundle_alloc(&full, &p, CT_REP_STAGES, 12, INFINITY), CT_OK);
-    assert_int_equal(ct_bundle_alloc(&part, &p, CT_REP_STAGES, 12, reach), CT_OK);
-    assert_int_equal(ct_bundle_alloc(&seg, &p, CT_REP_SEGMENTS, 12, reach), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&full, &p, CT_REP_STAGES, 12, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&part, &p, CT_REP_STAGES, 12, reach), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&seg, &p, CT_REP_SEGMENTS, 12, reach), CT_OK);
     assert_int_equal(ct_bundle_omitted(part), 4);
     assert_int_equal(ct_bundle_size(part), 9);
     assert_int_equal(ct_bundle_omitted(seg), 15);
@@ -273,10 +292,10 @@ static void breakpoints_and_profile(void **state)
     ct_params p = base();
     long N = 6;
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_SEGMENTS, N, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, N, INFINITY), CT_OK);
     double *pts;
     size_t n;
-    assert_int_equal(ct_bundle_breakpoints(b, 0.0, 3.0, &pts, &n), CT_OK);
+    assert_int_equal(curve_points(b, 0.0, 3.0, &pts, &n), CT_OK);
     /* lo, hi, N+1 contact points h_i and N+1 yield points h_i + eps_y (H* - h_i) */
     assert_int_equal(n, 2 + 2 * (N + 1));
     for (size_t k = 1; k < n; k++)

@@ -104,7 +104,7 @@ static void e_against_independent_solution(void **state)
             ref_model m = {p, depths[d]};
             double W = Vs[v] * Vs[v] * ct_energy_scale(&p);
             ct_bundle *b;
-            assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, depths[d], INFINITY), CT_OK);
+            assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, depths[d], INFINITY), CT_OK);
             ct_impact_result r;
             assert_int_equal(ct_impact(b, W, NULL, &r), CT_OK);
             double umax = ref_umax(&m, W);
@@ -131,7 +131,7 @@ static void single_rod_closed_form(void **state)
     double eps = (W / (p.E * s * L) + eps_y * eps_y / 2) / eps_y;
     double e = sqrt(eps_y * eps_y / 2 / (eps_y * eps - eps_y * eps_y / 2));
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 0, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 0, INFINITY), CT_OK);
     ct_impact_result r;
     assert_int_equal(ct_impact(b, W, NULL, &r), CT_OK);
     assert_rel(r.e, 0.5, 1e-14);
@@ -152,7 +152,7 @@ static void critical_velocity(void **state)
     double u_c = eps_y * p.Hstar + (1.0 - eps_y) * hN; /* MODEL.md §7 at depth N */
     double V_c = sqrt(ref_work(u_c, &m) / ct_energy_scale(&p));
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
     double Wc, uy;
     assert_int_equal(ct_critical_energy(b, &Wc, &uy), CT_OK);
     assert_rel(uy, u_c, 1e-14);
@@ -172,7 +172,7 @@ static void e_non_increasing_in_V(void **state)
     (void)state;
     ct_params p = base();
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 60, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 60, INFINITY), CT_OK);
     double prev = 2.0;
     int below = 0, above = 0;
     for (int k = 0; k <= 400; k++) {
@@ -207,7 +207,7 @@ static void e_rises_past_a_stage_top_beyond_the_papers_range(void **state)
     double e_lib[2], e_ref[2], Vs[2] = {V1, V2};
     for (int k = 0; k < 2; k++) {
         ct_bundle *b;
-        assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
+        assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
         ct_impact_result r;
         double W = Vs[k] * Vs[k] * ct_energy_scale(&p);
         assert_int_equal(ct_impact(b, W, NULL, &r), CT_OK);
@@ -227,7 +227,7 @@ static void repeated_impacts_shake_down(void **state)
     (void)state;
     ct_params p = base();
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 50, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 50, INFINITY), CT_OK);
     double W = 1e-3 * 1e-3 * ct_energy_scale(&p), prev = 0.0, prev_u = 0.0;
     for (int k = 0; k < 30; k++) {
         ct_impact_result r;
@@ -246,7 +246,7 @@ static void crushed_layer_refused(void **state)
     (void)state;
     ct_params p = base();
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 10, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 10, INFINITY), CT_OK);
     ct_impact_result r;
     double V = 1.0; /* W = 500 >> sigma_y l0 H* = 10 */
     assert_int_equal(ct_impact(b, V * V * ct_energy_scale(&p), NULL, &r), CT_ERANGE);
@@ -261,7 +261,7 @@ static void composite_rules_converge_to_exact(void **state)
     (void)state;
     ct_params p = base();
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 40, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 40, INFINITY), CT_OK);
     double W = 3e-3 * 3e-3 * ct_energy_scale(&p);
     ct_quad_rule rules[] = {CT_QUAD_TRAPEZOID, CT_QUAD_SIMPSON, CT_QUAD_GAUSS};
     for (int q = 0; q < 3; q++) {
@@ -292,7 +292,7 @@ static void closed_rule_is_the_closed_form(void **state)
     ref_model m = {p, 20};
     double W = 2e-3 * 2e-3 * ct_energy_scale(&p);
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, &p, CT_REP_STAGES, 20, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 20, INFINITY), CT_OK);
     ct_impact_opts o;
     ct_impact_opts_default(&o);
     ct_impact_result rq, rc;
@@ -321,8 +321,8 @@ static void fractal_depth_matches_deep_surface(void **state)
     assert_int_equal(ct_fractal_depth(&p, W_min, &N, &bound), CT_OK);
     assert_true(bound <= 1e-15);
     ct_bundle *fr, *deep;
-    assert_int_equal(ct_bundle_alloc(&fr, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
-    assert_int_equal(ct_bundle_alloc(&deep, &p, CT_REP_STAGES, N + 300, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&fr, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&deep, &p, CT_REP_STAGES, N + 300, INFINITY), CT_OK);
     for (int k = 0; k < 3; k++) {
         ct_impact_result a, b;
         ct_bundle_reset(fr);

@@ -184,7 +184,7 @@ static void paper_fig4_claims(void **state)
 static double exact_force(const ct_params *p, double u)
 {
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
     double P = ct_bundle_force(b, u);
     ct_bundle_free(b);
     return P;
@@ -193,7 +193,7 @@ static double exact_force(const ct_params *p, double u)
 static double exact_release(const ct_params *p, double u_max)
 {
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
     ct_bundle_advance(b, u_max);
     double r = ct_bundle_first_contact(b);
     ct_bundle_free(b);
@@ -263,7 +263,7 @@ static void paper_convexity_claim(void **state)
 static double exact_e(const ct_params *p, double V, double *Vc)
 {
     ct_bundle *b;
-    assert_int_equal(ct_bundle_alloc(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b, p, CT_REP_STAGES, 80, INFINITY), CT_OK);
     ct_impact_result r;
     assert_int_equal(ct_impact(b, V * V * ct_energy_scale(p), NULL, &r), CT_OK);
     ct_bundle_free(b);

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cantact.h"
+#include "scene.h"
 
 static const char *good = "[surface]\n"
                           "fx = 1.5\n"
@@ -29,7 +30,7 @@ static void expect_error(const char *text, const char *const *sets, size_t nsets
     int st = ct_scene_parse(&sc, "s.ini", text, sets, nsets);
     if (st != CT_EINVAL)
         fail_msg("expected CT_EINVAL, got %d for:\n%s", st, text);
-    const char *msg = ct_error_message();
+    const char *msg = ct_scene_message();
     if (!strstr(msg, needle1) || (needle2 && !strstr(msg, needle2)))
         fail_msg("message '%s' lacks '%s' / '%s'", msg, needle1, needle2 ? needle2 : "");
 }
@@ -204,7 +205,7 @@ static void files_missing_and_binary(void **state)
     (void)state;
     ct_scene sc;
     assert_int_equal(ct_scene_load(&sc, "/nonexistent/dir/x.ini", NULL, 0), CT_EIO);
-    assert_non_null(strstr(ct_error_message(), "/nonexistent/dir/x.ini: cannot open"));
+    assert_non_null(strstr(ct_scene_message(), "/nonexistent/dir/x.ini: cannot open"));
     char path[] = "/tmp/ct_scene_binXXXXXX";
     int fd = mkstemp(path);
     assert_true(fd >= 0);
@@ -213,7 +214,7 @@ static void files_missing_and_binary(void **state)
     fwrite(junk, 1, sizeof junk, f);
     fclose(f);
     assert_int_equal(ct_scene_load(&sc, path, NULL, 0), CT_EINVAL);
-    assert_non_null(strstr(ct_error_message(), "binary"));
+    assert_non_null(strstr(ct_scene_message(), "binary"));
     remove(path);
     /* the shipped default scene loads */
     assert_int_equal(ct_scene_load(&sc, CT_SOURCE_DIR "/scripts/scenes/default.ini", NULL, 0),

@@ -24,7 +24,7 @@ static int curve(char **argv)
     ct_params p = {atof(argv[2]), atof(argv[3]), 1.0, 1.0, atof(argv[5]), atof(argv[4]), 1.0};
     double um = atof(argv[6]);
     ct_bundle *b;
-    if (ct_params_validate(&p) || ct_bundle_alloc(&b, &p, CT_REP_STAGES, 120, INFINITY)) {
+    if (ct_params_validate(&p) || ct_cantor_bundle(&b, &p, CT_REP_STAGES, 120, INFINITY)) {
         fprintf(stderr, "ct_validate: %s\n", ct_error_message());
         return 2;
     }
@@ -67,7 +67,7 @@ int main(int argc, char **argv)
                     ct_params p = {fxs[a], fzs[b], 1.0, 1.0, Hs[d], Es[c], 1.0};
                     ct_bundle *bd;
                     /* depth 120 at these ratios: tips below 1e-5 h0, areas below 1e-9 l0 */
-                    if (ct_bundle_alloc(&bd, &p, CT_REP_STAGES, 120, INFINITY)) {
+                    if (ct_cantor_bundle(&bd, &p, CT_REP_STAGES, 120, INFINITY)) {
                         fprintf(stderr, "ct_validate: %s\n", ct_error_message());
                         return 1;
                     }

@@ -1,6 +1,7 @@
 /* cantact: the command-line program. Subcommands: run, geometry. */
 #include "cantact.h"
 #include "output.h"
+#include "scene.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -151,52 +152,53 @@ static char *derived_path(const char *path, const char *tag)
     return out;
 }
 
-/* A curve branch: the breakpoints in [lo, hi] (when fewer than 1e5) and a uniform grid. */
-static int write_branch(FILE *f, ct_bundle *b, double V, long impact, double lo, double hi,
-                        const char *branch, double h0, double PY, int compare)
+/* The paper's laws at u (unloading from hi when unload): series, asymptotic, consistent
+ * asymptotic; NaN where a law does not apply. */
+static void law_forces(const ct_params *p, int unload, double hi, double u, double out[3])
 {
-    const ct_params *p = ct_bundle_params(b);
+    out[0] = unload ? ct_series_unload(p, hi, u) : ct_series_load(p, u);
+    out[1] = unload ? ct_asym_unload(p, hi, u, 0) : ct_asym_load(p, u);
+    out[2] = unload ? ct_asym_unload(p, hi, u, 1) : out[1];
+}
+
+/* A curve branch: the breakpoints in [lo, hi] (when fewer than 1e5) and a uniform grid, P
+ * from the state's load curve. */
+static int write_branch(FILE *f, const ct_curve *c, const ct_params *p, double V, long impact,
+                        double lo, double hi, const char *branch, int compare)
+{
     enum { GRID = 200 };
-    double *pts = NULL;
-    size_t n = 0;
-    int st = ct_bundle_breakpoints(b, lo, hi, &pts, &n);
-    if (st)
-        return st;
-    size_t use = n < 100000 ? n : 0;
+    const double *x = ct_curve_points(c), h0 = p->h0, PY = p->sigma_y * p->l0;
+    size_t n = ct_curve_size(c), a = 0, z = n;
+    while (a < n && !(x[a] > lo))
+        a++;
+    while (z > a && !(x[z - 1] < hi))
+        z--;
+    size_t use = z - a < 100000 ? z - a : 0;
     double *u = malloc((use + GRID + 1) * sizeof(double));
-    if (!u) {
-        free(pts);
+    if (!u)
         return CT_ENOMEM;
-    }
-    size_t m = 0;
-    for (size_t k = 0; k < use; k++)
-        u[m++] = pts[k];
-    for (int k = 0; k <= GRID; k++)
-        u[m++] = lo + (hi - lo) * k / GRID;
-    free(pts);
-    /* sort (insertion on a nearly sorted merge is fine at this size) */
-    for (size_t i = 1; i < m; i++) {
-        double x = u[i];
-        size_t j = i;
-        while (j > 0 && u[j - 1] > x) {
-            u[j] = u[j - 1];
-            j--;
-        }
-        u[j] = x;
+    /* merge the (sorted) breakpoints with the (sorted) grid */
+    size_t m = 0, i = a, g = 0;
+    while (i < a + use || g <= GRID) {
+        double ug = g <= GRID ? lo + (hi - lo) * g / GRID : INFINITY;
+        double ub = i < a + use ? x[i] : INFINITY;
+        double next = ub < ug ? ub : ug;
+        if (ub < ug)
+            i++;
+        else
+            g++;
+        if (!m || next != u[m - 1])
+            u[m++] = next;
     }
     int unload = !strcmp(branch, "unload");
-    for (size_t i = 0; i < m; i++) {
-        size_t k = unload ? m - 1 - i : i;
-        if (i > 0 && u[k] == u[unload ? k + 1 : k - 1])
-            continue;
-        double P = ct_bundle_force(b, u[k]);
-        fprintf(f, "%.17g,%ld,%.17g,%.17g,%s", V, impact, u[k] / h0, P / PY, branch);
+    for (size_t j = 0; j < m; j++) {
+        size_t k = unload ? m - 1 - j : j;
+        fprintf(f, "%.17g,%ld,%.17g,%.17g,%s", V, impact, u[k] / h0, ct_curve_force(c, u[k]) / PY,
+                branch);
         if (compare && impact == 1) {
             /* the laws at the same u, unloading from the exact u_max (hi) */
-            double ps = unload ? ct_series_unload(p, hi, u[k]) : ct_series_load(p, u[k]);
-            double pa = unload ? ct_asym_unload(p, hi, u[k], 0) : ct_asym_load(p, u[k]);
-            double pc = unload ? ct_asym_unload(p, hi, u[k], 1) : pa;
-            double laws[3] = {ps, pa, pc};
+            double laws[3];
+            law_forces(p, unload, hi, u[k], laws);
             for (int l = 0; l < 3; l++) {
                 if (isfinite(laws[l]))
                     fprintf(f, ",%.17g", laws[l] / PY);
@@ -212,17 +214,9 @@ static int write_branch(FILE *f, ct_bundle *b, double V, long impact, double lo,
     return CT_OK;
 }
 
-static int write_profile(FILE *f, ct_bundle *b, const ct_params *p)
+static int write_profile(FILE *f, const ct_bundle *b, const ct_params *p)
 {
-    long N = ct_bundle_depth(b);
-    if (N > 20) {
-        fprintf(stderr,
-                "cantact: profile: depth %ld has 2^%ld pieces; the profile is written for "
-                "depth <= 20 (set surface.depth)\n",
-                N, N + 1);
-        return CT_EINVAL;
-    }
-    fprintf(f, "stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0\n");
+    long N = ct_cantor_depth(b);
     size_t n = ct_bundle_size(b);
     ct_rod_info first;
     long first_stage = N + 1;
@@ -233,7 +227,7 @@ static int write_profile(FILE *f, ct_bundle *b, const ct_params *p)
         double top = ct_stage_depth(p, (double)i), residual = top;
         if (i >= first_stage) {
             ct_rod_info info;
-            size_t k = ct_bundle_representation(b) == CT_REP_STAGES
+            size_t k = ct_cantor_representation(b) == CT_REP_STAGES
                            ? (size_t)(i - first_stage)
                            : ((size_t)1 << i) - ((size_t)1 << first_stage);
             if (ct_bundle_rod(b, k, &info) == CT_OK)
@@ -242,7 +236,7 @@ static int write_profile(FILE *f, ct_bundle *b, const ct_params *p)
         for (size_t j = 0; j < ((size_t)1 << i); j++) {
             double xl, xr;
             ct_piece_extent(p, N, i, j, &xl, &xr);
-            if (ct_bundle_representation(b) == CT_REP_SEGMENTS && i >= first_stage) {
+            if (ct_cantor_representation(b) == CT_REP_SEGMENTS && i >= first_stage) {
                 ct_rod_info info;
                 size_t k = ((size_t)1 << i) - 1 + j - (((size_t)1 << first_stage) - 1);
                 if (ct_bundle_rod(b, k, &info) == CT_OK)
@@ -276,22 +270,94 @@ static int load_scene_args(int argc, char **argv, const char *cmd, const char *h
     int st = ct_scene_load(sc, a.scene, a.sets, a.nsets);
     free(a.sets);
     if (st) {
-        fail_line(ct_error_message());
+        fail_line(ct_scene_message());
         return EXIT_USAGE;
     }
     *quiet = a.quiet;
     return -1;
 }
 
+/* What the run writes while the sweep goes: curve branches and, after the last impact of
+ * the last speed, the profile of the surface in that state. */
+typedef struct {
+    const ct_scene *sc;
+    FILE *curve, *profile;
+    int compare;
+    ct_curve *post; /* the post-impact state's curve (the unloading branch) */
+    char err[300];
+} run_observer;
+
+static int observe(const ct_sweep_row *row, int phase, const ct_bundle *b, const ct_curve *c,
+                   void *ctx)
+{
+    run_observer *o = ctx;
+    const ct_scene *sc = o->sc;
+    const ct_params *p = &sc->params;
+    int st = CT_OK;
+    if (phase == 0 && o->curve)
+        st = write_branch(o->curve, c, p, row->V_star, row->impact, row->r.u_contact, row->r.u_max,
+                          "load", o->compare);
+    if (phase == 1 && o->curve && !(st = ct_curve_build(o->post, b)))
+        st = write_branch(o->curve, o->post, p, row->V_star, row->impact, row->r.u_release,
+                          row->r.u_max, "unload", o->compare);
+    if (phase == 1 && o->profile && row->speed + 1 == sc->nvel && row->impact == sc->impacts)
+        st = write_profile(o->profile, b, p);
+    return st;
+}
+
+static void show_progress(size_t done, size_t total, void *ctx)
+{
+    (void)total;
+    ct_progress *prog = ctx;
+    while (prog->done < done)
+        ct_progress_step(prog);
+}
+
+static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, int compare)
+{
+    const ct_params *p = &sc->params;
+    const ct_impact_result *r = &row->r;
+    if (row->status) {
+        /* a failed impact (solver.on_error = skip): its numbers stay empty, the reason is
+         * the last field */
+        fprintf(f, "%ld,%.17g,,,,,,,%s", row->impact, row->V_star, compare ? ",,," : "");
+        fputs(",\"", f);
+        for (const char *m = row->message; *m; m++)
+            fputc(*m == '"' ? '\'' : *m, f);
+        fputs("\"\n", f);
+        return;
+    }
+    fprintf(f, "%ld,%.17g,%.17g,%.17g,", row->impact, row->V_star, r->u_max / p->h0, r->e);
+    if (isfinite(r->e_closed))
+        fprintf(f, "%.17g,%.3g,", r->e_closed, r->quad_error);
+    else
+        fputs(",,", f); /* solver.check = none */
+    fprintf(f, "%.17g,%.17g,%d", r->V_star_crit, r->u_release / p->h0, r->elastic);
+    if (compare && row->impact == 1) {
+        /* the paper's laws model the first impact on the virgin fractal; where a law does
+         * not apply (u_max > h0, e > 1) its field stays empty */
+        for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT; law++) {
+            double um, el;
+            if (ct_law_impact(p, (ct_law)law, r->kinetic_energy, &um, &el) == CT_OK)
+                fprintf(f, ",%.17g", el);
+            else
+                fputc(',', f);
+        }
+    } else if (compare) {
+        fputs(",,,", f);
+    }
+    if (sc->skip_failed)
+        fputc(',', f);
+    fputc('\n', f);
+}
+
 static int cmd_run(int argc, char **argv)
 {
     ct_scene sc;
-    int quiet, st;
+    int quiet, st = CT_OK;
     int rc = load_scene_args(argc, argv, "run", run_help, &sc, &quiet);
     if (rc >= 0)
         return rc;
-    const ct_params *p = &sc.params;
-    ct_set_threads(sc.threads);
     int nitems = !!(sc.what & CT_OUT_E) + !!(sc.what & CT_OUT_CURVE) + !!(sc.what & CT_OUT_PROFILE);
     if (nitems > 1 && !strcmp(sc.output, "-")) {
         fail_line("output.what names several outputs: set output.file (or -o FILE) to a path");
@@ -302,15 +368,14 @@ static int cmd_run(int argc, char **argv)
     /* open every output first: an unwritable path fails before any work is done */
     ct_out out_e = {0}, out_curve = {0}, out_profile = {0};
     ct_bundle *b = NULL;
-    long depth;
-    double bound;
+    ct_sweep_row *rows = NULL;
+    run_observer obs = {0};
     char err[512];
     int opened_e = 0, opened_c = 0, opened_p = 0;
-    const char *first_path = sc.output;
     char *curve_path = NULL, *profile_path = NULL;
     rc = EXIT_DONE;
     if (sc.what & CT_OUT_E) {
-        if (ct_out_open(&out_e, first_path, err, sizeof err))
+        if (ct_out_open(&out_e, sc.output, err, sizeof err))
             goto io_fail;
         opened_e = 1;
     }
@@ -327,117 +392,109 @@ static int cmd_run(int argc, char **argv)
         opened_p = 1;
     }
 
-    double scale = ct_energy_scale(p), vmax = 0.0;
-    for (size_t k = 0; k < sc.nvel; k++)
-        vmax = sc.V_star[k] > vmax ? sc.V_star[k] : vmax;
-    if ((st = choose_depth(&sc, &depth, &bound)))
+    /* the library plans: depth, and which rods no impact of the scene can reach */
+    ct_cantor_plan plan = {
+        .params = sc.params,
+        .depth = sc.depth,
+        .representation = sc.representation,
+        .depth_tolerance = sc.depth_tolerance,
+        .V_star = sc.V_star,
+        .nvel = sc.nvel,
+        .impacts = sc.impacts,
+        .opts = sc.opts,
+        .keep_all_rods = !!(sc.what & CT_OUT_PROFILE), /* the profile shows the whole surface */
+        .threads = sc.threads,
+    };
+    ct_plan_info info;
+    if ((st = ct_cantor_plan_build(&plan, &b, &info)))
         goto lib_fail;
-
-    /* Rods deeper than the largest displacement any impact reaches can never be touched:
-     * find it on the (cheap, exact) stage rods, then leave those rods out. */
-    double u_reach = INFINITY;
-    {
-        ct_bundle *probe;
-        if ((st = ct_bundle_alloc(&probe, p, CT_REP_STAGES, depth, INFINITY)))
-            goto lib_fail;
-        double umax = 0.0;
-        for (long i = 0; i < sc.impacts && !st; i++) {
-            ct_impact_result r;
-            st = ct_impact(probe, vmax * vmax * scale, &sc.opts, &r);
-            umax = r.u_max > umax ? r.u_max : umax;
-        }
-        ct_bundle_free(probe);
-        if (st)
-            goto lib_fail;
-        u_reach = umax * (1.0 + 1e-9);
+    if (opened_p && info.depth > 20) {
+        snprintf(err, sizeof err,
+                 "profile: depth %ld has 2^%ld pieces; the profile is written for depth <= 20 "
+                 "(set surface.depth)",
+                 info.depth, info.depth + 1);
+        fail_line(err);
+        rc = EXIT_USAGE;
+        goto cleanup;
     }
-    if (sc.what & CT_OUT_PROFILE)
-        u_reach = INFINITY; /* the profile shows the whole surface */
-    if ((st = ct_bundle_alloc(&b, p, sc.representation, depth, u_reach)))
-        goto lib_fail;
     if (!quiet) {
         char how[96];
         if (sc.depth >= 0)
             snprintf(how, sizeof how, "given");
         else
             snprintf(how, sizeof how, "%s: truncation bound %.2g",
-                     sc.depth == CT_DEPTH_FRACTAL ? "fractal limit" : "auto", bound);
+                     sc.depth == CT_DEPTH_FRACTAL ? "fractal limit" : "auto", info.bound);
         fprintf(stderr,
                 "cantact: %s, depth %ld (%s), %zu rods, %zu left out as never touched, "
                 "%d thread(s)\n",
-                sc.representation == CT_REP_STAGES ? "stage rods" : "segment rods", depth, how,
-                ct_bundle_size(b), ct_bundle_omitted(b), ct_set_threads(0));
+                sc.representation == CT_REP_STAGES ? "stage rods" : "segment rods", info.depth, how,
+                info.rods, info.omitted, ct_bundle_set_threads(b, sc.threads));
     }
 
     int compare = !!(sc.what & CT_OUT_COMPARE);
     if (opened_e)
         fprintf(out_e.f,
                 "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,"
-                "V_star_crit,u_release_over_h0,elastic%s\n",
-                compare ? ",e_series,e_asymptotic,e_asymptotic_consistent" : "");
+                "V_star_crit,u_release_over_h0,elastic%s%s\n",
+                compare ? ",e_series,e_asymptotic,e_asymptotic_consistent" : "",
+                sc.skip_failed ? ",error" : "");
     if (opened_c)
         fprintf(out_curve.f, "V_star,impact,u_over_h0,P_over_PY,branch%s\n",
                 compare ? ",P_series_over_PY,P_asymptotic_over_PY,P_asymptotic_consistent_over_PY"
                         : "");
-    ct_progress prog;
-    ct_progress_start(&prog, sc.nvel * (size_t)sc.impacts);
-    double PY = p->sigma_y * p->l0;
-    for (size_t v = 0; v < sc.nvel && !st; v++) {
-        ct_bundle_reset(b);
-        for (long i = 1; i <= sc.impacts && !st; i++) {
-            ct_impact_result r;
-            double W = sc.V_star[v] * sc.V_star[v] * scale;
-            double u0 = ct_bundle_first_contact(b);
-            if (opened_c) {
-                /* the loading branch follows the pre-impact state */
-                double um;
-                if ((st = ct_solve_umax(b, W, sc.opts.tolerance, &um)) ||
-                    (st = write_branch(out_curve.f, b, sc.V_star[v], i, u0, um, "load", p->h0, PY,
-                                       compare)))
-                    break;
-            }
-            if ((st = ct_impact(b, W, &sc.opts, &r)))
-                break;
-            if (!isfinite(r.e) || !isfinite(r.e_closed) || !isfinite(r.u_max)) {
-                st = CT_ENOCONV;
-                snprintf(err, sizeof err, "V* = %g impact %ld: a non-finite result", sc.V_star[v],
-                         i);
-                fail_line(err);
-                rc = EXIT_FAILED;
-                goto cleanup;
-            }
-            if (opened_e) {
-                fprintf(out_e.f, "%ld,%.17g,%.17g,%.17g,%.17g,%.3g,%.17g,%.17g,%d", i, sc.V_star[v],
-                        r.u_max / p->h0, r.e, r.e_closed, r.quad_error, r.V_star_crit,
-                        r.u_release / p->h0, r.elastic);
-                if (compare && i == 1) {
-                    /* the paper's laws model the first impact on the virgin fractal; where a
-                     * law does not apply (u_max > h0, e > 1) its field stays empty */
-                    for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT; law++) {
-                        double um, el;
-                        if (ct_law_impact(p, (ct_law)law, W, &um, &el) == CT_OK)
-                            fprintf(out_e.f, ",%.17g", el);
-                        else
-                            fputc(',', out_e.f);
-                    }
-                } else if (compare) {
-                    fputs(",,,", out_e.f);
-                }
-                fputc('\n', out_e.f);
-            }
-            if (opened_c && (st = write_branch(out_curve.f, b, sc.V_star[v], i, r.u_release,
-                                               r.u_max, "unload", p->h0, PY, compare)))
-                break;
-            ct_progress_step(&prog);
-        }
+    size_t nrows = sc.nvel * (size_t)sc.impacts;
+    rows = malloc(nrows * sizeof *rows);
+    if (!rows) {
+        st = CT_ENOMEM;
+        snprintf(err, sizeof err, "%zu result rows: out of memory", nrows);
+        fail_line(err);
+        rc = EXIT_FAILED;
+        goto cleanup;
     }
+    obs.sc = &sc;
+    obs.curve = opened_c ? out_curve.f : NULL;
+    obs.profile = opened_p ? out_profile.f : NULL;
+    obs.compare = compare;
+    if (opened_c && (st = ct_curve_alloc(&obs.post)))
+        goto lib_fail;
+    if (opened_p)
+        fprintf(out_profile.f,
+                "stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0\n");
+    ct_progress prog;
+    ct_progress_start(&prog, sc.nvel);
+    ct_sweep_spec spec = {
+        .V_star = sc.V_star,
+        .nvel = sc.nvel,
+        .impacts = sc.impacts,
+        .opts = sc.opts,
+        .stop_on_error = !sc.skip_failed,
+        .progress = show_progress,
+        .progress_ctx = &prog,
+        .observe = (opened_c || opened_p) ? observe : NULL,
+        .observe_ctx = &obs,
+    };
+    st = ct_sweep(b, &spec, rows);
     ct_progress_end(&prog);
     if (st)
         goto lib_fail;
-    if (opened_p && (st = write_profile(out_profile.f, b, p))) {
-        rc = EXIT_USAGE;
-        goto cleanup;
+    size_t failed = 0;
+    const ct_sweep_row *first_failed = NULL;
+    for (size_t k = 0; k < nrows; k++) {
+        if (rows[k].status == CT_OK && !(isfinite(rows[k].r.e) && isfinite(rows[k].r.u_max))) {
+            snprintf(err, sizeof err, "V* = %g impact %ld: a non-finite result", rows[k].V_star,
+                     rows[k].impact);
+            fail_line(err);
+            rc = EXIT_FAILED;
+            goto cleanup;
+        }
+        if (rows[k].status && !failed++)
+            first_failed = &rows[k];
+        if (opened_e)
+            write_e_row(out_e.f, &sc, &rows[k], compare);
     }
+    if (failed && !quiet)
+        fprintf(stderr, "cantact: %zu of %zu impacts failed (first: V* = %g, impact %ld: %s)\n",
+                failed, nrows, first_failed->V_star, first_failed->impact, first_failed->message);
     if ((opened_e && ct_out_commit(&out_e, err, sizeof err)) ||
         (opened_c && ct_out_commit(&out_curve, err, sizeof err)) ||
         (opened_p && ct_out_commit(&out_profile, err, sizeof err))) {
@@ -463,7 +520,9 @@ cleanup:
         ct_out_abort(&out_curve);
     if (opened_p)
         ct_out_abort(&out_profile);
+    ct_curve_free(obs.post);
     ct_bundle_free(b);
+    free(rows);
     free(curve_path);
     free(profile_path);
     ct_scene_free(&sc);

@@ -1,8 +1,9 @@
 /* Scene files (INI, parsed with inih) -> validated parameters. Every error names
  * file:line, the key, its value and the valid range. */
-#include "internal.h"
+#include "scene.h"
 
 #include <ini.h>
+#include <stdarg.h>
 
 #include <ctype.h>
 #include <errno.h>
@@ -10,6 +11,26 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+static _Thread_local char scene_message[512];
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static int
+scene_error(int status, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(scene_message, sizeof scene_message, fmt, ap);
+    va_end(ap);
+    return status;
+}
+
+const char *ct_scene_message(void)
+{
+    return scene_message;
+}
 
 typedef struct {
     const char *section, *key;
@@ -35,6 +56,8 @@ static const key_spec known_keys[] = {
     {"solver", "tolerance", 0},
     {"solver", "depth_tolerance", 0},
     {"solver", "threads", 0},
+    {"solver", "on_error", 0},
+    {"solver", "check", 0},
     {"output", "file", 0},
     {"output", "what", 0},
 };
@@ -78,25 +101,25 @@ static int store(parse_state *s, const char *section, const char *key, const cha
 {
     if (!section_known(section)) {
         if (strcmp(where, "--set"))
-            return ct_error_set(CT_EINVAL,
-                                "%s:%d: [%s]: unknown section (known: surface, material, "
-                                "impact, solver, output)",
-                                s->name, s->section_line, section);
-        return ct_error_set(CT_EINVAL,
-                            "--set: [%s]: unknown section (known: surface, material, impact, "
-                            "solver, output)",
-                            section);
+            return scene_error(CT_EINVAL,
+                               "%s:%d: [%s]: unknown section (known: surface, material, "
+                               "impact, solver, output)",
+                               s->name, s->section_line, section);
+        return scene_error(CT_EINVAL,
+                           "--set: [%s]: unknown section (known: surface, material, impact, "
+                           "solver, output)",
+                           section);
     }
     int k = find_key(section, key);
     if (k < 0)
-        return ct_error_set(CT_EINVAL, "%s: %s.%s: unknown key", where, section, key);
+        return scene_error(CT_EINVAL, "%s: %s.%s: unknown key", where, section, key);
     entry *e = &s->entries[k];
     if (e->set && strcmp(where, "--set") && strncmp(e->where, "--set", 5))
-        return ct_error_set(CT_EINVAL, "%s: %s.%s: duplicate key (first set at %s)", where, section,
-                            key, e->where);
+        return scene_error(CT_EINVAL, "%s: %s.%s: duplicate key (first set at %s)", where, section,
+                           key, e->where);
     char *copy = strdup(value);
     if (!copy)
-        return ct_error_set(CT_ENOMEM, "scene: out of memory");
+        return scene_error(CT_ENOMEM, "scene: out of memory");
     free(e->value);
     e->value = copy;
     e->set = 1;
@@ -113,7 +136,7 @@ static int handler(void *user, const char *section, const char *key, const char 
     s->error_line = s->line;
     snprintf(where, sizeof where, "%s:%d", s->name, s->line);
     if (!section[0])
-        s->status = ct_error_set(CT_EINVAL, "%s: %s: key outside any section", where, key);
+        s->status = scene_error(CT_EINVAL, "%s: %s: key outside any section", where, key);
     else
         s->status = store(s, section, key, value, where);
     return s->status == CT_OK;
@@ -160,7 +183,7 @@ static char *read_string_line(char *buf, int size, void *stream)
 
 static int bad(const entry *e, const char *section, const char *key, const char *why)
 {
-    return ct_error_set(CT_EINVAL, "%s: %s.%s = %s: %s", e->where, section, key, e->value, why);
+    return scene_error(CT_EINVAL, "%s: %s.%s = %s: %s", e->where, section, key, e->value, why);
 }
 
 static int parse_number(const char *text, double *out)
@@ -267,7 +290,7 @@ static int velocity_list(const entry *e, const char *key, double **out, size_t *
             return bad(e, "impact", key, "from and to must be > 0");
         vals = malloc((size_t)cnt * sizeof(double));
         if (!vals)
-            return ct_error_set(CT_ENOMEM, "scene: out of memory");
+            return scene_error(CT_ENOMEM, "scene: out of memory");
         for (long k = 0; k < cnt; k++) {
             double t = cnt == 1 ? 0.0 : (double)k / (double)(cnt - 1);
             vals[k] = logscale ? from * exp(t * (log(to) - log(from))) : from + t * (to - from);
@@ -285,7 +308,7 @@ static int velocity_list(const entry *e, const char *key, double **out, size_t *
         if (!vals || !buf) {
             free(vals);
             free(buf);
-            return ct_error_set(CT_ENOMEM, "scene: out of memory");
+            return scene_error(CT_ENOMEM, "scene: out of memory");
         }
         char *start = buf;
         for (;;) {
@@ -315,8 +338,8 @@ static int interpret(parse_state *s, ct_scene *sc)
     entry *e;
     for (size_t k = 0; k < NKEYS; k++)
         if (known_keys[k].required && !s->entries[k].set)
-            return ct_error_set(CT_EINVAL, "%s: %s.%s: required key missing", s->name,
-                                known_keys[k].section, known_keys[k].key);
+            return scene_error(CT_EINVAL, "%s: %s.%s: required key missing", s->name,
+                               known_keys[k].section, known_keys[k].key);
 
     ct_params *p = &sc->params;
     double H = 0.0;
@@ -337,7 +360,7 @@ static int interpret(parse_state *s, ct_scene *sc)
                    "must be > sigma_y (yield strain sigma_y/E < 1)");
     p->Hstar = H * p->h0;
     if ((st = ct_params_validate(p)))
-        return ct_error_set(st, "%s: %s", s->name, ct_error_message());
+        return scene_error(st, "%s: %s", s->name, ct_error_message());
 
     sc->depth = CT_DEPTH_AUTO;
     if ((e = get(s, "surface", "depth"))) {
@@ -365,10 +388,10 @@ static int interpret(parse_state *s, ct_scene *sc)
     if (sc->representation == CT_REP_SEGMENTS) {
         e = get(s, "surface", "depth");
         if (sc->depth < 0)
-            return ct_error_set(CT_EINVAL,
-                                "%s: surface.representation = segments: needs an integer "
-                                "surface.depth (0..%d)",
-                                e ? e->where : s->name, CT_MAX_SEGMENTS_DEPTH);
+            return scene_error(CT_EINVAL,
+                               "%s: surface.representation = segments: needs an integer "
+                               "surface.depth (0..%d)",
+                               e ? e->where : s->name, CT_MAX_SEGMENTS_DEPTH);
         if (sc->depth > CT_MAX_SEGMENTS_DEPTH)
             return bad(e, "surface", "depth", "segments allow 0 <= depth <= 40");
     }
@@ -378,8 +401,8 @@ static int interpret(parse_state *s, ct_scene *sc)
     if (ev && (em || evel))
         return bad(ev, "impact", "V_star", "give either V_star or mass + velocity, not both");
     if (!ev && !(em && evel))
-        return ct_error_set(CT_EINVAL, "%s: [impact]: needs V_star, or both mass and velocity",
-                            s->name);
+        return scene_error(CT_EINVAL, "%s: [impact]: needs V_star, or both mass and velocity",
+                           s->name);
     if (ev) {
         if ((st = velocity_list(ev, "V_star", &sc->V_star, &sc->nvel)))
             return st;
@@ -420,6 +443,21 @@ static int interpret(parse_state *s, ct_scene *sc)
                           &nodes)))
         return st;
     sc->opts.nodes = (size_t)nodes;
+    sc->skip_failed = 0;
+    if ((e = get(s, "solver", "on_error"))) {
+        if (!strcmp(e->value, "skip"))
+            sc->skip_failed = 1;
+        else if (strcmp(e->value, "stop"))
+            return bad(e, "solver", "on_error", "must be stop or skip");
+    }
+    if ((e = get(s, "solver", "check"))) {
+        if (!strcmp(e->value, "closed"))
+            sc->opts.check = 1;
+        else if (!strcmp(e->value, "none"))
+            sc->opts.check = 0;
+        else
+            return bad(e, "solver", "check", "must be closed or none");
+    }
     if ((st = number_key(s, "solver", "tolerance", 0.0, 1e-3, "must satisfy 0 < tolerance < 1e-3",
                          &sc->opts.tolerance)))
         return st;
@@ -441,13 +479,13 @@ static int interpret(parse_state *s, ct_scene *sc)
         return bad(e, "output", "file", "must be a path or -");
     sc->output = strdup(e ? e->value : "-");
     if (!sc->output)
-        return ct_error_set(CT_ENOMEM, "scene: out of memory");
+        return scene_error(CT_ENOMEM, "scene: out of memory");
     sc->what = CT_OUT_E;
     if ((e = get(s, "output", "what"))) {
         sc->what = 0;
         char *buf = strdup(e->value);
         if (!buf)
-            return ct_error_set(CT_ENOMEM, "scene: out of memory");
+            return scene_error(CT_ENOMEM, "scene: out of memory");
         for (char *tok = strtok(buf, ", \t"); tok; tok = strtok(NULL, ", \t")) {
             if (!strcmp(tok, "e"))
                 sc->what |= CT_OUT_E;
@@ -489,11 +527,11 @@ static int apply_overrides(parse_state *s, const char *const *overrides, size_t 
         const char *o = overrides[k];
         const char *dot = strchr(o, '.'), *eq = strchr(o, '=');
         if (!dot || !eq || dot > eq || dot == o || eq == dot + 1)
-            return ct_error_set(CT_EINVAL, "--set %s: expected section.key=value", o);
+            return scene_error(CT_EINVAL, "--set %s: expected section.key=value", o);
         char section[64], key[64], value[4096];
         if ((size_t)(dot - o) >= sizeof section || (size_t)(eq - dot - 1) >= sizeof key ||
             strlen(eq + 1) >= sizeof value)
-            return ct_error_set(CT_EINVAL, "--set %s: section, key or value too long", o);
+            return scene_error(CT_EINVAL, "--set %s: section, key or value too long", o);
         trim_copy(section, sizeof section, o, dot);
         trim_copy(key, sizeof key, dot + 1, eq);
         trim_copy(value, sizeof value, eq + 1, eq + 1 + strlen(eq + 1));
@@ -509,10 +547,10 @@ static int finish(parse_state *s, int ini_status, ct_scene *scene, const char *c
 {
     int st = CT_OK;
     if (ini_status > 0 && (s->status == CT_OK || ini_status < s->error_line))
-        st = ct_error_set(CT_EINVAL, "%s:%d: malformed line (expected [section] or key = value)",
-                          s->name, ini_status);
+        st = scene_error(CT_EINVAL, "%s:%d: malformed line (expected [section] or key = value)",
+                         s->name, ini_status);
     else if (ini_status != 0 && s->status == CT_OK)
-        st = ct_error_set(CT_EIO, "%s: could not be read", s->name);
+        st = scene_error(CT_EIO, "%s: could not be read", s->name);
     else
         st = s->status;
     if (!st)
@@ -547,7 +585,7 @@ int ct_scene_load(ct_scene *scene, const char *path, const char *const *override
     s.name = path;
     s.file = fopen(path, "rb");
     if (!s.file)
-        return ct_error_set(CT_EIO, "%s: cannot open: %s", path, strerror(errno));
+        return scene_error(CT_EIO, "%s: cannot open: %s", path, strerror(errno));
     /* Binary garbage: a NUL byte cannot be in a text scene. */
     int c, nul = 0, lines = 1;
     while ((c = fgetc(s.file)) != EOF) {
@@ -560,8 +598,8 @@ int ct_scene_load(ct_scene *scene, const char *path, const char *const *override
     }
     if (nul || ferror(s.file)) {
         fclose(s.file);
-        return ct_error_set(nul ? CT_EINVAL : CT_EIO, "%s:%d: %s", path, lines,
-                            nul ? "binary data (NUL byte): not a scene file" : "read error");
+        return scene_error(nul ? CT_EINVAL : CT_EIO, "%s:%d: %s", path, lines,
+                           nul ? "binary data (NUL byte): not a scene file" : "read error");
     }
     rewind(s.file);
     int r = ini_parse_stream(read_file_line, &s, handler, &s);

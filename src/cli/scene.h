@@ -1,0 +1,37 @@
+/* Scene files (INI, parsed with inih): the CLI's input. The library never sees INI. */
+#ifndef CT_CLI_SCENE_H
+#define CT_CLI_SCENE_H
+
+#include "cantact.h"
+
+#define CT_MAX_VELOCITIES 1000000
+
+enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
+
+typedef struct {
+    ct_params params;
+    long depth; /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
+    ct_representation representation;
+    double *V_star; /* velocities, dimensionless, in input order */
+    size_t nvel;
+    long impacts; /* impacts per velocity, >= 1 */
+    ct_impact_opts opts;
+    double depth_tolerance; /* relative tolerance of depth auto */
+    int threads;            /* 0: OpenMP default */
+    int skip_failed;        /* solver.on_error = skip: a failed impact is a row, not the end */
+    char *output;           /* CSV path, "-" for stdout */
+    unsigned what;          /* CT_OUT_* bits */
+} ct_scene;
+
+/* Reads a scene file, then applies overrides "section.key=value"; on error returns
+ * CT_EINVAL (or CT_EIO) with "file:line: section.key = value: reason" in ct_scene_message(). */
+int ct_scene_load(ct_scene *scene, const char *path, const char *const *overrides,
+                  size_t noverrides);
+/* Same from a string (name is used in messages). */
+int ct_scene_parse(ct_scene *scene, const char *name, const char *text,
+                   const char *const *overrides, size_t noverrides);
+void ct_scene_free(ct_scene *scene);
+/* Returns the message of the last scene error in this thread. */
+const char *ct_scene_message(void);
+
+#endif

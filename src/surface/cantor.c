@@ -1,0 +1,427 @@
+/* The Cantor surface (MODEL.md §1-2): parameter validation, the geometry of Eqs. 1-3, 16-18,
+ * 28, the prefractal as rods (stages or segments) with its metadata, and the truncation depth. */
+#include "internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+static int check_positive(const char *name, double v)
+{
+    if (!isfinite(v) || !(v > 0.0))
+        return ct_error_set(CT_EINVAL, "%s = %g: must be finite and > 0", name, v);
+    return CT_OK;
+}
+
+int ct_params_validate(const ct_params *p)
+{
+    int st;
+    if (!p)
+        return ct_error_set(CT_EINVAL, "parameters: NULL");
+    if (!isfinite(p->fx) || !(p->fx > 1.0))
+        return ct_error_set(CT_EINVAL, "fx = %g: must satisfy fx > 1 (finite)", p->fx);
+    if (!isfinite(p->fz) || !(p->fz > 1.0 && p->fz < 2.0))
+        return ct_error_set(CT_EINVAL, "fz = %g: must satisfy 1 < fz < 2", p->fz);
+    if ((st = check_positive("l0", p->l0)) || (st = check_positive("h0", p->h0)))
+        return st;
+    if (!isfinite(p->Hstar) || !(p->Hstar > p->h0))
+        return ct_error_set(CT_EINVAL, "H* = %g: must be finite and > h0 = %g", p->Hstar, p->h0);
+    if ((st = check_positive("E", p->E)) || (st = check_positive("sigma_y", p->sigma_y)))
+        return st;
+    if (!(p->sigma_y < p->E))
+        return ct_error_set(CT_EINVAL,
+                            "sigma_y = %g: yield strain sigma_y/E must satisfy 0 < eps_y < 1 "
+                            "(E = %g)",
+                            p->sigma_y, p->E);
+    /* The energy scale l0 E h0 and the forces E l0 must stay finite. */
+    if (!isfinite(p->l0 * p->E * p->h0) || !(p->l0 * p->E * p->h0 > 0.0))
+        return ct_error_set(CT_EINVAL, "l0 E h0 = %g: must be a finite positive number",
+                            p->l0 * p->E * p->h0);
+    return CT_OK;
+}
+
+/* exp(-i log f), which is 0 (not NaN) for huge i and exact for f -> 1 via log1p. */
+static double power_down(double f, double i)
+{
+    return exp(-i * log1p(f - 1.0));
+}
+
+double ct_stage_length(const ct_params *p, double i)
+{
+    return p->l0 * power_down(p->fx, i); /* Eq. 1 */
+}
+
+double ct_stage_depth(const ct_params *p, double i)
+{
+    return p->h0 * power_down(p->fz, i); /* Eq. 2 */
+}
+
+/* 1 - 1/fx = (fx - 1)/fx: fx - 1 is exact (Sterbenz) for fx in (1, 2]. */
+static double one_minus_inv(double f)
+{
+    return (f - 1.0) / f;
+}
+
+double ct_stage_area(const ct_params *p, double i)
+{
+    return p->l0 * one_minus_inv(p->fx) * power_down(p->fx, i);
+}
+
+double ct_alpha(const ct_params *p)
+{
+    return log1p(p->fx - 1.0) / log1p(p->fz - 1.0); /* Eq. 28 */
+}
+
+double ct_beta(const ct_params *p)
+{
+    return 1.0 / (p->fx * p->fz); /* Eq. 18 */
+}
+
+static double log_inv_beta(const ct_params *p)
+{
+    return log1p(p->fx - 1.0) + log1p(p->fz - 1.0);
+}
+
+double ct_one_minus_beta(const ct_params *p)
+{
+    return -expm1(-log_inv_beta(p));
+}
+
+double ct_dimension(const ct_params *p)
+{
+    /* Eq. 3: D = 1 - ln fz / ln(2 fx) + ln 2 / ln(2 fx) */
+    double ln2fx = log(2.0) + log1p(p->fx - 1.0);
+    return 1.0 + (log(2.0) - log1p(p->fz - 1.0)) / ln2fx;
+}
+
+double ct_sum_area(const ct_params *p, double n1, double n2)
+{
+    if (n2 < n1)
+        return 0.0;
+    /* Eq. 16: l_{n1} - l_{n2+1} = l_{n1} (1 - fx^-(n2+1-n1)) */
+    double lf = log1p(p->fx - 1.0);
+    if (isinf(n2))
+        return ct_stage_length(p, n1);
+    return ct_stage_length(p, n1) * -expm1(-(n2 + 1.0 - n1) * lf);
+}
+
+double ct_sum_depth_area(const ct_params *p, double n1, double n2)
+{
+    if (n2 < n1)
+        return 0.0;
+    /* Eq. 17: h0 l0 (1 - 1/fx) (beta^n1 - beta^(n2+1)) / (1 - beta), written as
+     * beta^n1 (1 - beta^(n2+1-n1)) / (1 - beta) with expm1 so that beta -> 1 loses nothing. */
+    double lb = log_inv_beta(p);
+    double head = exp(-n1 * lb);
+    double ratio = isinf(n2) ? 1.0 / -expm1(-lb) : expm1(-(n2 + 1.0 - n1) * lb) / expm1(-lb);
+    return p->h0 * p->l0 * one_minus_inv(p->fx) * head * ratio;
+}
+
+double ct_energy_scale(const ct_params *p)
+{
+    return p->l0 * p->E * p->h0;
+}
+
+int ct_piece_extent(const ct_params *p, long depth, long stage, size_t j, double *x_left,
+                    double *x_right)
+{
+    if (stage < 0 || stage > depth || stage > 62 || j >> stage)
+        return ct_error_set(CT_EINVAL, "piece %zu of stage %ld: outside a depth-%ld prefractal", j,
+                            stage, depth);
+    /* The parent segment at stage i spans [left, left + w_i], w_i = l0 (2 fx)^-i; bit s of j
+     * (from the top) says whether the right child was kept at stage s. */
+    double two_fx = 2.0 * p->fx, left = 0.0, w = p->l0;
+    for (long s = 1; s <= stage; s++) {
+        double w_next = w / two_fx;
+        if ((j >> (stage - s)) & 1u)
+            left += w - w_next;
+        w = w_next;
+    }
+    if (stage < depth) {
+        double w_child = w / two_fx;
+        *x_left = left + w_child;
+        *x_right = left + w - w_child;
+    } else {
+        *x_left = left;
+        *x_right = left + w;
+    }
+    return CT_OK;
+}
+
+/* ---- the prefractal as rods ---- */
+
+typedef struct {
+    ct_params p;
+    ct_representation rep;
+    long depth;
+    size_t first_rod; /* global index of rod 0 (stages: the first stage kept) */
+} cantor_meta;
+
+/* Stage of segment rod with global index g: g = 2^i - 1 + j, 0 <= j < 2^i. */
+static long segment_stage(size_t g)
+{
+    long i = 0;
+    while (((size_t)1 << (i + 1)) - 1 <= g)
+        i++;
+    return i;
+}
+
+static void cantor_rod_info(const void *meta, size_t k, ct_rod_info *info)
+{
+    const cantor_meta *m = meta;
+    size_t g = k + m->first_rod;
+    if (m->rep == CT_REP_STAGES) {
+        info->stage = (long)g; /* merged pieces have no single position: x stays NaN */
+        return;
+    }
+    long i = segment_stage(g);
+    info->stage = i;
+    ct_piece_extent(&m->p, m->depth, i, g - (((size_t)1 << i) - 1), &info->x_left, &info->x_right);
+}
+
+static void *cantor_clone(const void *meta)
+{
+    cantor_meta *m = malloc(sizeof *m);
+    if (m)
+        *m = *(const cantor_meta *)meta;
+    return m;
+}
+
+static const ct_surface_kind cantor_kind = {"cantor", cantor_rod_info, cantor_clone, free};
+
+void ct_cantor_layer(const ct_params *p, ct_layer *layer)
+{
+    layer->E = p->E;
+    layer->sigma_y = p->sigma_y;
+    layer->Hstar = p->Hstar;
+    layer->l0 = p->l0;
+    layer->h0 = p->h0;
+}
+
+long ct_cantor_depth(const ct_bundle *b)
+{
+    const cantor_meta *m = ct_bundle_surface_meta(b, &cantor_kind);
+    return m ? m->depth : -1;
+}
+
+int ct_cantor_representation(const ct_bundle *b)
+{
+    const cantor_meta *m = ct_bundle_surface_meta(b, &cantor_kind);
+    return m ? (int)m->rep : -1;
+}
+
+int ct_cantor_bundle(ct_bundle **out, const ct_params *p, ct_representation rep, long depth,
+                     double u_reach)
+{
+    int st;
+    *out = NULL;
+    if ((st = ct_params_validate(p)))
+        return st;
+    if (rep != CT_REP_STAGES && rep != CT_REP_SEGMENTS)
+        return ct_error_set(CT_EINVAL, "representation %d: must be stages or segments", rep);
+    long max_depth = rep == CT_REP_STAGES ? CT_MAX_STAGES_DEPTH : CT_MAX_SEGMENTS_DEPTH;
+    if (depth < 0 || depth > max_depth)
+        return ct_error_set(CT_EINVAL, "depth = %ld: must satisfy 0 <= depth <= %ld for %s", depth,
+                            max_depth, rep == CT_REP_STAGES ? "stages" : "segments");
+    if (isnan(u_reach))
+        return ct_error_set(CT_EINVAL, "u_reach is NaN");
+
+    /* Stages whose top lies deeper than u_reach can never be touched. Tops decrease with
+     * the stage index, so these are the first stages. */
+    long first = 0;
+    while (first < depth + 1 && ct_stage_depth(p, (double)first) > u_reach)
+        first++;
+    size_t total, first_rod;
+    if (rep == CT_REP_STAGES) {
+        total = (size_t)depth + 1;
+        first_rod = (size_t)first;
+    } else {
+        total = ((size_t)1 << (depth + 1)) - 1;
+        first_rod = ((size_t)1 << first) - 1;
+    }
+    cantor_meta *meta = malloc(sizeof *meta);
+    if (!meta)
+        return ct_error_set(CT_ENOMEM, "cantor surface: out of memory");
+    *meta = (cantor_meta){*p, rep, depth, first_rod};
+    char what[96];
+    snprintf(what, sizeof what, "depth %ld %s", depth,
+             rep == CT_REP_STAGES ? "stages" : "segments");
+    ct_layer layer;
+    ct_cantor_layer(p, &layer);
+    ct_bundle *b;
+    if ((st = ct_bundle_create(&b, &layer, total - first_rod, what))) {
+        free(meta);
+        return st;
+    }
+    ct_bundle_set_surface(b, &cantor_kind, meta, first_rod);
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays(b, &top, &length, &area, &eps_p);
+    if (rep == CT_REP_STAGES) {
+        for (long i = first; i <= depth; i++) {
+            size_t k = (size_t)(i - first);
+            top[k] = ct_stage_depth(p, (double)i);
+            length[k] = p->Hstar - top[k];
+            area[k] = i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i);
+            eps_p[k] = 0.0;
+        }
+    } else {
+        for (long i = first; i <= depth; i++) {
+            size_t pieces = (size_t)1 << i;
+            size_t k0 = pieces - 1 - first_rod;
+            double t = ct_stage_depth(p, (double)i), l = p->Hstar - t;
+            /* middles carry s_i / 2^i, the tips l_N / 2^N */
+            double a = (i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i)) *
+                       ldexp(1.0, (int)-i);
+            /* first touch in parallel, so pages land where the threads will read them */
+#pragma omp parallel for schedule(static) if (pieces >= CT_PARALLEL_MIN_RODS)
+            for (ptrdiff_t j = 0; j < (ptrdiff_t)pieces; j++) {
+                top[k0 + (size_t)j] = t;
+                length[k0 + (size_t)j] = l;
+                area[k0 + (size_t)j] = a;
+                eps_p[k0 + (size_t)j] = 0.0;
+            }
+        }
+    }
+    *out = b;
+    return CT_OK;
+}
+
+/* ---- the truncation depth ---- */
+
+/* Bound on |P_N(u) - P_inf(u)| for any common history: the force of a rod is Lipschitz in
+ * its top depth h with constant E H* / (H* - h0)^2 (strain and plastic strain both vary as
+ * (u - H*)/(H* - h)^2), each difference is also at most E eps_y, and the tip lumps area l_N
+ * of tops in [0, h_N]. */
+static double force_bound(const ct_params *p, long N)
+{
+    double lN = ct_stage_length(p, (double)N), hN = ct_stage_depth(p, (double)N);
+    double eps_y = p->sigma_y / p->E, gap = p->Hstar - p->h0;
+    double lip = hN * p->Hstar / (gap * gap);
+    return p->E * lN * (lip < eps_y ? lip : eps_y);
+}
+
+/* Depths from here on reuse the u_max of this depth as an upper bound, so the search
+ * costs nothing more for deep surfaces. */
+#define DEPTH_PROBE 64
+
+typedef struct {
+    const ct_params *p;
+    double W_min;
+    int tips;
+    double u_up; /* u_max at DEPTH_PROBE, < 0 until computed */
+} depth_ctx;
+
+static int solve_virgin(const ct_params *p, long N, double W, double *u, double *P)
+{
+    ct_bundle *b;
+    ct_curve *c;
+    int st = ct_cantor_bundle(&b, p, CT_REP_STAGES, N, INFINITY);
+    if (st)
+        return st;
+    if ((st = ct_curve_alloc(&c))) {
+        ct_bundle_free(b);
+        return st;
+    }
+    if (!(st = ct_curve_build(c, b))) {
+        *u = ct_curve_inverse_work(c, W);
+        *P = ct_curve_force(c, *u);
+        double u0 = ct_curve_first_contact(c);
+        if (!(*u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
+            st = ct_error_set(CT_ENOCONV,
+                              "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
+                              "resolution of u near %.17g: this impact is too weak to resolve on "
+                              "rods this stiff (raise V*)",
+                              *u - u0, u0);
+        else if (!(*u < p->Hstar))
+            st = ct_error_set(CT_ERANGE,
+                              "impact energy %.6g reaches u_max >= H* = %g (the layer would be "
+                              "crushed, strains >= 1): outside the model; lower V* or raise H",
+                              W, p->Hstar);
+    }
+    ct_curve_free(c);
+    ct_bundle_free(b);
+    return st;
+}
+
+/* The truncated surface is softer than any deeper one on a virgin loading (deeper tips only
+ * add strain), so its u_max bounds theirs from above: the energy bound is safe. */
+static int depth_bound(depth_ctx *c, long N, double *bound)
+{
+    const ct_params *p = c->p;
+    double dP = force_bound(p, N), u, P;
+    int st;
+    if (N < DEPTH_PROBE) {
+        if ((st = solve_virgin(p, N, c->W_min, &u, &P)))
+            return st;
+        double rel_W = dP * u / c->W_min, rel_P = P > 0.0 ? dP / P : INFINITY;
+        *bound = rel_W > rel_P ? rel_W : rel_P;
+    } else {
+        if (c->u_up < 0.0 && (st = solve_virgin(p, DEPTH_PROBE, c->W_min, &c->u_up, &P)))
+            return st;
+        /* P(u_max) >= W / u_max as P rises with u: dP u_up / W bounds both ratios */
+        *bound = dP * c->u_up / c->W_min;
+    }
+    if (c->tips) {
+        /* first yield of the prefractal: eps_y H* + (1 - eps_y) h_N, of the fractal eps_y H* */
+        double eps_y = p->sigma_y / p->E;
+        double rel_tip = (1.0 - eps_y) * ct_stage_depth(p, (double)N) / (eps_y * p->Hstar);
+        *bound = *bound > rel_tip ? *bound : rel_tip;
+    }
+    return CT_OK;
+}
+
+static int search_depth(const ct_params *p, double W_min, double tol, int tips, long *depth,
+                        double *bound)
+{
+    int st;
+    if ((st = ct_params_validate(p)))
+        return st;
+    if (!(tol > 0.0 && tol < 1.0))
+        return ct_error_set(CT_EINVAL, "depth tolerance = %g: must satisfy 0 < tol < 1", tol);
+    if (!isfinite(W_min) || !(W_min > 0.0))
+        return ct_error_set(CT_EINVAL, "depth auto: impact energy %g must be finite and > 0",
+                            W_min);
+    depth_ctx c = {p, W_min, tips, -1.0};
+    long hi = 1;
+    double b_hi;
+    for (;;) {
+        if ((st = depth_bound(&c, hi, &b_hi)))
+            return st;
+        if (b_hi <= tol)
+            break;
+        if (hi >= CT_MAX_STAGES_DEPTH / 2)
+            return ct_error_set(CT_ENOCONV,
+                                "depth auto: even %ld stages leave a truncation bound of %.3g "
+                                "> tolerance %.3g (fx, fz too close to 1); raise the tolerance "
+                                "or give a depth",
+                                hi, b_hi, tol);
+        hi *= 2;
+    }
+    long lo = hi / 2; /* bound(lo) > tol or lo = 0 */
+    while (hi - lo > 1) {
+        long mid = lo + (hi - lo) / 2;
+        double b_mid;
+        if ((st = depth_bound(&c, mid, &b_mid)))
+            return st;
+        if (b_mid <= tol) {
+            hi = mid;
+            b_hi = b_mid;
+        } else {
+            lo = mid;
+        }
+    }
+    *depth = hi;
+    *bound = b_hi;
+    return CT_OK;
+}
+
+int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound)
+{
+    return search_depth(p, W_min, tol, 0, depth, bound);
+}
+
+int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound)
+{
+    return search_depth(p, W_min, 1e-15, 1, depth, bound);
+}
