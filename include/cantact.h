@@ -198,6 +198,8 @@ double ct_curve_force(const ct_curve *c, double u);
 double ct_curve_work(const ct_curve *c, double u);
 /* Returns the energy [energy] dissipated if loaded from the state to u (plastic work). */
 double ct_curve_dissipation(const ct_curve *c, double u);
+/* Returns the release point [length]: the first contact after being loaded to u. */
+double ct_curve_release(const ct_curve *c, double u);
 /* The u [length] where W(u) = W (W >= 0): the piece by binary search, then its quadratic. */
 double ct_curve_inverse_work(const ct_curve *c, double W);
 

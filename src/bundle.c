@@ -460,54 +460,142 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua, do
         out[i] = s[i] + c[i];
 }
 
-static int blocked_many(const ct_bundle *b, enum sum_kind kind, double ua, double adv,
-                        const double *ub, size_t m, double *out)
+/* The multi-node kernels behind one interface: a block [k0, k1) of rods, nodes
+ * [i0, i0 + mc), `per_node` outputs per node written to out[j * CT_NODE_CHUNK + i]. */
+typedef struct {
+    enum sum_kind kind;
+    double ua, adv;
+    const double *ub;
+} many_args;
+
+static void many_kernel(const ct_bundle *b, const void *args, size_t i0, size_t mc, size_t k0,
+                        size_t k1, double *out)
+{
+    const many_args *a = args;
+    block_sum_many(b, a->kind, a->ua, a->adv, a->ub + i0, mc, k0, k1, out);
+}
+
+typedef void (*block_kernel)(const ct_bundle *b, const void *args, size_t i0, size_t mc, size_t k0,
+                             size_t k1, double *out);
+
+/* Runs kernel over all blocks for m nodes and combines the block results in the fixed tree;
+ * out[j * m + i] gets output j of node i. */
+static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *args, size_t m,
+                         int per_node, double *out)
 {
     const ptrdiff_t nb = (ptrdiff_t)b->nblocks;
     const int team = ct_bundle_team(b);
-    double *ws = team > 1 && nb > 0 ? malloc((size_t)nb * CT_NODE_CHUNK * sizeof(double)) : NULL;
+    const size_t width = (size_t)per_node * CT_NODE_CHUNK;
+    double *ws = team > 1 && nb > 0 ? malloc((size_t)nb * width * sizeof(double)) : NULL;
     for (size_t i0 = 0; i0 < m; i0 += CT_NODE_CHUNK) {
         const size_t mc = m - i0 < CT_NODE_CHUNK ? m - i0 : CT_NODE_CHUNK;
-        if (!ws) { /* serial: the same tree, one counter per node */
-            double v[64][CT_NODE_CHUNK], blk[CT_NODE_CHUNK];
+        if (!ws) { /* serial: the same tree, one counter per output */
+            double v[64][2 * CT_NODE_CHUNK], blk[2 * CT_NODE_CHUNK];
             int level[64], sp = 0;
             for (ptrdiff_t j = 0; j < nb; j++) {
                 size_t k0 = (size_t)j * CT_BLOCK;
                 size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
-                block_sum_many(b, kind, ua, adv, ub + i0, mc, k0, k1, blk);
-                memcpy(v[sp], blk, mc * sizeof(double));
+                kernel(b, args, i0, mc, k0, k1, blk);
+                memcpy(v[sp], blk, width * sizeof(double));
                 level[sp++] = 0;
                 while (sp >= 2 && level[sp - 1] == level[sp - 2]) {
-                    for (size_t i = 0; i < mc; i++)
+                    for (size_t i = 0; i < width; i++)
                         v[sp - 2][i] += v[sp - 1][i];
                     level[sp - 2]++;
                     sp--;
                 }
             }
-            for (size_t i = 0; i < mc; i++) {
-                double x = sp ? v[sp - 1][i] : 0.0;
-                for (int j = sp - 2; j >= 0; j--)
-                    x = v[j][i] + x;
-                out[i0 + i] = x;
-            }
+            for (int o = 0; o < per_node; o++)
+                for (size_t i = 0; i < mc; i++) {
+                    size_t q = (size_t)o * CT_NODE_CHUNK + i;
+                    double x = sp ? v[sp - 1][q] : 0.0;
+                    for (int j = sp - 2; j >= 0; j--)
+                        x = v[j][q] + x;
+                    out[(size_t)o * m + i0 + i] = x;
+                }
             continue;
         }
 #pragma omp parallel for schedule(static) num_threads(team)
         for (ptrdiff_t j = 0; j < nb; j++) {
             size_t k0 = (size_t)j * CT_BLOCK;
             size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
-            block_sum_many(b, kind, ua, adv, ub + i0, mc, k0, k1, ws + (size_t)j * CT_NODE_CHUNK);
+            kernel(b, args, i0, mc, k0, k1, ws + (size_t)j * width);
         }
         for (ptrdiff_t stride = 1; stride < nb; stride *= 2)
             for (ptrdiff_t j = 0; j + stride < nb; j += 2 * stride)
-                for (size_t i = 0; i < mc; i++)
-                    ws[(size_t)j * CT_NODE_CHUNK + i] +=
-                        ws[(size_t)(j + stride) * CT_NODE_CHUNK + i];
-        for (size_t i = 0; i < mc; i++)
-            out[i0 + i] = ws[i];
+                for (size_t i = 0; i < width; i++)
+                    ws[(size_t)j * width + i] += ws[(size_t)(j + stride) * width + i];
+        for (int o = 0; o < per_node; o++)
+            for (size_t i = 0; i < mc; i++)
+                out[(size_t)o * m + i0 + i] = ws[(size_t)o * CT_NODE_CHUNK + i];
     }
     free(ws);
     return CT_OK;
+}
+
+static int blocked_many(const ct_bundle *b, enum sum_kind kind, double ua, double adv,
+                        const double *ub, size_t m, double *out)
+{
+    many_args a = {kind, ua, adv, ub};
+    return blocked_apply(b, many_kernel, &a, m, 1, out);
+}
+
+/* Closed forms of impacts, each from its own state (b advanced to adv[i]): per rod and node
+ * the very operations of ct_rod_advance, ct_rod_work and ct_rod_elastic_energy, so each sum
+ * is bitwise what the single-node sums give on that state. */
+typedef struct {
+    const double *adv, *u0, *u1;
+} closed_args;
+
+CT_CLONES
+static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_t m, size_t k0,
+                          size_t k1, double *restrict out)
+{
+    const closed_args *a = args;
+    const double *restrict adv = a->adv + i0, *restrict u0 = a->u0 + i0, *restrict u1 = a->u1 + i0;
+    const double *top = b->top, *length = b->length, *area = b->area, *eps_p = b->plastic_strain;
+    const double E = b->E, eps_y = b->eps_y;
+    double s[2][CT_NODE_CHUNK], c[2][CT_NODE_CHUNK];
+    for (size_t i = 0; i < m; i++)
+        s[0][i] = s[1][i] = c[0][i] = c[1][i] = 0.0;
+    for (size_t k = k0; k < k1; k++) {
+        const double tk = top[k], lk = length[k], ak = area[k], pk = eps_p[k], rl = 1.0 / lk;
+        const double EaL = E * ak * lk, half = 0.5 * E * ak * lk;
+        for (size_t i = 0; i < m; i++) {
+            double strain = (adv[i] - tk) * rl;
+            double p = strain - pk > eps_y ? strain - eps_y : pk;
+            double da = (u0[i] - tk) * rl - p, db = (u1[i] - tk) * rl - p;
+            double wa = da > eps_y ? eps_y * (da - 0.5 * eps_y) : 0.5 * da * da;
+            double wb = db > eps_y ? eps_y * (db - 0.5 * eps_y) : 0.5 * db * db;
+            wa = da > 0.0 ? wa : 0.0;
+            wb = db > 0.0 ? wb : 0.0;
+            double de = db > eps_y ? eps_y : db;
+            double x[2] = {EaL * (wb - wa), db > 0.0 ? half * de * de : 0.0};
+            for (int o = 0; o < 2; o++) {
+                double t = s[o][i] + x[o];
+                double big_s = (s[o][i] - t) + x[o], big_x = (x[o] - t) + s[o][i];
+                c[o][i] += fabs(s[o][i]) >= fabs(x[o]) ? big_s : big_x;
+                s[o][i] = t;
+            }
+        }
+    }
+    for (int o = 0; o < 2; o++)
+        for (size_t i = 0; i < m; i++)
+            out[(size_t)o * CT_NODE_CHUNK + i] = s[o][i] + c[o][i];
+}
+
+int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
+                          size_t m, double *W_load, double *W_unload)
+{
+    closed_args a = {adv, u0, u1};
+    double *out = malloc(2 * (m ? m : 1) * sizeof(double));
+    if (!out)
+        return ct_error_set(CT_ENOMEM, "closed forms of %zu impacts: out of memory", m);
+    int st = blocked_apply(b, closed_kernel, &a, m, 2, out);
+    memcpy(W_load, out, m * sizeof(double));
+    memcpy(W_unload, out + m, m * sizeof(double));
+    free(out);
+    return st;
 }
 
 int ct_bundle_force_many(const ct_bundle *b, const double *u, size_t m, double *P)

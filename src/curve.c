@@ -37,12 +37,15 @@ typedef struct {
     double jump; /* at a yield: F - k (y - c), the plateau less the elastic line's value.
                     0 but for rounding; a step when y and c round to the same double (a rod
                     so short and stiff that it is rigid-plastic at this resolution) */
+    double L, c; /* at a yield: the rod's length and contact point (for the release point) */
 } event;
 
 struct ct_curve {
     size_t n, cap;
     double *x, *P, *W, *D, *slope, *A;
-    double first_yield;
+    double *Lmax; /* largest length of the rods yielded at x_j (0: none) */
+    double *cmin; /* smallest contact of the rods not yielded at x_j (inf: none) */
+    double first_yield, eps_y;
     event *ev, *tmp;
     size_t ecap, tcap;
     size_t *runs, rcap;
@@ -66,7 +69,9 @@ static void free_points(ct_curve *c)
     free(c->D);
     free(c->slope);
     free(c->A);
-    c->x = c->P = c->W = c->D = c->slope = c->A = NULL;
+    free(c->Lmax);
+    free(c->cmin);
+    c->x = c->P = c->W = c->D = c->slope = c->A = c->Lmax = c->cmin = NULL;
     c->cap = 0;
 }
 
@@ -118,7 +123,11 @@ static int less(const event *a, const event *b)
         return a->dk < b->dk;
     if (a->dF != b->dF)
         return a->dF < b->dF;
-    return a->jump < b->jump;
+    if (a->jump != b->jump)
+        return a->jump < b->jump;
+    if (a->L != b->L)
+        return a->L < b->L;
+    return a->c < b->c;
 }
 
 /* Merges the sorted runs [lo, mid) and [mid, hi) of src into dst. */
@@ -234,6 +243,7 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     const size_t nb = (n + CT_BLOCK - 1) / CT_BLOCK;
     c->n = 0;
     c->first_yield = INFINITY;
+    c->eps_y = eps_y;
     if (grow((void **)&c->block_runs, &c->bcap, nb + 1, sizeof(size_t)))
         goto oom;
 
@@ -273,8 +283,9 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
             double yield = top[k] + (eps_p[k] + eps_y) * length[k];
             double slope = E * s / length[k];
             const double F = E * s * eps_y;
-            ev[out] = (event){contact, slope, 0.0, 0.0};
-            ev[nruns + out] = (event){yield, -slope, F, F - slope * (yield - contact)};
+            ev[out] = (event){contact, slope, 0.0, 0.0, 0.0, 0.0};
+            ev[nruns + out] =
+                (event){yield, -slope, F, F - slope * (yield - contact), length[k], contact};
             out++;
             k = l;
         }
@@ -294,13 +305,16 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
         c->D = malloc(nx * sizeof(double));
         c->slope = malloc(nx * sizeof(double));
         c->A = malloc(nx * sizeof(double));
-        if (!c->x || !c->P || !c->W || !c->D || !c->slope || !c->A)
+        c->Lmax = malloc(nx * sizeof(double));
+        c->cmin = malloc(nx * sizeof(double));
+        if (!c->x || !c->P || !c->W || !c->D || !c->slope || !c->A || !c->Lmax || !c->cmin)
             goto oom;
         c->cap = nx;
     }
     double ks = 0.0, kc = 0.0, As = 0.0, Ac = 0.0; /* slope and yielded force */
     double Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, Ds = 0.0, Dc = 0.0;
     ptrdiff_t active = 0; /* rods between contact and yield */
+    double Lmax = 0.0;
     size_t j = 0, i = 0;
     double P_prev = 0.0, k_prev = 0.0, A_prev = 0.0, x_prev = ev[0].x;
     while (i < ne) {
@@ -317,6 +331,7 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
             add_comp(&ks, &kc, ev[i].dk);
             if (signbit(ev[i].dk)) { /* a yield (a rod of underflowed area: -0) */
                 add_comp(&As, &Ac, ev[i].dF);
+                Lmax = ev[i].L > Lmax ? ev[i].L : Lmax;
                 if (ev[i].jump != 0.0) {
                     add_comp(&Ps, &Pc, ev[i].jump);
                     P_prev = Ps + Pc;
@@ -341,10 +356,22 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
         A_prev = As + Ac;
         c->slope[j] = k_prev;
         c->A[j] = A_prev;
+        c->Lmax[j] = Lmax;
         x_prev = x;
         j++;
     }
     c->n = j;
+    /* contacts of the rods still below their yield point: a suffix minimum over yields */
+    double cm = INFINITY;
+    size_t e = ne;
+    for (size_t q = j; q-- > 0;) {
+        c->cmin[q] = cm;
+        while (e > 0 && ev[e - 1].x >= c->x[q]) {
+            e--;
+            if (signbit(ev[e].dk) && ev[e].c < cm)
+                cm = ev[e].c;
+        }
+    }
     return CT_OK;
 oom:
     c->n = 0;
@@ -388,6 +415,21 @@ double ct_curve_dissipation(const ct_curve *c, double u)
         return 0.0;
     size_t j = piece(c, u);
     return c->D[j] + c->A[j] * (u - c->x[j]);
+}
+
+double ct_curve_release(const ct_curve *c, double u)
+{
+    if (!c->n)
+        return INFINITY;
+    if (!(u > c->x[0]))
+        return c->x[0];
+    size_t j = piece(c, u);
+    double r = c->cmin[j];
+    if (c->Lmax[j] > 0.0) {
+        double y = u - c->eps_y * c->Lmax[j]; /* the yielded rods' new contacts */
+        r = y < r ? y : r;
+    }
+    return r;
 }
 
 double ct_curve_inverse_work(const ct_curve *c, double W)

@@ -111,16 +111,15 @@ static int composite(const ct_bundle *b, double u_adv, double lo, double hi,
                               &abserr);
 }
 
-int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_impact_opts *opts,
-                   ct_impact_result *res)
+/* The impact from the state that c's state reaches when loaded to U (U = -INFINITY: c's
+ * state itself). Beyond U that state's curve is c's, shifted: P' = P, W'(u) = W(u) - D(U),
+ * D'(u) = D(u) - D(U), and its first yield is U. Returns CT_ESKIPPED when the impact would
+ * stay below U (there the state's curve is not c's). Fills everything but the closed
+ * forms. */
+int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
+                       const ct_impact_opts *opts, ct_impact_result *res)
 {
-    ct_impact_opts defaults;
-    if (!opts) {
-        ct_impact_opts_default(&defaults);
-        opts = &defaults;
-    }
     int st;
-    const ct_layer *L = ct_bundle_layer(b);
     const double scale = L->l0 * L->E * L->h0;
     if (!isfinite(W) || !(W > 0.0))
         return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and > 0", W);
@@ -129,23 +128,44 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
     if (!(opts->tolerance > 0.0 && opts->tolerance < 1.0))
         return ct_error_set(CT_EINVAL, "tolerance = %g: must satisfy 0 < tolerance < 1",
                             opts->tolerance);
-    const double u0 = ct_curve_first_contact(c), uy = ct_curve_first_yield(c);
-    if (!isfinite(u0))
+    const int shifted = U > -INFINITY;
+    const double x0 = ct_curve_first_contact(c);
+    if (!isfinite(x0))
         return ct_error_set(CT_EINVAL, "impact: the bundle holds no rod");
-    const double W_crit = ct_curve_work(c, uy);
+    const double D_U = shifted ? ct_curve_dissipation(c, U) : 0.0;
+    const double u0 = shifted ? ct_curve_release(c, U) : x0;
+    const double W_crit =
+        shifted ? ct_curve_work(c, U) - D_U : ct_curve_work(c, ct_curve_first_yield(c));
     res->kinetic_energy = W;
     res->V_star = sqrt(W / scale);
     res->V_star_crit = sqrt(W_crit / scale);
     res->u_contact = u0;
-    if ((st = curve_umax(c, W, L->Hstar, &res->u_max)))
+    res->elastic = W <= W_crit;
+    if (shifted && res->elastic)
+        return CT_ESKIPPED; /* below U: the caller evaluates the state itself */
+    if ((st = curve_umax(c, W + D_U, L->Hstar, &res->u_max)))
         return st;
     const double u = res->u_max;
-    res->elastic = W <= W_crit;
-    res->u_release = res->elastic ? u0 : ct_bundle_release(b, u);
+    if (shifted && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
+        return ct_error_set(CT_ENOCONV,
+                            "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
+                            "resolution of u near %.17g: this impact is too weak to resolve on "
+                            "rods this stiff (raise V*)",
+                            u - u0, u0);
+    res->W_load = ct_curve_work(c, u) - D_U;
+    res->W_unload = res->elastic ? res->W_load : res->W_load - (ct_curve_dissipation(c, u) - D_U);
+    res->u_release = res->elastic ? u0 : ct_curve_release(c, u);
     res->W_load_closed = res->W_unload_closed = res->e_closed = res->quad_error = NAN;
-    if (opts->check || opts->rule == CT_QUAD_CLOSED) {
-        res->W_load_closed = ct_bundle_work(b, u0, u);
-        res->W_unload_closed = res->elastic ? res->W_load_closed : ct_bundle_elastic_energy(b, u);
+    res->e_rounding = 0.0;
+    return CT_OK;
+}
+
+/* e from W_load and W_unload, and the closed forms' check when they are given (not NaN). */
+int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_result *res)
+{
+    const int checked = !isnan(res->W_load_closed);
+    const double u = res->u_max, W = res->kinetic_energy;
+    if (checked) {
         /* the solve's tolerance, against the closed form summed rod by rod; near first
          * contact the residual cannot fall below what a few ulps of u change */
         double resid = fabs(res->W_load_closed - W);
@@ -156,33 +176,15 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
                                 "by rod, above the tolerance %.3g",
                                 resid / W, opts->tolerance);
     }
-
-    switch (opts->rule) {
-    case CT_QUAD_BREAKPOINTS:
-        res->W_load = ct_curve_work(c, u);
-        res->W_unload = res->elastic ? res->W_load : res->W_load - ct_curve_dissipation(c, u);
-        break;
-    case CT_QUAD_CLOSED:
-        res->W_load = res->W_load_closed;
-        res->W_unload = res->W_unload_closed;
-        break;
-    default:
-        if ((st = composite(b, -INFINITY, u0, u, opts, &res->W_load)))
-            return st;
-        res->W_unload = res->W_load;
-        if (!res->elastic && (st = composite(b, u, res->u_release, u, opts, &res->W_unload)))
-            return st;
-        break;
-    }
-
     if (res->elastic) {
         /* No rod yields: the state is unchanged and every joule comes back (e = 1 exactly). */
         res->e = 1.0;
-        if (opts->check || opts->rule == CT_QUAD_CLOSED) {
+        res->e_rounding = 0.0;
+        if (checked) {
+            res->W_unload_closed = res->W_load_closed;
             res->e_closed = 1.0;
             res->quad_error = 0.0;
         }
-        res->e_rounding = 0.0;
         return CT_OK;
     }
     if (!(res->W_load > 0.0) || !(res->W_unload >= 0.0))
@@ -196,13 +198,13 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
      * for stiff rods), is small against u itself: e carries a rounding error of about
      * eps u_max / (that interval). Within it, e may land above 1; that excess is rounding,
      * not restitution. */
-    double kappa = fabs(u) / (u - u0);
+    double kappa = fabs(u) / (u - res->u_contact);
     double kappa_unload = fabs(u) / (u - res->u_release);
     kappa = kappa > kappa_unload ? kappa : kappa_unload;
     res->e_rounding = 64.0 * DBL_EPSILON * (kappa > 1.0 ? kappa : 1.0);
     if (res->e > 1.0 && res->e <= 1.0 + res->e_rounding)
         res->e = 1.0;
-    if (opts->check || opts->rule == CT_QUAD_CLOSED) {
+    if (checked) {
         if (!(res->W_load_closed > 0.0) || !(res->W_unload_closed >= 0.0))
             return ct_error_set(CT_ENOCONV, "closed forms gave W_load = %g, W_unload = %g",
                                 res->W_load_closed, res->W_unload_closed);
@@ -212,6 +214,40 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
         res->quad_error = fabs(res->e - res->e_closed);
     }
     return CT_OK;
+}
+
+int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_impact_opts *opts,
+                   ct_impact_result *res)
+{
+    ct_impact_opts defaults;
+    if (!opts) {
+        ct_impact_opts_default(&defaults);
+        opts = &defaults;
+    }
+    int st;
+    if ((st = ct_impact_on_curve(c, ct_bundle_layer(b), -INFINITY, W, opts, res)))
+        return st;
+    const double u0 = res->u_contact, u = res->u_max;
+    if (opts->check || opts->rule == CT_QUAD_CLOSED) {
+        res->W_load_closed = ct_bundle_work(b, u0, u);
+        res->W_unload_closed = res->elastic ? res->W_load_closed : ct_bundle_elastic_energy(b, u);
+    }
+    switch (opts->rule) {
+    case CT_QUAD_BREAKPOINTS:
+        break;
+    case CT_QUAD_CLOSED:
+        res->W_load = res->W_load_closed;
+        res->W_unload = res->W_unload_closed;
+        break;
+    default:
+        if ((st = composite(b, -INFINITY, u0, u, opts, &res->W_load)))
+            return st;
+        res->W_unload = res->W_load;
+        if (!res->elastic && (st = composite(b, u, res->u_release, u, opts, &res->W_unload)))
+            return st;
+        break;
+    }
+    return ct_impact_finish(c, opts, res);
 }
 
 int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_result *res)

@@ -8,6 +8,20 @@
 #define CT_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define CT_PRINTF(a, b)
+/* ---- impacts on a curve (src/impact.c), for the sweep ---- */
+
+/* The impact of energy W from the state c's state reaches when loaded to U (-INFINITY: c's
+ * state itself), closed forms left NaN; CT_ESKIPPED when it stays below U. */
+int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
+                       const ct_impact_opts *opts, ct_impact_result *res);
+/* e, e_rounding and, when W_load_closed is set, the closed forms' check and e_closed. */
+int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_result *res);
+/* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
+ * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
+ * energy at u1[i]. Bitwise ct_bundle_work and ct_bundle_elastic_energy of that state. */
+int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
+                          size_t m, double *W_load, double *W_unload);
+
 #endif
 
 /* Records a detailed message for the calling thread and returns status, so that
@@ -42,5 +56,19 @@ const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_surface_kind *ki
 size_t ct_available_memory(void);
 /* The thread count a sum over b's rods uses (1 below the parallel threshold). */
 int ct_bundle_team(const ct_bundle *b);
+
+/* ---- impacts on a curve (src/impact.c), for the sweep ---- */
+
+/* The impact of energy W from the state c's state reaches when loaded to U (-INFINITY: c's
+ * state itself), closed forms left NaN; CT_ESKIPPED when it stays below U. */
+int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
+                       const ct_impact_opts *opts, ct_impact_result *res);
+/* e, e_rounding and, when W_load_closed is set, the closed forms' check and e_closed. */
+int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_result *res);
+/* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
+ * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
+ * energy at u1[i]. Bitwise ct_bundle_work and ct_bundle_elastic_energy of that state. */
+int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
+                          size_t m, double *W_load, double *W_unload);
 
 #endif

@@ -1,5 +1,6 @@
 /* cantact: the command-line program. Subcommands: run, geometry. */
 #include "cantact.h"
+#include "number.h"
 #include "output.h"
 #include "scene.h"
 
@@ -152,6 +153,12 @@ static char *derived_path(const char *path, const char *tag)
     return out;
 }
 
+static void put_field(FILE *f, double x)
+{
+    fputc(',', f);
+    ct_put_double(f, x);
+}
+
 /* The paper's laws at u (unloading from hi when unload): series, asymptotic, consistent
  * asymptotic; NaN where a law does not apply. */
 static void law_forces(const ct_params *p, int unload, double hi, double u, double out[3])
@@ -193,15 +200,19 @@ static int write_branch(FILE *f, const ct_curve *c, const ct_params *p, double V
     int unload = !strcmp(branch, "unload");
     for (size_t j = 0; j < m; j++) {
         size_t k = unload ? m - 1 - j : j;
-        fprintf(f, "%.17g,%ld,%.17g,%.17g,%s", V, impact, u[k] / h0, ct_curve_force(c, u[k]) / PY,
-                branch);
+        ct_put_double(f, V);
+        fprintf(f, ",%ld,", impact);
+        ct_put_double(f, u[k] / h0);
+        fputc(',', f);
+        ct_put_double(f, ct_curve_force(c, u[k]) / PY);
+        fprintf(f, ",%s", branch);
         if (compare && impact == 1) {
             /* the laws at the same u, unloading from the exact u_max (hi) */
             double laws[3];
             law_forces(p, unload, hi, u[k], laws);
             for (int l = 0; l < 3; l++) {
                 if (isfinite(laws[l]))
-                    fprintf(f, ",%.17g", laws[l] / PY);
+                    put_field(f, laws[l] / PY);
                 else
                     fputc(',', f); /* outside the law (asymptotic beyond u = h0) */
             }
@@ -320,26 +331,35 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, in
     if (row->status) {
         /* a failed impact (solver.on_error = skip): its numbers stay empty, the reason is
          * the last field */
-        fprintf(f, "%ld,%.17g,,,,,,,%s", row->impact, row->V_star, compare ? ",,," : "");
+        fprintf(f, "%ld,", row->impact);
+        ct_put_double(f, row->V_star);
+        fprintf(f, ",,,,,,,%s", compare ? ",,," : "");
         fputs(",\"", f);
         for (const char *m = row->message; *m; m++)
             fputc(*m == '"' ? '\'' : *m, f);
         fputs("\"\n", f);
         return;
     }
-    fprintf(f, "%ld,%.17g,%.17g,%.17g,", row->impact, row->V_star, r->u_max / p->h0, r->e);
-    if (isfinite(r->e_closed))
-        fprintf(f, "%.17g,%.3g,", r->e_closed, r->quad_error);
-    else
+    fprintf(f, "%ld,", row->impact);
+    ct_put_double(f, row->V_star);
+    put_field(f, r->u_max / p->h0);
+    put_field(f, r->e);
+    if (isfinite(r->e_closed)) {
+        put_field(f, r->e_closed);
+        fprintf(f, ",%.3g", r->quad_error);
+    } else {
         fputs(",,", f); /* solver.check = none */
-    fprintf(f, "%.17g,%.17g,%d", r->V_star_crit, r->u_release / p->h0, r->elastic);
+    }
+    put_field(f, r->V_star_crit);
+    put_field(f, r->u_release / p->h0);
+    fprintf(f, ",%d", r->elastic);
     if (compare && row->impact == 1) {
         /* the paper's laws model the first impact on the virgin fractal; where a law does
          * not apply (u_max > h0, e > 1) its field stays empty */
         for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT; law++) {
             double um, el;
             if (ct_law_impact(p, (ct_law)law, r->kinetic_energy, &um, &el) == CT_OK)
-                fprintf(f, ",%.17g", el);
+                put_field(f, el);
             else
                 fputc(',', f);
         }

@@ -1,0 +1,15 @@
+/* Doubles as text: byte for byte what printf("%.17g") writes (round-trip exact), faster. */
+#ifndef CT_CLI_NUMBER_H
+#define CT_CLI_NUMBER_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#define CT_NUMBER_MAX 32
+
+/* Writes x as "%.17g" would into buf (CT_NUMBER_MAX bytes); returns its length. */
+size_t ct_format_double(char *buf, double x);
+/* Writes x as "%.17g" would to f. */
+void ct_put_double(FILE *f, double x);
+
+#endif

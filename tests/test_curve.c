@@ -1,0 +1,290 @@
+/* The load curve (src/curve.c): against the rod-by-rod sums at every breakpoint and between
+ * them, for Cantor stages and segments, arbitrary tops and states with a loading history;
+ * cumulative work and dissipation against the closed forms per rod; the release point;
+ * thread-count independence; a const bundle evaluated from two threads at once. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <float.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assert_rel.h"
+#include "cantact.h"
+
+static ct_params base(void)
+{
+    ct_params p = {
+        .fx = 1.5, .fz = 1.3, .l0 = 1.0, .h0 = 1.0, .Hstar = 3.0, .E = 200.0, .sigma_y = 1.0};
+    return p;
+}
+
+/* n rods with pseudo-random tops in [0, 2.5) and areas, from a fixed seed */
+static ct_bundle *random_bundle(size_t n, unsigned seed)
+{
+    double *top = malloc(n * sizeof *top), *area = malloc(n * sizeof *area);
+    assert_non_null(top);
+    assert_non_null(area);
+    uint64_t s = 0x9E3779B97F4A7C15u ^ seed;
+    for (size_t k = 0; k < n; k++) {
+        s = s * 6364136223846793005u + 1442695040888963407u;
+        top[k] = 2.5 * (double)(s >> 11) / 9007199254740992.0;
+        s = s * 6364136223846793005u + 1442695040888963407u;
+        area[k] = 1e-3 * (0.1 + (double)(s >> 11) / 9007199254740992.0);
+    }
+    ct_layer L = {.E = 200.0, .sigma_y = 1.0, .Hstar = 3.0, .l0 = 1.0, .h0 = 1.0};
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, n, top, area), CT_OK);
+    free(top);
+    free(area);
+    return b;
+}
+
+/* The rounding scales of the rod-by-rod sums at u: each rod's elastic strain
+ * (u - top)/L - eps_p carries an error of about eps (|u| + top + eps_p L)/L, so its force one
+ * of eps k (|u| + top + eps_p L) (k = E s/L) and its work one of eps P_k (|u| + top + eps_p L).
+ * The curve's own breakpoints carry the same rounding (they are top + eps_p L). Sums of
+ * these over the rods in contact bound what the two may differ by. */
+static void rounding_scales(const ct_bundle *b, double u, double *force_scale, double *work_scale)
+{
+    const ct_layer *L = ct_bundle_layer(b);
+    double fs = 0.0, ws = 0.0;
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        ct_rod_info r;
+        assert_int_equal(ct_bundle_rod(b, k, &r), CT_OK);
+        double contact = r.top + r.plastic_strain * r.length;
+        if (!(u >= contact)) /* at contact, the rod sum's rounding may already count */
+            continue;
+        double reach = fabs(u) + r.top + r.plastic_strain * r.length;
+        double d = fmin((u - r.top) / r.length - r.plastic_strain, L->sigma_y / L->E);
+        d = fmax(fabs(d), DBL_EPSILON * reach / r.length); /* at contact, d is the rounding */
+        fs += L->E * r.area / r.length * reach;
+        ws += L->E * r.area * d * reach;
+    }
+    *force_scale = fs;
+    *work_scale = ws;
+}
+
+static void check_curve(const ct_bundle *b)
+{
+    ct_curve *c;
+    assert_int_equal(ct_curve_alloc(&c), CT_OK);
+    assert_int_equal(ct_curve_build(c, b), CT_OK);
+    const double *x = ct_curve_points(c);
+    const size_t n = ct_curve_size(c);
+    assert_true(n >= 2);
+    assert_true(x[0] == ct_bundle_first_contact(b));
+    assert_true(ct_curve_first_yield(c) == ct_bundle_first_yield(b));
+    const double eps = DBL_EPSILON;
+    for (size_t k = 0; k < n; k++) {
+        if (k)
+            assert_true(x[k] > x[k - 1]); /* sorted and distinct */
+        for (int between = 0; between < 2; between++) {
+            double u = between ? (k + 1 < n ? 0.5 * (x[k] + x[k + 1]) : x[k] + 0.25) : x[k];
+            double fs, ws;
+            rounding_scales(b, u, &fs, &ws);
+            double P = ct_bundle_force(b, u), Pc = ct_curve_force(c, u);
+            if (!(fabs(Pc - P) <= 8.0 * eps * (fs + fabs(P))))
+                fail_msg("P(%.17g): curve %.17g, rods %.17g, scale %.3g", u, Pc, P, fs);
+            /* the work from first contact, and what loading to u dissipates: the loading work
+             * less the recoverable energy, both closed forms rod by rod */
+            double W = ct_bundle_work(b, x[0], u), Wc = ct_curve_work(c, u);
+            double D = W - ct_bundle_elastic_energy(b, u), Dc = ct_curve_dissipation(c, u);
+            if (!(fabs(Wc - W) <= 8.0 * eps * (ws + W)))
+                fail_msg("W(%.17g): curve %.17g, rods %.17g, scale %.3g", u, Wc, W, ws);
+            if (!(fabs(Dc - D) <= 8.0 * eps * (ws + W)))
+                fail_msg("D(%.17g): curve %.17g, rods %.17g, scale %.3g", u, Dc, D, ws);
+            /* the release point after loading to u, and W's inverse */
+            double r = ct_bundle_release(b, u), rc = ct_curve_release(c, u);
+            if (!(fabs(rc - r) <= 8.0 * eps * fabs(u)))
+                fail_msg("release(%.17g): curve %.17g, rods %.17g", u, rc, r);
+            if (Wc > 0.0) {
+                double ui = ct_curve_inverse_work(c, Wc);
+                if (!(fabs(ui - u) <=
+                      8.0 * eps * fabs(u) + 8.0 * eps * (ws + Wc) / fmax(Pc, 1e-300)))
+                    fail_msg("inverse W(%.17g) = %.17g", u, ui);
+            }
+        }
+    }
+    /* below first contact: nothing */
+    assert_true(ct_curve_force(c, x[0] - 0.1) == 0.0 && ct_curve_work(c, x[0] - 0.1) == 0.0);
+    ct_curve_free(c);
+}
+
+static void stages_virgin_and_after_history(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 40, INFINITY), CT_OK);
+    check_curve(b);
+    ct_bundle_advance(b, 0.33);
+    check_curve(b);
+    ct_bundle_advance(b, 0.2); /* unloading changes nothing */
+    ct_bundle_advance(b, 0.9);
+    check_curve(b);
+    ct_bundle_free(b);
+}
+
+static void segments_and_arbitrary_tops(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 11, INFINITY), CT_OK);
+    check_curve(b);
+    ct_bundle_advance(b, 0.33);
+    check_curve(b);
+    ct_bundle_free(b);
+    b = random_bundle(3000, 1);
+    check_curve(b);
+    ct_bundle_advance(b, 1.0);
+    check_curve(b);
+    ct_bundle_free(b);
+}
+
+/* Stage rods and segment rods are two representations of one surface: their curves hold the
+ * same breakpoints (the pieces of a stage merge into one event pair) and the same P. */
+static void stage_and_segment_curves_agree(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *st, *sg;
+    ct_curve *a, *b;
+    assert_int_equal(ct_cantor_bundle(&st, &p, CT_REP_STAGES, 14, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&sg, &p, CT_REP_SEGMENTS, 14, INFINITY), CT_OK);
+    ct_bundle_advance(st, 0.5);
+    ct_bundle_advance(sg, 0.5);
+    assert_int_equal(ct_curve_alloc(&a), CT_OK);
+    assert_int_equal(ct_curve_alloc(&b), CT_OK);
+    assert_int_equal(ct_curve_build(a, st), CT_OK);
+    assert_int_equal(ct_curve_build(b, sg), CT_OK);
+    assert_int_equal(ct_curve_size(a), ct_curve_size(b));
+    for (size_t k = 0; k < ct_curve_size(a); k++) {
+        double u = ct_curve_points(a)[k];
+        assert_true(u == ct_curve_points(b)[k]);
+        assert_rel(ct_curve_force(a, u + 1e-3), ct_curve_force(b, u + 1e-3), 1e-14);
+        assert_rel(ct_curve_work(a, u + 1e-3), ct_curve_work(b, u + 1e-3), 1e-14);
+    }
+    ct_curve_free(a);
+    ct_curve_free(b);
+    ct_bundle_free(st);
+    ct_bundle_free(sg);
+}
+
+/* A rod whose yield point rounds onto its contact point (length 1e-12, stiff) is
+ * rigid-plastic at this resolution: its plateau must still be in P, as in the rod sum. */
+static void rigid_plastic_rod_keeps_its_plateau(void **state)
+{
+    (void)state;
+    ct_layer L = {.E = 1e9, .sigma_y = 1.0, .Hstar = 1.0, .l0 = 1.0, .h0 = 1.0};
+    double top[2] = {1.0 - 1e-12, 0.5}, area[2] = {0.25, 0.75};
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 2, top, area), CT_OK);
+    ct_curve *c;
+    assert_int_equal(ct_curve_alloc(&c), CT_OK);
+    assert_int_equal(ct_curve_build(c, b), CT_OK);
+    double u = 1.0 - 0.5e-12; /* rod 0 on its plateau, rod 1 too */
+    assert_rel(ct_curve_force(c, u), ct_bundle_force(b, u), 1e-15);
+    assert_rel(ct_curve_force(c, u), 1.0, 1e-15); /* E s eps_y summed: 0.25 + 0.75 */
+    ct_curve_free(c);
+    ct_bundle_free(b);
+}
+
+/* The curve does not depend on the thread count: a bundle far above the parallel
+ * threshold, arbitrary tops after a history (many runs to merge), 1 and 2 threads. */
+static void bitwise_identical_for_any_thread_count(void **state)
+{
+    (void)state;
+    ct_bundle *b = random_bundle(60000, 2);
+    ct_bundle_advance(b, 0.8);
+    ct_curve *c[2];
+    for (int t = 0; t < 2; t++) {
+        ct_bundle_set_threads(b, t + 1);
+        assert_int_equal(ct_curve_alloc(&c[t]), CT_OK);
+        assert_int_equal(ct_curve_build(c[t], b), CT_OK);
+    }
+    size_t n = ct_curve_size(c[0]);
+    assert_int_equal(n, ct_curve_size(c[1]));
+    assert_memory_equal(ct_curve_points(c[0]), ct_curve_points(c[1]), n * sizeof(double));
+    for (size_t k = 0; k + 1 < n; k++) {
+        double u = 0.5 * (ct_curve_points(c[0])[k] + ct_curve_points(c[0])[k + 1]);
+        double v0[4] = {ct_curve_force(c[0], u), ct_curve_work(c[0], u),
+                        ct_curve_dissipation(c[0], u), ct_curve_release(c[0], u)};
+        double v1[4] = {ct_curve_force(c[1], u), ct_curve_work(c[1], u),
+                        ct_curve_dissipation(c[1], u), ct_curve_release(c[1], u)};
+        assert_memory_equal(v0, v1, sizeof v0);
+    }
+    ct_curve_free(c[0]);
+    ct_curve_free(c[1]);
+    ct_bundle_free(b);
+}
+
+/* ---- a const bundle evaluated from two threads at once ---- */
+typedef struct {
+    const ct_bundle *b;
+    double P[64], W[64], E;
+    size_t curve_points;
+    int status;
+} worker;
+
+static void *evaluate(void *arg)
+{
+    worker *w = arg;
+    double u[64];
+    for (int i = 0; i < 64; i++)
+        u[i] = 0.02 * i;
+    ct_curve *c;
+    w->status = ct_bundle_force_many(w->b, u, 64, w->P);
+    w->status |= ct_bundle_work_many(w->b, 0.0, u, 64, w->W);
+    w->E = ct_bundle_elastic_energy(w->b, 0.7) + ct_bundle_force(w->b, 0.6);
+    w->status |= ct_curve_alloc(&c);
+    if (!w->status)
+        w->status = ct_curve_build(c, w->b);
+    w->curve_points = ct_curve_size(c);
+    ct_curve_free(c);
+    return NULL;
+}
+
+static void const_bundle_from_two_threads(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    /* segments above the parallel threshold: each thread's sums use a team of their own */
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 15, INFINITY), CT_OK);
+    ct_bundle_advance(b, 0.4);
+    worker ref = {.b = b}, w[2] = {{.b = b}, {.b = b}};
+    evaluate(&ref);
+    assert_int_equal(ref.status, CT_OK);
+    pthread_t th[2];
+    for (int t = 0; t < 2; t++)
+        assert_int_equal(pthread_create(&th[t], NULL, evaluate, &w[t]), 0);
+    for (int t = 0; t < 2; t++) {
+        assert_int_equal(pthread_join(th[t], NULL), 0);
+        assert_int_equal(w[t].status, CT_OK);
+        assert_memory_equal(w[t].P, ref.P, sizeof ref.P);
+        assert_memory_equal(w[t].W, ref.W, sizeof ref.W);
+        assert_memory_equal(&w[t].E, &ref.E, sizeof ref.E);
+        assert_int_equal(w[t].curve_points, ref.curve_points);
+    }
+    ct_bundle_free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(stages_virgin_and_after_history),
+        cmocka_unit_test(segments_and_arbitrary_tops),
+        cmocka_unit_test(stage_and_segment_curves_agree),
+        cmocka_unit_test(rigid_plastic_rod_keeps_its_plateau),
+        cmocka_unit_test(bitwise_identical_for_any_thread_count),
+        cmocka_unit_test(const_bundle_from_two_threads),
+    };
+    return cmocka_run_group_tests_name("curve", tests, NULL, NULL);
+}

@@ -1,0 +1,254 @@
+/* Planning and sweeps (src/sweep.c): a hand-derived three-rod surface, the sweep against the
+ * same impacts run one by one, V*_c independent of the other speeds of a scene, a crushing
+ * speed reported as its own row, and pruning that changes no reported number. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assert_rel.h"
+#include "cantact.h"
+
+/* Three rods, E = 10, sigma_y = 1 (eps_y = 0.1), H* = 2, l0 = h0 = 1, every area 1:
+ *   rod  top  L    k = E s/L  yield y = top + eps_y L  plateau F = E s eps_y
+ *   A    0    2    5          0.2                      1
+ *   B    0.5  1.5  20/3       0.65                     1
+ *   C    1    1    10         1.1                      1
+ * Impact 1 with kinetic energy 0.925 from the virgin surface, u_max = 0.8 (A, B yielded,
+ * C not touched): work A = 5 (0.2)^2/2 + 1 (0.8 - 0.2) = 0.7, B = (20/3)(0.15)^2/2 +
+ * 1 (0.8 - 0.65) = 0.225, total 0.925. Recoverable: F eps_y L / 2 = 0.1 + 0.075 = 0.175, so
+ * e1 = sqrt(0.175/0.925) = sqrt(7/37). A releases at 0.8 - 0.2 = 0.6, B at 0.65: u_release =
+ * 0.6. V*_c: first yield at 0.2, W = 5 (0.2)^2 / 2 = 0.1, V*_c = sqrt(0.1 / (l0 E h0)) = 0.1.
+ * Impact 2, same energy: 0.175 reloads A, B elastically to 0.8; then P = 2 up to C's contact
+ * at 1 (0.4, total 0.575); C elastic to 1.1 (2 (0.1) + 10 (0.1)^2/2 = 0.25, total 0.825);
+ * then P = 3: 0.1 more is 1/30, u_max = 1.1 + 1/30. Recoverable 0.1 + 0.075 + 0.05 = 0.225:
+ * e2 = sqrt(9/37). Its V*_c: the first yield of the shaken-down state is at 0.8, reached with
+ * 0.175: V*_c = sqrt(0.0175). */
+static ct_bundle *three_rods(void)
+{
+    ct_layer L = {.E = 10.0, .sigma_y = 1.0, .Hstar = 2.0, .l0 = 1.0, .h0 = 1.0};
+    double top[3] = {0.0, 0.5, 1.0}, area[3] = {1.0, 1.0, 1.0};
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 3, top, area), CT_OK);
+    return b;
+}
+
+static void three_rods_on_paper(void **state)
+{
+    (void)state;
+    ct_bundle *b = three_rods();
+    const double V = sqrt(0.925 / 10.0);
+    ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 2};
+    ct_impact_opts_default(&spec.opts);
+    ct_sweep_row rows[2];
+    assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+    for (int i = 0; i < 2; i++)
+        assert_int_equal(rows[i].status, CT_OK);
+    assert_rel(rows[0].r.u_max, 0.8, 1e-14);
+    assert_rel(rows[0].r.e, sqrt(7.0 / 37.0), 1e-14);
+    assert_rel(rows[0].r.e_closed, sqrt(7.0 / 37.0), 1e-14);
+    assert_rel(rows[0].r.u_release, 0.6, 1e-14);
+    assert_rel(rows[0].r.V_star_crit, 0.1, 1e-14);
+    assert_rel(rows[1].r.u_contact, 0.6, 1e-14);
+    assert_rel(rows[1].r.u_max, 1.1 + 1.0 / 30.0, 1e-14);
+    assert_rel(rows[1].r.e, sqrt(9.0 / 37.0), 1e-14);
+    assert_rel(rows[1].r.e_closed, sqrt(9.0 / 37.0), 1e-14);
+    assert_rel(rows[1].r.V_star_crit, sqrt(0.0175), 1e-14);
+    assert_rel(rows[1].r.u_release, 1.1 + 1.0 / 30.0 - 0.2, 1e-14);
+    /* the same two impacts through ct_impact, which carries the state in the bundle */
+    for (int i = 0; i < 2; i++) {
+        ct_impact_result r;
+        assert_int_equal(ct_impact(b, 0.925, NULL, &r), CT_OK);
+        assert_rel(r.e, i ? sqrt(9.0 / 37.0) : sqrt(7.0 / 37.0), 1e-14);
+    }
+    ct_bundle_free(b);
+}
+
+static ct_params base(void)
+{
+    ct_params p = {
+        .fx = 1.5, .fz = 1.3, .l0 = 1.0, .h0 = 1.0, .Hstar = 10.0, .E = 500.0, .sigma_y = 1.0};
+    return p;
+}
+
+static int no_op_observer(const ct_sweep_row *row, int phase, const ct_bundle *b, const ct_curve *c,
+                          void *ctx)
+{
+    (void)row, (void)phase, (void)b, (void)c;
+    ++*(int *)ctx;
+    return 0;
+}
+
+/* The sweep (one curve for all speeds, impacts by its shifts, closed forms in shared passes)
+ * against the plain loop: a fresh bundle per speed, ct_impact after ct_impact. The first
+ * impacts are the very same computation (bitwise); later ones take another path (the
+ * shifted curve instead of a rebuilt one) and agree to rounding. An observer forces the
+ * state-carrying path of the sweep itself, which must agree too. */
+static void sweep_equals_one_by_one(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    enum { NV = 7, IMP = 4 };
+    const double V[NV] = {3e-5, 1e-4, 3e-4, 1e-3, 3e-3, 1e-2, 2e-2};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = IMP};
+    ct_impact_opts_default(&spec.opts);
+    ct_sweep_row rows[NV * IMP], carried[NV * IMP];
+    assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+    int calls = 0;
+    spec.observe = no_op_observer;
+    spec.observe_ctx = &calls;
+    assert_int_equal(ct_sweep(b, &spec, carried), CT_OK);
+    assert_int_equal(calls, 2 * NV * IMP);
+    for (size_t v = 0; v < NV; v++) {
+        ct_bundle *one;
+        assert_int_equal(ct_cantor_bundle(&one, &p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+        for (int i = 0; i < IMP; i++) {
+            ct_impact_result r;
+            const ct_sweep_row *row = &rows[v * IMP + (size_t)i],
+                               *cr = &carried[v * IMP + (size_t)i];
+            assert_int_equal(ct_impact(one, V[v] * V[v] * ct_energy_scale(&p), NULL, &r), CT_OK);
+            assert_int_equal(row->status, CT_OK);
+            assert_int_equal(row->impact, i + 1);
+            assert_int_equal(row->r.elastic, r.elastic);
+            if (i == 0) {
+                assert_memory_equal(&row->r.e, &r.e, sizeof r.e);
+                assert_memory_equal(&row->r.e_closed, &r.e_closed, sizeof r.e);
+                assert_memory_equal(&row->r.u_max, &r.u_max, sizeof r.e);
+            }
+            const ct_impact_result *got[2] = {&row->r, &cr->r};
+            for (int g = 0; g < 2; g++) {
+                assert_rel(got[g]->e, r.e, 1e-13);
+                assert_rel(got[g]->e_closed, r.e_closed, 1e-13);
+                assert_rel(got[g]->u_max, r.u_max, 1e-14);
+                assert_rel(got[g]->u_release, r.u_release, 1e-14);
+                assert_rel(got[g]->V_star_crit, r.V_star_crit, 1e-13);
+                assert_rel(got[g]->W_unload, r.W_unload, 1e-13);
+            }
+        }
+        ct_bundle_free(one);
+    }
+    ct_bundle_free(b);
+}
+
+/* Issue 11's bug: pruning the rods no impact reaches took away the ones between u_max and
+ * the first yield, and V*_c of a scene whose speeds are all below it came out 3 % low. */
+static void vstar_crit_does_not_depend_on_the_other_speeds(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    const double alone[1] = {2e-4}, with_fast[2] = {2e-4, 1e-3};
+    double Vc[2];
+    for (int k = 0; k < 2; k++) {
+        ct_cantor_plan plan = {.params = p,
+                               .depth = 12,
+                               .representation = CT_REP_STAGES,
+                               .depth_tolerance = 1e-12,
+                               .V_star = k ? with_fast : alone,
+                               .nvel = k ? 2 : 1,
+                               .impacts = 1};
+        ct_impact_opts_default(&plan.opts);
+        ct_bundle *b;
+        ct_plan_info info;
+        assert_int_equal(ct_cantor_plan_build(&plan, &b, &info), CT_OK);
+        assert_true(info.omitted > 0); /* something was left out, or this tests nothing */
+        ct_sweep_spec spec = {.V_star = plan.V_star, .nvel = plan.nvel, .impacts = 1};
+        spec.opts = plan.opts;
+        ct_sweep_row rows[2];
+        assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+        assert_int_equal(rows[0].r.elastic, 1);
+        Vc[k] = rows[0].r.V_star_crit;
+        ct_bundle_free(b);
+    }
+    /* the reference: every rod kept; V*_c from the closed-form critical energy */
+    ct_bundle *full;
+    double Wc, uy;
+    assert_int_equal(ct_cantor_bundle(&full, &p, CT_REP_STAGES, 12, INFINITY), CT_OK);
+    assert_int_equal(ct_critical_energy(full, &Wc, &uy), CT_OK);
+    assert_rel(Vc[0], sqrt(Wc / ct_energy_scale(&p)), 1e-14);
+    assert_rel(Vc[1], sqrt(Wc / ct_energy_scale(&p)), 1e-14);
+    ct_bundle_free(full);
+}
+
+/* Pruned and full bundles give the same rows (impacts carried over, segments too). */
+static void pruning_changes_no_reported_number(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    const double V[3] = {5e-5, 2e-3, 8e-3};
+    for (int rep = 0; rep < 2; rep++) {
+        ct_cantor_plan plan = {.params = p,
+                               .depth = 10,
+                               .representation = rep ? CT_REP_SEGMENTS : CT_REP_STAGES,
+                               .depth_tolerance = 1e-12,
+                               .V_star = V,
+                               .nvel = 3,
+                               .impacts = 3};
+        ct_impact_opts_default(&plan.opts);
+        ct_bundle *pruned, *full;
+        ct_plan_info info;
+        assert_int_equal(ct_cantor_plan_build(&plan, &pruned, &info), CT_OK);
+        assert_true(info.omitted > 0);
+        plan.keep_all_rods = 1;
+        assert_int_equal(ct_cantor_plan_build(&plan, &full, &info), CT_OK);
+        assert_int_equal(info.omitted, 0);
+        ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 3};
+        spec.opts = plan.opts;
+        ct_sweep_row a[9], b[9];
+        assert_int_equal(ct_sweep(pruned, &spec, a), CT_OK);
+        assert_int_equal(ct_sweep(full, &spec, b), CT_OK);
+        for (int k = 0; k < 9; k++) {
+            assert_int_equal(a[k].status, CT_OK);
+            assert_rel(a[k].r.e, b[k].r.e, 1e-14);
+            assert_rel(a[k].r.u_max, b[k].r.u_max, 1e-14);
+            assert_rel(a[k].r.u_release, b[k].r.u_release, 1e-14);
+            assert_rel(a[k].r.V_star_crit, b[k].r.V_star_crit, 1e-14);
+        }
+        ct_bundle_free(pruned);
+        ct_bundle_free(full);
+    }
+}
+
+/* A speed that crushes the layer fails its own row (and its later impacts are not run);
+ * the others compute. Under stop_on_error the sweep returns that status and message. */
+static void crushing_speed_is_one_row(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    const double V[3] = {1e-3, 50.0, 2e-3};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 30, INFINITY), CT_OK);
+    ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 2};
+    ct_impact_opts_default(&spec.opts);
+    ct_sweep_row rows[6];
+    assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+    assert_int_equal(rows[0].status, CT_OK);
+    assert_int_equal(rows[1].status, CT_OK);
+    assert_int_equal(rows[2].status, CT_ERANGE);
+    assert_non_null(strstr(rows[2].message, "crushed"));
+    assert_int_equal(rows[3].status, CT_ESKIPPED);
+    assert_int_equal(rows[4].status, CT_OK);
+    assert_int_equal(rows[5].status, CT_OK);
+    spec.stop_on_error = 1;
+    assert_int_equal(ct_sweep(b, &spec, rows), CT_ERANGE);
+    assert_non_null(strstr(ct_error_message(), "V* = 50"));
+    ct_bundle_free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(three_rods_on_paper),
+        cmocka_unit_test(sweep_equals_one_by_one),
+        cmocka_unit_test(vstar_crit_does_not_depend_on_the_other_speeds),
+        cmocka_unit_test(pruning_changes_no_reported_number),
+        cmocka_unit_test(crushing_speed_is_one_row),
+    };
+    return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
+}
