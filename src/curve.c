@@ -262,6 +262,15 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     const size_t nruns = nb ? c->block_runs[nb] : 0, ne = 2 * nruns;
     if (ne == 0)
         return CT_OK;
+    /* events twice (the merge's buffer), run bounds, and 8 doubles per breakpoint */
+    const double need = (double)ne * (2.0 * sizeof(event) + sizeof(size_t) + 8.0 * sizeof(double));
+    const double have = (double)ct_available_memory() +
+                        (double)(c->ecap + c->tcap) * sizeof(event) + 8.0 * sizeof(double) * c->cap;
+    if (need > 0.9 * have)
+        return ct_error_set(CT_ENOMEM,
+                            "load curve of %zu rods (%zu events): needs %.3g GiB, more than the "
+                            "%.3g GiB of memory available",
+                            n, ne, need / 1073741824.0, have / 1073741824.0);
     if (grow((void **)&c->ev, &c->ecap, ne, sizeof(event)) ||
         grow((void **)&c->tmp, &c->tcap, ne, sizeof(event)) ||
         grow((void **)&c->runs, &c->rcap, ne + 1, sizeof(size_t)))

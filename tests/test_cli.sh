@@ -99,6 +99,26 @@ for t in 1 2; do
 done
 cmp -s "$tmp/t1.csv" "$tmp/t2.csv" && ok || bad "OMP_NUM_THREADS 1 and 2 differ"
 
+# a speed that crushes the layer: by default the run stops (exit 2, one line naming the V*
+# and the impact, no file); with solver.on_error = skip it is a row with its reason
+rm -f "$tmp/crush.csv"
+expect 2 "crushing speed stops the run" -- "$ct" run -q "$tmp/s.ini" --set "impact.V_star=1e-3, 50" \
+    --set impact.impacts=2 -o "$tmp/crush.csv"
+grep -q "V\* = 50, impact 1: .*crushed" "$tmp/err" && ok || bad "crush message: $(cat "$tmp/err")"
+[ ! -e "$tmp/crush.csv" ] && ok || bad "a stopped run left $tmp/crush.csv"
+expect 0 "crushing speed skipped" -- "$ct" run -q "$tmp/s.ini" --set "impact.V_star=1e-3, 50, 2e-3" \
+    --set impact.impacts=2 --set solver.on_error=skip -o "$tmp/crush.csv"
+awk -F, 'NR == 1 { ok = $NF == "error" } NR > 1 && $2 == 50 { n++; ok = ok && $3 == "" }
+    NR > 1 && $2 != 50 { m++; ok = ok && $4 > 0 && $4 < 1 } END { exit !(ok && n == 2 && m == 4) }' \
+    "$tmp/crush.csv" && ok || bad "skip rows: $(cat "$tmp/crush.csv")"
+grep -q '^1,50,.*"impact energy .*crushed' "$tmp/crush.csv" && ok || bad "skip reason missing"
+expect 2 "bad on_error" -- "$ct" run -q "$tmp/s.ini" --set solver.on_error=maybe
+# without the closed-form check the check's columns are empty, e is the same
+"$ct" run -q "$tmp/s.ini" -o "$tmp/chk.csv" && "$ct" run -q "$tmp/s.ini" --set solver.check=none \
+    -o "$tmp/nochk.csv" || bad "check runs"
+paste -d, "$tmp/chk.csv" "$tmp/nochk.csv" | awk -F, 'NR > 1 { if ($4 != $13 || $14 != "" || $15 != "") exit 1 }' &&
+    ok || bad "solver.check = none"
+
 # the shipped scenes run
 for scene in "$src"/scripts/scenes/*.ini; do
     expect 0 "scene $(basename "$scene")" -- "$ct" run -q "$scene" -o "$tmp/scene.csv"

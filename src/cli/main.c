@@ -47,6 +47,10 @@ static const char *run_help =
     "With several items in [output] what, FILE holds e and the others go to FILE with\n"
     "_curve / _profile before its extension. Outputs appear only when complete.\n"
     "\n"
+    "An impact that cannot be computed (a crushed layer, an unresolvable penetration) ends the\n"
+    "run with its V* and impact (solver.on_error = stop), or, with solver.on_error = skip,\n"
+    "is a row of its own: its numbers empty and the reason in a last column, error.\n"
+    "\n"
     "Options:\n"
     "  --set section.key=value   override a scene key (repeatable)\n"
     "  -o FILE                   same as --set output.file=FILE ('-' for stdout)\n"
@@ -55,7 +59,8 @@ static const char *run_help =
     "\n"
     "Scene keys: [surface] fx fz H h0 l0 depth representation; [material] E sigma_y;\n"
     "[impact] V_star | mass velocity, impacts; [solver] quadrature nodes tolerance\n"
-    "depth_tolerance threads; [output] file what. See README.md.\n";
+    "depth_tolerance threads on_error (stop|skip) check (closed|none); [output] file what.\n"
+    "See README.md.\n";
 
 static const char *geometry_help =
     "Usage: cantact geometry SCENE.ini [--set section.key=value]...\n"
@@ -513,7 +518,8 @@ static int cmd_run(int argc, char **argv)
             write_e_row(out_e.f, &sc, &rows[k], compare);
     }
     if (failed && !quiet)
-        fprintf(stderr, "cantact: %zu of %zu impacts failed (first: V* = %g, impact %ld: %s)\n",
+        fprintf(stderr,
+                "cantact: %zu of %zu impacts failed or not run (first: V* = %g, impact %ld: %s)\n",
                 failed, nrows, first_failed->V_star, first_failed->impact, first_failed->message);
     if ((opened_e && ct_out_commit(&out_e, err, sizeof err)) ||
         (opened_c && ct_out_commit(&out_curve, err, sizeof err)) ||
