@@ -155,6 +155,23 @@ static size_t curve_points_in(const ct_bundle *b, double lo, double hi)
     return n;
 }
 
+typedef struct {
+    const ct_bundle *b;
+    const ct_curve *c;
+    ct_impact_opts opts;
+    double W;
+} curve_ctx;
+
+/* One more speed on a surface whose load curve is built: what each speed of a sweep costs. */
+static int curve_job(void *ctx, double *e)
+{
+    curve_ctx *c = ctx;
+    ct_impact_result r;
+    int st = ct_impact_eval(c->b, c->c, c->W, &c->opts, &r);
+    *e = r.e;
+    return st;
+}
+
 /* All quadrature variants on one bundle. */
 static void rod_rows(const char *method, ct_bundle *b, double build, int threads, long Kmax,
                      double budget)
@@ -177,6 +194,25 @@ static void rod_rows(const char *method, ct_bundle *b, double build, int threads
     ct_bundle_reset(b);
     size_t nl = curve_points_in(b, r.u_contact, r.u_max);
     row(method, depth, rods, "breakpoints", nl + nu, threads, build, t_bp, e, perr, "");
+
+    /* the curve built once (its build timed as build_seconds), then per speed an O(log n)
+     * lookup: without and with the closed-form check rod by rod */
+    ct_bundle_reset(b);
+    ct_curve *curve;
+    double t0 = bench_now();
+    if (ct_curve_alloc(&curve) || ct_curve_build(curve, b))
+        fail("curve");
+    double t_build = bench_now() - t0;
+    for (int check = 0; check < 2; check++) {
+        curve_ctx cc = {b, curve, c.opts, W};
+        cc.opts.check = check;
+        double t_curve;
+        if (time_job(curve_job, &cc, &e, &t_curve))
+            fail(method);
+        row(method, depth, rods, check ? "curve+check" : "curve", ct_curve_size(curve), threads,
+            t_build, t_curve, e, perr, "per further speed on the built curve");
+    }
+    ct_curve_free(curve);
 
     const ct_quad_rule rules[3] = {CT_QUAD_TRAPEZOID, CT_QUAD_SIMPSON, CT_QUAD_GAUSS};
     for (int q = 0; q < 3; q++) {

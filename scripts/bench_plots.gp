@@ -21,6 +21,8 @@ plot dir."/methods.csv" every ::1 using (selm("asymptotic")):(err(0)) with point
      "" every ::1 using (selm("series")):(err(0)) with points pt 11 ps 2 title "series", \
      "" every ::1 using (sel("stages-fractal", "breakpoints")):(err(0)) with points pt 7 ps 1.6 title "stage rods, fractal, breakpoints", \
      "" every ::1 using (sel("stages-fractal", "closed")):(err(0)) with points pt 6 ps 1.6 title "stage rods, fractal, closed forms", \
+     "" every ::1 using (sel("stages-fractal", "curve")):(err(0)) with points pt 13 ps 1.8 title "stage rods, fractal, per speed on a built curve", \
+     "" every ::1 using (sel("stages-fractal", "curve+check")):(err(0)) with points pt 12 ps 1.8 title "the same, with the closed-form check", \
      "" every ::1 using (sel("stages-auto", "breakpoints")):(err(0)) with points pt 5 ps 1.4 title "stage rods, auto, breakpoints", \
      "" every ::1 using (sel("stages-auto", "closed")):(err(0)) with points pt 4 ps 1.4 title "stage rods, auto, closed forms", \
      "" every ::1 using (sel("stages-auto", "trapezoid")):(err(0)) with points pt 1 title "stage rods, auto, trapezoid K", \
