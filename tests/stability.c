@@ -20,23 +20,25 @@ static void csv_message(const char *m)
     putchar('"');
 }
 
-/* the series on [0, H*], the asymptotic law on its domain [0, h0] */
+/* the series on [0, H*], the asymptotic law on its domain [0, h0]: every call succeeds with a
+ * finite, non-negative value; beyond h0 the asymptotic law refuses with CT_ERANGE */
 static int finite_laws(const ct_params *p)
 {
     double top_a = p->h0 < p->Hstar ? p->h0 : p->Hstar;
     for (int k = 0; k <= 16; k++) {
-        double t = pow(1e-12, k / 16.0);
-        double v[] = {ct_series_load(p, p->Hstar * t),
-                      ct_asym_load(p, top_a * t),
-                      ct_asym_work_load(p, top_a * t),
-                      ct_series_unload(p, p->Hstar * 0.5, p->Hstar * 0.5 * t),
-                      ct_asym_unload(p, top_a, top_a * t, 0),
-                      ct_asym_work_unload(p, top_a, 1)};
+        double t = pow(1e-12, k / 16.0), v[6];
+        int st[] = {ct_series_load(p, p->Hstar * t, &v[0]),
+                    ct_asym_load(p, top_a * t, &v[1]),
+                    ct_asym_work_load(p, top_a * t, &v[2]),
+                    ct_series_unload(p, p->Hstar * 0.5, p->Hstar * 0.5 * t, &v[3]),
+                    ct_asym_unload(p, top_a, top_a * t, 0, &v[4]),
+                    ct_asym_work_unload(p, top_a, 1, &v[5])};
         for (int j = 0; j < 6; j++)
-            if (!isfinite(v[j]) || v[j] < 0.0)
+            if (st[j] || !isfinite(v[j]) || v[j] < 0.0)
                 return 0;
     }
-    return 1;
+    double P;
+    return ct_asym_load(p, 2.0 * p->h0, &P) == CT_ERANGE;
 }
 
 /* Returns 0 computed, 1 refused, 2 failed. */
@@ -139,7 +141,7 @@ static int run_case(const ct_params *p, int nv)
     }
     if (!failed && !finite_laws(p)) {
         failed = 1;
-        snprintf(why, sizeof why, "a law's P(u) is not finite");
+        snprintf(why, sizeof why, "a law's P(u) failed or is not finite: %s", ct_error_message());
     }
     printf("%ld,%s,%d,%.6g,%.6g,%.3g,%.3g,%.3g,%d,%d,", depth,
            failed ? "FAILED" : (n ? "computed" : "refused"), n, Vc, e_min, bal, qerr, rnd, rises,

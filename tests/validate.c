@@ -30,9 +30,10 @@ static int curve(char **argv)
     }
     printf("u_over_h0,branch,P_exact,P_series,P_asymptotic,P_asymptotic_consistent\n");
     for (int k = 0; k <= 400; k++) {
-        double u = um * k / 400.0, pa = ct_asym_load(&p, u);
-        printf("%.10g,load,%.10g,%.10g,%.10g,%.10g\n", u, ct_bundle_force(b, u),
-               ct_series_load(&p, u), pa, pa);
+        double u = um * k / 400.0, ps = NAN, pa = NAN;
+        ct_series_load(&p, u, &ps);
+        ct_asym_load(&p, u, &pa); /* stays NAN beyond u = h0 */
+        printf("%.10g,load,%.10g,%.10g,%.10g,%.10g\n", u, ct_bundle_force(b, u), ps, pa, pa);
     }
     ct_bundle_advance(b, um);
     printf("\n\n"); /* gnuplot index 1: unloading */
@@ -41,9 +42,11 @@ static int curve(char **argv)
     lo = lo > 0 ? lo : 0;
     for (int k = 400; k >= 0; k--) {
         double u = lo + (um - lo) * k / 400.0;
-        printf("%.10g,unload,%.10g,%.10g,%.10g,%.10g\n", u, ct_bundle_force(b, u),
-               ct_series_unload(&p, um, u), ct_asym_unload(&p, um, u, 0),
-               ct_asym_unload(&p, um, u, 1));
+        double ps = NAN, pa = NAN, pc = NAN;
+        ct_series_unload(&p, um, u, &ps);
+        ct_asym_unload(&p, um, u, 0, &pa);
+        ct_asym_unload(&p, um, u, 1, &pc);
+        printf("%.10g,unload,%.10g,%.10g,%.10g,%.10g\n", u, ct_bundle_force(b, u), ps, pa, pc);
     }
     ct_bundle_free(b);
     return 0;
@@ -74,8 +77,11 @@ int main(int argc, char **argv)
                     double dev[2][3] = {{0}};
                     for (int k = 0; k <= 800; k++) {
                         double u = 1e-4 * pow(1e4, k / 800.0); /* 1e-4 .. 1 */
-                        double Pe = ct_bundle_force(bd, u), Ps = ct_series_load(&p, u),
-                               Pa = ct_asym_load(&p, u);
+                        double Pe = ct_bundle_force(bd, u), Ps, Pa;
+                        if (ct_series_load(&p, u, &Ps) || ct_asym_load(&p, u, &Pa)) {
+                            fprintf(stderr, "ct_validate: %s\n", ct_error_message());
+                            return 1;
+                        }
                         double v[3] = {rel(Pa, Ps), rel(Pa, Pe), rel(Ps, Pe)};
                         for (int r = 0; r < 2; r++)
                             if (r == 1 || u <= 0.04)

@@ -193,10 +193,11 @@ static int write_branch(FILE *f, ct_bundle *b, double V, long impact, double lo,
         fprintf(f, "%.17g,%ld,%.17g,%.17g,%s", V, impact, u[k] / h0, P / PY, branch);
         if (compare && impact == 1) {
             /* the laws at the same u, unloading from the exact u_max (hi) */
-            double ps = unload ? ct_series_unload(p, hi, u[k]) : ct_series_load(p, u[k]);
-            double pa = unload ? ct_asym_unload(p, hi, u[k], 0) : ct_asym_load(p, u[k]);
-            double pc = unload ? ct_asym_unload(p, hi, u[k], 1) : pa;
-            double laws[3] = {ps, pa, pc};
+            double ps = 0.0, pa = 0.0, pc = 0.0;
+            int ss = unload ? ct_series_unload(p, hi, u[k], &ps) : ct_series_load(p, u[k], &ps);
+            int sa = unload ? ct_asym_unload(p, hi, u[k], 0, &pa) : ct_asym_load(p, u[k], &pa);
+            int sc = unload ? ct_asym_unload(p, hi, u[k], 1, &pc) : sa;
+            double laws[3] = {ss ? NAN : ps, sa ? NAN : pa, sc ? NAN : unload ? pc : pa};
             for (int l = 0; l < 3; l++) {
                 if (isfinite(laws[l]))
                     fprintf(f, ",%.17g", laws[l] / PY);
