@@ -254,8 +254,9 @@ int ct_asym_work_unload(const ct_params *p, double u_max, int consistent, double
 typedef enum { CT_LAW_SERIES = 0, CT_LAW_ASYMPTOTIC = 1, CT_LAW_ASYMPTOTIC_CONSISTENT = 2 } ct_law;
 
 /* e and u_max [length] of one impact of energy W on the virgin surface under a law: u_max
- * from Eq. 39, unloading energy from Eq. 40, e = sqrt(W_unload / W_load); e = 1 exactly
- * when no stage yields. */
+ * from Eq. 39 (to 1e-15 relative, else CT_ENOCONV), unloading energy from Eq. 40,
+ * e = sqrt(W_unload / W_load); e = 1 exactly when no stage yields. CT_ERANGE where the law
+ * does not apply (u_max beyond h0 or H*, W_unload > W_load). Thread-safe: no global state. */
 int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e);
 const char *ct_law_name(ct_law law);
 

@@ -162,3 +162,85 @@ int ct_asym_work_unload(const ct_params *p, double u_max, int consistent, double
     *W = work_unload_value(&k, u_max, consistent);
     return CT_OK;
 }
+
+/* Root u of work_load_value(u) = target in (lo, hi), where W(lo) < target < W(hi), 0 < lo and W
+ * increases with derivative P = load_value > 0. Newton steps on ln W against ln u (W is close to
+ * a power of u, so they converge in a few steps from anywhere), at least 1/4 tol relative long
+ * so that the bracket closes; a bisection of ln u whenever a step leaves the bracket or is not
+ * half the one before last. Converged when the bracket is within tol of its lower end;
+ * CT_ENOCONV otherwise. Hand-written rather than GSL's Brent: GSL reports failures through
+ * its process-wide error handler, which a library must neither call nor switch off. */
+static int solve_work(const law_consts *k, double target, double lo, double hi, double tol,
+                      double *root)
+{
+    double W_lo = work_load_value(k, lo), W_hi = work_load_value(k, hi);
+    double x = hi, Wx = W_hi, step = INFINITY, step_before = INFINITY;
+    for (int it = 0; it < 200; it++) {
+        if (hi - lo <= tol * lo) {
+            *root = target - W_lo <= W_hi - target ? lo : hi;
+            return CT_OK;
+        }
+        double P = load_value(k, x), next = NAN;
+        if (Wx > 0.0 && P > 0.0)
+            next = x * exp(log(target / Wx) * Wx / (x * P));
+        double min_step = 0.25 * tol * x;
+        if (fabs(next - x) < min_step)
+            next = Wx > target ? x - min_step : x + min_step;
+        if (!(next > lo && next < hi) || !(fabs(next - x) <= 0.5 * step_before))
+            next = sqrt(lo) * sqrt(hi);
+        step_before = step;
+        step = fabs(next - x);
+        x = next;
+        Wx = work_load_value(k, x);
+        if (Wx == target) {
+            *root = x;
+            return CT_OK;
+        }
+        if (Wx < target) {
+            lo = x;
+            W_lo = Wx;
+        } else {
+            hi = x;
+            W_hi = Wx;
+        }
+    }
+    return ct_error_set(CT_ENOCONV,
+                        "asymptotic law: u_max solve for W = %.17g left the bracket [%.17g, "
+                        "%.17g] wider than %g relative after 200 steps",
+                        target, lo, hi, tol);
+}
+
+int ct_asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e)
+{
+    law_consts k = consts(p);
+    double h0 = p->h0, uy = k.eps_y * k.H * h0; /* first yield, chi = 0 */
+    double W_top = work_load_value(&k, h0);
+    if (!(W < W_top))
+        return ct_error_set(CT_ERANGE,
+                            "asymptotic law: impact energy %.6g reaches u_max > h0 = %g (it needs "
+                            "W < %.6g), where the law's stage index n = -ln(u/h0)/ln fz is "
+                            "negative",
+                            W, h0, W_top);
+    double W_y = uy < h0 ? work_load_value(&k, uy) : W_top;
+    if (W <= W_y) {
+        /* no stage yields: invert Eq. 33's work pre K h0 x^(2+a) / (2+a), e = 1 exactly */
+        double a = k.alpha, pre = k.PY / (k.eps_y * k.H * k.fx);
+        double u = h0 * pow((2.0 + a) * W / (pre * k.K * h0), 1.0 / (2.0 + a));
+        double top = uy < h0 ? uy : h0;
+        *u_max = u < top ? u : top;
+        *e = 1.0;
+        return CT_OK;
+    }
+    /* W_y < W < W_top: the root lies in (uy, h0) */
+    double u = h0;
+    int st = solve_work(&k, W, uy, h0, 1e-15, &u);
+    if (st)
+        return st;
+    double Wl = work_load_value(&k, u), Wu = work_unload_value(&k, u, consistent);
+    if (!(Wu >= 0.0) || !(Wl > 0.0))
+        return ct_error_set(CT_ENOCONV, "asymptotic law: energies W_load = %g, W_unload = %g", Wl,
+                            Wu);
+    *u_max = u;
+    *e = sqrt(Wu / Wl);
+    return CT_OK;
+}

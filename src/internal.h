@@ -8,6 +8,10 @@
 #define CT_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define CT_PRINTF(a, b)
+/* e and u_max [length] of one impact of energy W on the virgin surface under the asymptotic
+ * law (Eqs. 33-34, 38, 39-40); p validated, W finite and > 0. For ct_law_impact. */
+int ct_asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e);
+
 #endif
 
 /* Records a detailed message for the calling thread and returns status, so that
@@ -18,5 +22,9 @@ int ct_error_set(int status, const char *fmt, ...) CT_PRINTF(2, 3);
 /* Sorts v ascending and drops repeated values; returns the new count. Breakpoint lists of
  * the bundle and of the series go through here. */
 size_t ct_sort_unique(double *v, size_t n);
+
+/* e and u_max [length] of one impact of energy W on the virgin surface under the asymptotic
+ * law (Eqs. 33-34, 38, 39-40); p validated, W finite and > 0. For ct_law_impact. */
+int ct_asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e);
 
 #endif

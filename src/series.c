@@ -2,8 +2,6 @@
  * energy balance (Eqs. 39-41) under the series and asymptotic laws. */
 #include "internal.h"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -256,61 +254,6 @@ static int series_impact(const ct_params *p, double W, double *u_max, double *e)
     return st;
 }
 
-typedef struct {
-    const ct_params *p;
-    double W;
-} asym_ctx;
-
-static double asym_residual(double u, void *ctx)
-{
-    asym_ctx *c = ctx;
-    double W;
-    return ct_asym_work_load(c->p, u, &W) ? NAN : W - c->W;
-}
-
-static int asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e)
-{
-    /* the law lives on 0 < u <= h0 (and below H*) */
-    double eps_y = p->sigma_y / p->E, hi = p->h0 < p->Hstar ? p->h0 : p->Hstar;
-    double W_hi = 0.0;
-    if (ct_asym_work_load(p, hi, &W_hi) || !(W_hi > W))
-        return ct_error_set(CT_ERANGE,
-                            "asymptotic law: impact energy %.6g reaches u_max > h0 (or H*), where "
-                            "the law's stage index n = -ln(u/h0)/ln fz is negative",
-                            W);
-    asym_ctx c = {p, W};
-    gsl_function F = {asym_residual, &c};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (!s)
-        return ct_error_set(CT_ENOMEM, "asymptotic law: out of memory");
-    gsl_error_handler_t *old = gsl_set_error_handler_off();
-    gsl_root_fsolver_set(s, &F, 0.0, hi);
-    int st = GSL_CONTINUE;
-    for (int it = 0; it < 300 && st == GSL_CONTINUE; it++) {
-        gsl_root_fsolver_iterate(s);
-        st = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 0.0,
-                                    1e-15);
-    }
-    *u_max = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
-    gsl_set_error_handler(old);
-    if (st != GSL_SUCCESS)
-        return ct_error_set(CT_ENOCONV, "asymptotic law: u_max solve did not converge");
-    if (*u_max <= eps_y * p->Hstar) {
-        *e = 1.0;
-        return CT_OK;
-    }
-    double Wl = NAN, Wu = NAN;
-    if ((st = ct_asym_work_load(p, *u_max, &Wl)) ||
-        (st = ct_asym_work_unload(p, *u_max, consistent, &Wu)))
-        return st;
-    if (!(Wu >= 0.0) || !(Wl > 0.0))
-        return ct_error_set(CT_ENOCONV, "asymptotic law: energies W_load = %g, W_unload = %g", Wl,
-                            Wu);
-    *e = sqrt(Wu / Wl);
-    return CT_OK;
-}
-
 int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e)
 {
     int st;
@@ -323,10 +266,10 @@ int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, doubl
         st = series_impact(p, W, u_max, e);
         break;
     case CT_LAW_ASYMPTOTIC:
-        st = asym_impact(p, 0, W, u_max, e);
+        st = ct_asym_impact(p, 0, W, u_max, e);
         break;
     case CT_LAW_ASYMPTOTIC_CONSISTENT:
-        st = asym_impact(p, 1, W, u_max, e);
+        st = ct_asym_impact(p, 1, W, u_max, e);
         break;
     default:
         return ct_error_set(CT_EINVAL, "law %d: unknown", (int)law);

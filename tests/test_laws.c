@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <float.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <math.h>
@@ -371,6 +372,99 @@ static void law_impact_elastic_below_critical(void **state)
     }
 }
 
+/* Eq. 39 under the asymptotic law: u_max from ct_law_impact brackets the energy W between
+ * the work at u_max (1 -+ 1e-12) (the closed-form work itself is only good to ~1e-13 near h0),
+ * and below first yield it is Eq. 33's work inverted by hand, from W = 1e-300 up to just below
+ * the energy that reaches h0. */
+static void law_impact_u_max_solves_eq39(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.5, 1.9}, Es[] = {100.0, 1e4};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 2; c++) {
+                ct_params p = make(fxs[a], fzs[b], Es[c], 10.0);
+                double eps_y = 1.0 / Es[c], uy = eps_y * p.Hstar, alpha = ct_alpha(&p);
+                double W_top = asym_work_load(&p, p.h0), W_y = asym_work_load(&p, uy);
+                /* Eq. 33 integrated: P_Y K x^(2+a) h0 / ((2+a) eps_y fx H), K as in MODEL.md */
+                double K = (1.0 - 1.0 / p.fz) / (1.0 - 1.0 / (p.fx * p.fz));
+                double pre = K / ((2.0 + alpha) * eps_y * p.fx * p.Hstar);
+                for (int k = 0; k <= 40; k++) {
+                    double W =
+                        k < 40 ? 1e-300 * pow(W_top / 1e-300, k / 40.0) : W_top * (1.0 - 1e-12);
+                    for (int law = 1; law < 3; law++) {
+                        double um, e;
+                        assert_int_equal(ct_law_impact(&p, (ct_law)law, W, &um, &e), CT_OK);
+                        if (W <= W_y) {
+                            assert_true(e == 1.0);
+                            assert_rel(um, pow(W / pre, 1.0 / (2.0 + alpha)), 1e-13);
+                        } else {
+                            assert_true(e < 1.0);
+                            assert_true(asym_work_load(&p, um * (1.0 - 1e-12)) < W);
+                            assert_true(asym_work_load(&p, fmin(um * (1.0 + 1e-12), p.h0)) > W);
+                        }
+                    }
+                }
+            }
+}
+
+static int gsl_handler_calls;
+
+static void count_gsl_error(const char *reason, const char *file, int line, int gsl_errno)
+{
+    (void)reason;
+    (void)file;
+    (void)line;
+    (void)gsl_errno;
+    gsl_handler_calls++;
+}
+
+/* ct_law_impact keeps no global state: it neither calls GSL's error handler (whose default
+ * aborts) nor switches it; inputs inside and outside every law's range give a status. */
+static void law_impact_status_without_gsl_handler(void **state)
+{
+    (void)state;
+    gsl_error_handler_t *before = gsl_set_error_handler(count_gsl_error);
+    gsl_handler_calls = 0;
+    ct_params p = make(1.5, 1.3, 500.0, 10.0);
+    double W_top = asym_work_load(&p, p.h0); /* the asymptotic law's energy at u = h0 */
+    struct {
+        double W;
+        int series, asym;
+    } cases[] = {
+        {1e-320, CT_OK, CT_OK}, /* subnormal: elastic, e = 1 */
+        {1e-4, CT_OK, CT_OK},
+        {W_top * (1.0 - 1e-12), CT_OK, CT_OK},
+        {W_top, CT_OK, CT_ERANGE},   /* u_max would be h0: the series still applies */
+        {1e3, CT_ERANGE, CT_ERANGE}, /* beyond H* for the series */
+        {DBL_MAX, CT_ERANGE, CT_ERANGE},
+        {INFINITY, CT_EINVAL, CT_EINVAL},
+        {NAN, CT_EINVAL, CT_EINVAL},
+        {-1.0, CT_EINVAL, CT_EINVAL},
+        {0.0, CT_EINVAL, CT_EINVAL},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
+        for (int law = 0; law < 3; law++) {
+            double um = -1.0, e = -1.0;
+            int st = ct_law_impact(&p, (ct_law)law, cases[c].W, &um, &e);
+            assert_int_equal(st, law == CT_LAW_SERIES ? cases[c].series : cases[c].asym);
+            if (st == CT_OK)
+                assert_true(isfinite(um) && um > 0.0 && um <= p.h0 && e > 0.0 && e <= 1.0);
+            else
+                assert_true(um == -1.0 && e == -1.0 && ct_error_message()[0] != '\0');
+        }
+    double um, e;
+    assert_int_equal(ct_law_impact(&p, (ct_law)7, 1e-4, &um, &e), CT_EINVAL);
+    ct_params bad = p;
+    bad.fz = 2.0;
+    assert_int_equal(ct_law_impact(&bad, CT_LAW_ASYMPTOTIC, 1e-4, &um, &e), CT_EINVAL);
+    bad = p;
+    bad.fx = NAN;
+    assert_int_equal(ct_law_impact(&bad, CT_LAW_SERIES, 1e-4, &um, &e), CT_EINVAL);
+    assert_int_equal(gsl_handler_calls, 0);
+    assert_true(gsl_set_error_handler(before) == count_gsl_error);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -384,6 +478,8 @@ int main(void)
         cmocka_unit_test(paper_fig7_fig8_claims),
         cmocka_unit_test(asymptotic_e_power_law),
         cmocka_unit_test(law_impact_elastic_below_critical),
+        cmocka_unit_test(law_impact_u_max_solves_eq39),
+        cmocka_unit_test(law_impact_status_without_gsl_handler),
     };
     return cmocka_run_group_tests_name("laws", tests, NULL, NULL);
 }
