@@ -11,6 +11,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <math.h>
+#include <string.h>
 
 #include "assert_rel.h"
 #include "cantact.h"
@@ -113,6 +114,137 @@ static void eq33_equals_eq21_at_nodes(void **state)
                 assert_rel(series_load(&p, u), eq21(&p, n), 1e-12);
             }
         }
+}
+
+/* Eqs. 22-24 summed stage by stage in long double, as MODEL.md §5 reads them: a stage that
+ * yielded on the way to u_max (exact test, Eq. 29: h_i <= chi_M h0) pushes
+ * E s_i ((u - u_max)/H* + eps_y) while u >= h-bar_i = u_max - eps_y (H* - h_i) (Eq. 24); every
+ * other stage stays on its loading line (E/H*) s_i (u - h_i) while u > h_i (Eq. 22). */
+static double direct_unload(const ct_params *p, double u_max, double u)
+{
+    long double fx = p->fx, fz = p->fz, H = p->Hstar, E = p->E, eps_y = (long double)p->sigma_y / E;
+    long double chiM = (u_max - H * eps_y) / (p->h0 * (1 - eps_y)), P = 0.0L;
+    /* s_i and h_i by repeated division: 6000 roundings of 5e-20 stay far below 1e-12 */
+    long double s = p->l0 * (1 - 1 / fx), h = p->h0;
+    for (long i = 0; i < 6000; i++, s /= fx, h /= fz) {
+        if (chiM > 0 && h <= chiM * p->h0) {
+            long double force = E * s * ((u - u_max) / H + eps_y);
+            if (u >= u_max - eps_y * (H - h) && force > 0)
+                P += force;
+        } else if (u > h) {
+            P += E / H * s * (u - h);
+        }
+    }
+    return (double)P;
+}
+
+static void series_unload_against_direct_sum(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.3, 1.7}, Es[] = {100.0, 1000.0};
+    double Hs[] = {3.0, 10.0};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 2; c++)
+                for (int d = 0; d < 2; d++) {
+                    ct_params p = make(fxs[a], fzs[b], Es[c], Hs[d]);
+                    /* one u_max below first yield (eps_y H*), three above it */
+                    double umaxs[] = {0.47 * Hs[d] / Es[c], 0.0377, 0.213, 0.61};
+                    int plastic_seen = 0;
+                    for (int m = 0; m < 4; m++) {
+                        double um = umaxs[m];
+                        for (int k = 0; k <= 40; k++) {
+                            double u = um * (k < 40 ? (k + 0.37) / 40.0 : 1.0), P = -1.0;
+                            assert_int_equal(ct_series_unload(&p, um, u, &P), CT_OK);
+                            assert_rel(P, direct_unload(&p, um, u), 1e-12);
+                        }
+                        /* at u_max unloading meets loading: plastic stages at sigma_y */
+                        assert_rel(series_load(&p, um), direct_unload(&p, um, um), 1e-12);
+                        plastic_seen |= um > Hs[d] / Es[c];
+                    }
+                    assert_true(plastic_seen);
+                }
+}
+
+/* Eq. 21 (all stages elastic, u <= eps_y H*): at the nodes as printed, loading and the
+ * unloading from an elastic u_max alike; between nodes (Eq. 15 with h_n replaced by u) the
+ * direct sum (E/H*) sum_{h_i < u} s_i (u - h_i). */
+static void series_elastic_branch_eq21(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.5, 1.9};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            ct_params p = make(fxs[a], fzs[b], 100.0, 10.0);
+            double uy = p.Hstar / p.E, um = 0.93 * uy; /* eps_y H* = 0.1 h0 */
+            int nodes = 0;
+            for (long n = 0; n < 300; n++) {
+                double h = pow(p.fz, -(double)n), P;
+                if (h > um)
+                    continue;
+                nodes++;
+                assert_rel(series_load(&p, h), eq21(&p, n), 1e-12);
+                assert_int_equal(ct_series_unload(&p, um, h, &P), CT_OK);
+                assert_rel(P, eq21(&p, n), 1e-12);
+                double u = h * (1.0 - 0.41 * (1.0 - 1.0 / p.fz)); /* between nodes n+1 and n */
+                long double direct = 0.0L, fx = p.fx, fz = p.fz;
+                long double si = p.l0 * powl(fx, -(n + 1)) * (1 - 1 / fx), hi = h / fz;
+                for (long i = n + 1; i < n + 6000; i++, si /= fx, hi /= fz)
+                    direct += (long double)p.E / p.Hstar * si * (u - hi);
+                assert_rel(series_load(&p, u), (double)direct, 1e-12);
+            }
+            assert_true(nodes > 20);
+        }
+}
+
+/* Outside its domain (u > h0: the continuous stage index n = -ln(u/h0)/ln fz < 0) the
+ * asymptotic law refuses with CT_ERANGE and a message naming u and h0, and writes nothing (no
+ * NaN); u not finite or negative is CT_EINVAL; the series refuses u beyond H*. */
+static void laws_refuse_outside_their_domain(void **state)
+{
+    (void)state;
+    ct_params p = make(1.5, 1.3, 500.0, 10.0);
+    double beyond[] = {1.0 + 1e-12, 2.0, 9.0, 1e300};
+    for (int k = 0; k < 4; k++) {
+        double u = beyond[k], P = 42.0, W = 42.0;
+        assert_int_equal(ct_asym_load(&p, u, &P), CT_ERANGE);
+        assert_non_null(strstr(ct_error_message(), "u = "));
+        assert_non_null(strstr(ct_error_message(), "h0 = "));
+        assert_int_equal(ct_asym_work_load(&p, u, &W), CT_ERANGE);
+        assert_int_equal(ct_asym_unload(&p, u, 0.5, 0, &P), CT_ERANGE);
+        assert_non_null(strstr(ct_error_message(), "u_max = "));
+        assert_int_equal(ct_asym_unload(&p, 0.5, u, 1, &P), CT_ERANGE);
+        assert_int_equal(ct_asym_work_unload(&p, u, 0, &W), CT_ERANGE);
+        assert_int_equal(ct_asym_work_unload(&p, u, 1, &W), CT_ERANGE);
+        assert_true(P == 42.0 && W == 42.0);
+    }
+    /* the domain's end, u = h0, is inside */
+    assert_true(isfinite(asym_load(&p, p.h0)) && asym_load(&p, p.h0) > 0.0);
+    assert_true(isfinite(asym_work_unload(&p, p.h0, 0)) && asym_work_unload(&p, p.h0, 0) > 0.0);
+    assert_true(asym_load(&p, 0.0) == 0.0 && asym_work_load(&p, 0.0) == 0.0);
+    double bad[] = {NAN, -INFINITY, INFINITY, -1e-300};
+    for (int k = 0; k < 4; k++) {
+        double u = bad[k], P = 42.0, W = 42.0;
+        assert_int_equal(ct_asym_load(&p, u, &P), CT_EINVAL);
+        assert_int_equal(ct_asym_work_load(&p, u, &W), CT_EINVAL);
+        assert_int_equal(ct_asym_unload(&p, 0.5, u, 0, &P), CT_EINVAL);
+        assert_int_equal(ct_asym_unload(&p, u, 0.5, 0, &P), CT_EINVAL);
+        assert_int_equal(ct_asym_work_unload(&p, u, 1, &W), CT_EINVAL);
+        assert_int_equal(ct_series_load(&p, u, &P), CT_EINVAL);
+        assert_int_equal(ct_series_unload(&p, 0.5, u, &P), CT_EINVAL);
+        assert_int_equal(ct_series_unload(&p, u, 0.5, &P), CT_EINVAL);
+        assert_true(P == 42.0 && W == 42.0);
+    }
+    double P = 42.0;
+    assert_int_equal(ct_series_load(&p, p.Hstar * (1.0 + 1e-12), &P), CT_ERANGE);
+    assert_int_equal(ct_series_unload(&p, 2.0 * p.Hstar, 1.0, &P), CT_ERANGE);
+    assert_true(P == 42.0);
+    assert_true(isfinite(series_load(&p, p.Hstar)));
+    ct_params bad_p = p;
+    bad_p.fz = 1.0;
+    assert_int_equal(ct_asym_load(&bad_p, 0.5, &P), CT_EINVAL);
+    assert_int_equal(ct_series_load(&bad_p, 0.5, &P), CT_EINVAL);
+    assert_true(P == 42.0);
 }
 
 static void stable_near_one_and_tiny_u(void **state)
@@ -470,6 +602,9 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(eq19_at_nodes_against_direct_sum),
         cmocka_unit_test(eq33_equals_eq21_at_nodes),
+        cmocka_unit_test(series_unload_against_direct_sum),
+        cmocka_unit_test(series_elastic_branch_eq21),
+        cmocka_unit_test(laws_refuse_outside_their_domain),
         cmocka_unit_test(stable_near_one_and_tiny_u),
         cmocka_unit_test(asymptotic_energies_against_gsl),
         cmocka_unit_test(paper_fig4_claims),
