@@ -71,4 +71,10 @@ int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_re
 int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
                           size_t m, double *W_load, double *W_unload);
 
+/* ---- the paper's laws ---- */
+
+/* e and u_max [length] of one impact of energy W on the virgin surface under the asymptotic
+ * law (Eqs. 33-34, 38, 39-40); p validated, W finite and > 0. For ct_law_impact. */
+int ct_asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e);
+
 #endif

@@ -2,8 +2,6 @@
  * energy balance (Eqs. 39-41) under the series and asymptotic laws. */
 #include "internal.h"
 
-#include <gsl/gsl_errno.h>
-#include <gsl/gsl_roots.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -54,7 +52,7 @@ static double elastic_sum(const ct_params *p, double u, double a, double b)
     return p->E / p->Hstar * (u * ct_sum_area(p, a, b) - ct_sum_depth_area(p, a, b));
 }
 
-double ct_series_load(const ct_params *p, double u)
+static double series_load_value(const ct_params *p, double u)
 {
     if (!(u > 0.0))
         return 0.0;
@@ -65,7 +63,7 @@ double ct_series_load(const ct_params *p, double u)
     return elastic_sum(p, u, n1, np - 1.0) + p->sigma_y * ct_stage_length(p, np);
 }
 
-double ct_series_unload(const ct_params *p, double u_max, double u)
+static double series_unload_value(const ct_params *p, double u_max, double u)
 {
     double np = first_plastic_stage(p, u_max); /* n-bar_c + 1 */
     if (!(u > 0.0))
@@ -90,6 +88,41 @@ double ct_series_unload(const ct_params *p, double u_max, double u)
     return P;
 }
 
+/* The parameters, then a displacement `name` = u [length]: CT_EINVAL unless finite and >= 0,
+ * CT_ERANGE beyond H* (strains >= 1: the layer would be crushed). */
+static int check_u(const ct_params *p, const char *name, double u)
+{
+    int st;
+    if ((st = ct_params_validate(p)))
+        return st;
+    if (!isfinite(u) || u < 0.0)
+        return ct_error_set(CT_EINVAL, "series: %s = %g: must be finite and >= 0", name, u);
+    if (u > p->Hstar)
+        return ct_error_set(CT_ERANGE,
+                            "series: %s = %.17g is beyond H* = %.17g (strains >= 1: the layer "
+                            "would be crushed)",
+                            name, u, p->Hstar);
+    return CT_OK;
+}
+
+int ct_series_load(const ct_params *p, double u, double *P)
+{
+    int st = check_u(p, "u", u);
+    if (st)
+        return st;
+    *P = series_load_value(p, u);
+    return CT_OK;
+}
+
+int ct_series_unload(const ct_params *p, double u_max, double u, double *P)
+{
+    int st;
+    if ((st = check_u(p, "u_max", u_max)) || (st = check_u(p, "u", u)))
+        return st;
+    *P = series_unload_value(p, u_max, u);
+    return CT_OK;
+}
+
 /* ---- energies of the series by breakpoint quadrature ---- */
 
 /* Stages carried as breakpoints: down to h_M <= 1e-18 h0 (or 2e5 stages); the remaining
@@ -105,7 +138,7 @@ typedef double (*law_force)(const ct_params *p, double u_max, double u);
 static double load_force(const ct_params *p, double u_max, double u)
 {
     (void)u_max;
-    return ct_series_load(p, u);
+    return series_load_value(p, u);
 }
 
 /* Piecewise-linear integrand between sorted breakpoints: per interval, the values at the two
@@ -211,7 +244,7 @@ static int series_impact(const ct_params *p, double W, double *u_max, double *e)
     }
     m = ct_sort_unique(pts, m);
     piece *pu = NULL;
-    st = build_pieces(p, ct_series_unload, *u_max, pts, m, &pu);
+    st = build_pieces(p, series_unload_value, *u_max, pts, m, &pu);
     if (!st && pu && m >= 2) {
         double Wu = pu[m - 1].W_before;
         *e = sqrt(Wu / W);
@@ -219,56 +252,6 @@ static int series_impact(const ct_params *p, double W, double *u_max, double *e)
     }
     free(pts);
     return st;
-}
-
-typedef struct {
-    const ct_params *p;
-    double W;
-} asym_ctx;
-
-static double asym_residual(double u, void *ctx)
-{
-    asym_ctx *c = ctx;
-    return ct_asym_work_load(c->p, u) - c->W;
-}
-
-static int asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e)
-{
-    /* the law lives on 0 < u <= h0 (and below H*) */
-    double eps_y = p->sigma_y / p->E, hi = p->h0 < p->Hstar ? p->h0 : p->Hstar;
-    if (!(ct_asym_work_load(p, hi) > W))
-        return ct_error_set(CT_ERANGE,
-                            "asymptotic law: impact energy %.6g reaches u_max > h0 (or H*), where "
-                            "the law's stage index n = -ln(u/h0)/ln fz is negative",
-                            W);
-    asym_ctx c = {p, W};
-    gsl_function F = {asym_residual, &c};
-    gsl_root_fsolver *s = gsl_root_fsolver_alloc(gsl_root_fsolver_brent);
-    if (!s)
-        return ct_error_set(CT_ENOMEM, "asymptotic law: out of memory");
-    gsl_error_handler_t *old = gsl_set_error_handler_off();
-    gsl_root_fsolver_set(s, &F, 0.0, hi);
-    int st = GSL_CONTINUE;
-    for (int it = 0; it < 300 && st == GSL_CONTINUE; it++) {
-        gsl_root_fsolver_iterate(s);
-        st = gsl_root_test_interval(gsl_root_fsolver_x_lower(s), gsl_root_fsolver_x_upper(s), 0.0,
-                                    1e-15);
-    }
-    *u_max = gsl_root_fsolver_root(s);
-    gsl_root_fsolver_free(s);
-    gsl_set_error_handler(old);
-    if (st != GSL_SUCCESS)
-        return ct_error_set(CT_ENOCONV, "asymptotic law: u_max solve did not converge");
-    if (*u_max <= eps_y * p->Hstar) {
-        *e = 1.0;
-        return CT_OK;
-    }
-    double Wl = ct_asym_work_load(p, *u_max), Wu = ct_asym_work_unload(p, *u_max, consistent);
-    if (!(Wu >= 0.0) || !(Wl > 0.0))
-        return ct_error_set(CT_ENOCONV, "asymptotic law: energies W_load = %g, W_unload = %g", Wl,
-                            Wu);
-    *e = sqrt(Wu / Wl);
-    return CT_OK;
 }
 
 int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e)
@@ -283,10 +266,10 @@ int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, doubl
         st = series_impact(p, W, u_max, e);
         break;
     case CT_LAW_ASYMPTOTIC:
-        st = asym_impact(p, 0, W, u_max, e);
+        st = ct_asym_impact(p, 0, W, u_max, e);
         break;
     case CT_LAW_ASYMPTOTIC_CONSISTENT:
-        st = asym_impact(p, 1, W, u_max, e);
+        st = ct_asym_impact(p, 1, W, u_max, e);
         break;
     default:
         return ct_error_set(CT_EINVAL, "law %d: unknown", (int)law);

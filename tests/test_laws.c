@@ -7,9 +7,11 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <float.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_integration.h>
 #include <math.h>
+#include <string.h>
 
 #include "assert_rel.h"
 #include "cantact.h"
@@ -19,6 +21,42 @@ static ct_params make(double fx, double fz, double E_over_sy, double H)
     ct_params p = {
         .fx = fx, .fz = fz, .l0 = 1.0, .h0 = 1.0, .Hstar = H, .E = E_over_sy, .sigma_y = 1.0};
     return p;
+}
+
+/* The laws' values where they must succeed: the status is asserted, the value returned. */
+static double series_load(const ct_params *p, double u)
+{
+    double P = NAN;
+    assert_int_equal(ct_series_load(p, u, &P), CT_OK);
+    return P;
+}
+
+static double asym_load(const ct_params *p, double u)
+{
+    double P = NAN;
+    assert_int_equal(ct_asym_load(p, u, &P), CT_OK);
+    return P;
+}
+
+static double asym_unload(const ct_params *p, double u_max, double u, int consistent)
+{
+    double P = NAN;
+    assert_int_equal(ct_asym_unload(p, u_max, u, consistent, &P), CT_OK);
+    return P;
+}
+
+static double asym_work_load(const ct_params *p, double u)
+{
+    double W = NAN;
+    assert_int_equal(ct_asym_work_load(p, u, &W), CT_OK);
+    return W;
+}
+
+static double asym_work_unload(const ct_params *p, double u_max, int consistent)
+{
+    double W = NAN;
+    assert_int_equal(ct_asym_work_unload(p, u_max, consistent, &W), CT_OK);
+    return W;
 }
 
 /* Eq. 15 at u = h_n summed stage by stage in long double: elastic stages with the h_i << H*
@@ -45,7 +83,7 @@ static void eq19_at_nodes_against_direct_sum(void **state)
             for (long n = 0; n < 60; n += 3) {
                 double u = p.h0 * pow(p.fz, -(double)n);
                 /* evaluate just above the node so that stage n is surely out of contact */
-                assert_rel(ct_series_load(&p, u), direct_series(&p, n), 1e-12);
+                assert_rel(series_load(&p, u), direct_series(&p, n), 1e-12);
             }
         }
 }
@@ -72,10 +110,141 @@ static void eq33_equals_eq21_at_nodes(void **state)
                 double u = pow(p.fz, -(double)n);
                 if (u > eps_y * p.Hstar)
                     continue; /* Eq. 33 holds where no stage yields */
-                assert_rel(ct_asym_load(&p, u), eq21(&p, n), 1e-12);
-                assert_rel(ct_series_load(&p, u), eq21(&p, n), 1e-12);
+                assert_rel(asym_load(&p, u), eq21(&p, n), 1e-12);
+                assert_rel(series_load(&p, u), eq21(&p, n), 1e-12);
             }
         }
+}
+
+/* Eqs. 22-24 summed stage by stage in long double, as MODEL.md §5 reads them: a stage that
+ * yielded on the way to u_max (exact test, Eq. 29: h_i <= chi_M h0) pushes
+ * E s_i ((u - u_max)/H* + eps_y) while u >= h-bar_i = u_max - eps_y (H* - h_i) (Eq. 24); every
+ * other stage stays on its loading line (E/H*) s_i (u - h_i) while u > h_i (Eq. 22). */
+static double direct_unload(const ct_params *p, double u_max, double u)
+{
+    long double fx = p->fx, fz = p->fz, H = p->Hstar, E = p->E, eps_y = (long double)p->sigma_y / E;
+    long double chiM = (u_max - H * eps_y) / (p->h0 * (1 - eps_y)), P = 0.0L;
+    /* s_i and h_i by repeated division: 6000 roundings of 5e-20 stay far below 1e-12 */
+    long double s = p->l0 * (1 - 1 / fx), h = p->h0;
+    for (long i = 0; i < 6000; i++, s /= fx, h /= fz) {
+        if (chiM > 0 && h <= chiM * p->h0) {
+            long double force = E * s * ((u - u_max) / H + eps_y);
+            if (u >= u_max - eps_y * (H - h) && force > 0)
+                P += force;
+        } else if (u > h) {
+            P += E / H * s * (u - h);
+        }
+    }
+    return (double)P;
+}
+
+static void series_unload_against_direct_sum(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.3, 1.7}, Es[] = {100.0, 1000.0};
+    double Hs[] = {3.0, 10.0};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 2; c++)
+                for (int d = 0; d < 2; d++) {
+                    ct_params p = make(fxs[a], fzs[b], Es[c], Hs[d]);
+                    /* one u_max below first yield (eps_y H*), three above it */
+                    double umaxs[] = {0.47 * Hs[d] / Es[c], 0.0377, 0.213, 0.61};
+                    int plastic_seen = 0;
+                    for (int m = 0; m < 4; m++) {
+                        double um = umaxs[m];
+                        for (int k = 0; k <= 40; k++) {
+                            double u = um * (k < 40 ? (k + 0.37) / 40.0 : 1.0), P = -1.0;
+                            assert_int_equal(ct_series_unload(&p, um, u, &P), CT_OK);
+                            assert_rel(P, direct_unload(&p, um, u), 1e-12);
+                        }
+                        /* at u_max unloading meets loading: plastic stages at sigma_y */
+                        assert_rel(series_load(&p, um), direct_unload(&p, um, um), 1e-12);
+                        plastic_seen |= um > Hs[d] / Es[c];
+                    }
+                    assert_true(plastic_seen);
+                }
+}
+
+/* Eq. 21 (all stages elastic, u <= eps_y H*): at the nodes as printed, loading and the
+ * unloading from an elastic u_max alike; between nodes (Eq. 15 with h_n replaced by u) the
+ * direct sum (E/H*) sum_{h_i < u} s_i (u - h_i). */
+static void series_elastic_branch_eq21(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.5, 1.9};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++) {
+            ct_params p = make(fxs[a], fzs[b], 100.0, 10.0);
+            double uy = p.Hstar / p.E, um = 0.93 * uy; /* eps_y H* = 0.1 h0 */
+            int nodes = 0;
+            for (long n = 0; n < 300; n++) {
+                double h = pow(p.fz, -(double)n), P;
+                if (h > um)
+                    continue;
+                nodes++;
+                assert_rel(series_load(&p, h), eq21(&p, n), 1e-12);
+                assert_int_equal(ct_series_unload(&p, um, h, &P), CT_OK);
+                assert_rel(P, eq21(&p, n), 1e-12);
+                double u = h * (1.0 - 0.41 * (1.0 - 1.0 / p.fz)); /* between nodes n+1 and n */
+                long double direct = 0.0L, fx = p.fx, fz = p.fz;
+                long double si = p.l0 * powl(fx, -(n + 1)) * (1 - 1 / fx), hi = h / fz;
+                for (long i = n + 1; i < n + 6000; i++, si /= fx, hi /= fz)
+                    direct += (long double)p.E / p.Hstar * si * (u - hi);
+                assert_rel(series_load(&p, u), (double)direct, 1e-12);
+            }
+            assert_true(nodes > 20);
+        }
+}
+
+/* Outside its domain (u > h0: the continuous stage index n = -ln(u/h0)/ln fz < 0) the
+ * asymptotic law refuses with CT_ERANGE and a message naming u and h0, and writes nothing (no
+ * NaN); u not finite or negative is CT_EINVAL; the series refuses u beyond H*. */
+static void laws_refuse_outside_their_domain(void **state)
+{
+    (void)state;
+    ct_params p = make(1.5, 1.3, 500.0, 10.0);
+    double beyond[] = {1.0 + 1e-12, 2.0, 9.0, 1e300};
+    for (int k = 0; k < 4; k++) {
+        double u = beyond[k], P = 42.0, W = 42.0;
+        assert_int_equal(ct_asym_load(&p, u, &P), CT_ERANGE);
+        assert_non_null(strstr(ct_error_message(), "u = "));
+        assert_non_null(strstr(ct_error_message(), "h0 = "));
+        assert_int_equal(ct_asym_work_load(&p, u, &W), CT_ERANGE);
+        assert_int_equal(ct_asym_unload(&p, u, 0.5, 0, &P), CT_ERANGE);
+        assert_non_null(strstr(ct_error_message(), "u_max = "));
+        assert_int_equal(ct_asym_unload(&p, 0.5, u, 1, &P), CT_ERANGE);
+        assert_int_equal(ct_asym_work_unload(&p, u, 0, &W), CT_ERANGE);
+        assert_int_equal(ct_asym_work_unload(&p, u, 1, &W), CT_ERANGE);
+        assert_true(P == 42.0 && W == 42.0);
+    }
+    /* the domain's end, u = h0, is inside */
+    assert_true(isfinite(asym_load(&p, p.h0)) && asym_load(&p, p.h0) > 0.0);
+    assert_true(isfinite(asym_work_unload(&p, p.h0, 0)) && asym_work_unload(&p, p.h0, 0) > 0.0);
+    assert_true(asym_load(&p, 0.0) == 0.0 && asym_work_load(&p, 0.0) == 0.0);
+    double bad[] = {NAN, -INFINITY, INFINITY, -1e-300};
+    for (int k = 0; k < 4; k++) {
+        double u = bad[k], P = 42.0, W = 42.0;
+        assert_int_equal(ct_asym_load(&p, u, &P), CT_EINVAL);
+        assert_int_equal(ct_asym_work_load(&p, u, &W), CT_EINVAL);
+        assert_int_equal(ct_asym_unload(&p, 0.5, u, 0, &P), CT_EINVAL);
+        assert_int_equal(ct_asym_unload(&p, u, 0.5, 0, &P), CT_EINVAL);
+        assert_int_equal(ct_asym_work_unload(&p, u, 1, &W), CT_EINVAL);
+        assert_int_equal(ct_series_load(&p, u, &P), CT_EINVAL);
+        assert_int_equal(ct_series_unload(&p, 0.5, u, &P), CT_EINVAL);
+        assert_int_equal(ct_series_unload(&p, u, 0.5, &P), CT_EINVAL);
+        assert_true(P == 42.0 && W == 42.0);
+    }
+    double P = 42.0;
+    assert_int_equal(ct_series_load(&p, p.Hstar * (1.0 + 1e-12), &P), CT_ERANGE);
+    assert_int_equal(ct_series_unload(&p, 2.0 * p.Hstar, 1.0, &P), CT_ERANGE);
+    assert_true(P == 42.0);
+    assert_true(isfinite(series_load(&p, p.Hstar)));
+    ct_params bad_p = p;
+    bad_p.fz = 1.0;
+    assert_int_equal(ct_asym_load(&bad_p, 0.5, &P), CT_EINVAL);
+    assert_int_equal(ct_series_load(&bad_p, 0.5, &P), CT_EINVAL);
+    assert_true(P == 42.0);
 }
 
 static void stable_near_one_and_tiny_u(void **state)
@@ -87,13 +256,13 @@ static void stable_near_one_and_tiny_u(void **state)
     long double K = (d / (1 + d)) / ((2 * d + d * d) / ((1 + d) * (1 + d)));
     double u = 1e-3;
     long double eq33 = K * powl(u, 2.0L) / ((1.0L / 500.0L) * (1 + d) * 10.0L);
-    assert_rel(ct_asym_load(&p, u), (double)eq33, 1e-8);
+    assert_rel(asym_load(&p, u), (double)eq33, 1e-8);
     /* tiny u and deep n: finite, non-negative, no NaN */
     ct_params q = make(1.5, 1.3, 500.0, 10.0);
     double us[] = {1e-12, 1e-30, 1e-300};
     for (int k = 0; k < 3; k++) {
-        double v[] = {ct_series_load(&q, us[k]), ct_asym_load(&q, us[k]),
-                      ct_asym_work_load(&q, us[k]), ct_series_load(&p, us[k])};
+        double v[] = {series_load(&q, us[k]), asym_load(&q, us[k]), asym_work_load(&q, us[k]),
+                      series_load(&p, us[k])};
         for (int j = 0; j < 4; j++)
             assert_true(isfinite(v[j]) && v[j] >= 0.0);
     }
@@ -111,7 +280,7 @@ typedef struct {
 static double law_f(double u, void *c)
 {
     law_ctx *l = c;
-    return l->unload ? ct_asym_unload(l->p, l->u_max, u, l->consistent) : ct_asym_load(l->p, u);
+    return l->unload ? asym_unload(l->p, l->u_max, u, l->consistent) : asym_load(l->p, u);
 }
 
 static void asymptotic_energies_against_gsl(void **state)
@@ -134,7 +303,7 @@ static void asymptotic_energies_against_gsl(void **state)
         } else {
             gsl_integration_qags(&F, 0.0, um, 0.0, 1e-13, 1000, w, &r, &err);
         }
-        assert_rel(ct_asym_work_load(&p, um), r1 + r, 1e-11);
+        assert_rel(asym_work_load(&p, um), r1 + r, 1e-11);
         for (int cons = 0; cons < 2; cons++) {
             c.unload = 1;
             c.consistent = cons;
@@ -144,7 +313,7 @@ static void asymptotic_energies_against_gsl(void **state)
             double split = chiM < um ? chiM : um;
             gsl_integration_qags(&F, hbar, split, 0.0, 1e-13, 1000, w, &ra, &err);
             gsl_integration_qags(&F, split, um, 0.0, 1e-13, 1000, w, &rb, &err);
-            assert_rel(ct_asym_work_unload(&p, um, cons), ra + rb, 1e-11);
+            assert_rel(asym_work_unload(&p, um, cons), ra + rb, 1e-11);
         }
     }
     gsl_integration_workspace_free(w);
@@ -155,8 +324,8 @@ static double deviation(const ct_params *p, double u1, double u2)
 {
     double m = 0.0;
     for (int k = 0; k <= 1000; k++) {
-        double u = u1 * pow(u2 / u1, k / 1000.0), s = ct_series_load(p, u);
-        double d = fabs(ct_asym_load(p, u) - s) / s;
+        double u = u1 * pow(u2 / u1, k / 1000.0), s = series_load(p, u);
+        double d = fabs(asym_load(p, u) - s) / s;
         m = d > m ? d : m;
     }
     return m;
@@ -210,7 +379,7 @@ static void paper_fig5_fig6_claims(void **state)
         double prevP = 0.0, prevA = 0.0, prevR = 0.0;
         for (int k = 0; k < 3; k++) {
             ct_params p = make(1.5, 1.3, Es[k], 10.0);
-            double P = exact_force(&p, u), A = ct_asym_load(&p, u), R = exact_release(&p, u);
+            double P = exact_force(&p, u), A = asym_load(&p, u), R = exact_release(&p, u);
             assert_true(P > prevP && A > prevA && R >= prevR);
             prevP = P;
             prevA = A;
@@ -223,7 +392,7 @@ static void paper_fig5_fig6_claims(void **state)
             double fzs[] = {1.1, 1.3, 1.5, 1.7, 1.9};
             for (int b = 0; b < 5; b++) {
                 ct_params p = make(fxs[a], fzs[b], 300.0, 10.0);
-                double P = exact_force(&p, u), A = ct_asym_load(&p, u);
+                double P = exact_force(&p, u), A = asym_load(&p, u);
                 assert_true(P > prevF && A > prevAs);
                 prevF = P;
                 prevAs = A;
@@ -246,8 +415,8 @@ static void paper_convexity_claim(void **state)
         int concave_seen = 0, convex_after_concave = 0;
         for (int k = 1; k < 4000; k++) {
             double u = k * h;
-            double d2 = ct_asym_load(&p, u + h) - 2 * ct_asym_load(&p, u) + ct_asym_load(&p, u - h);
-            double scale = 1e-9 * ct_asym_load(&p, u + h);
+            double d2 = asym_load(&p, u + h) - 2 * asym_load(&p, u) + asym_load(&p, u - h);
+            double scale = 1e-9 * asym_load(&p, u + h);
             if (d2 < -scale)
                 concave_seen = 1;
             else if (d2 > scale && concave_seen)
@@ -323,7 +492,7 @@ static void law_impact_elastic_below_critical(void **state)
     ct_params p = make(1.5, 1.3, 500.0, 10.0);
     double uy = p.Hstar / p.E, um, e;
     for (int law = 0; law < 3; law++) {
-        double Wc = law == CT_LAW_SERIES ? 0.0 : ct_asym_work_load(&p, uy);
+        double Wc = law == CT_LAW_SERIES ? 0.0 : asym_work_load(&p, uy);
         if (law != CT_LAW_SERIES) {
             assert_int_equal(ct_law_impact(&p, (ct_law)law, 0.99 * Wc, &um, &e), CT_OK);
             assert_true(e == 1.0);
@@ -335,11 +504,107 @@ static void law_impact_elastic_below_critical(void **state)
     }
 }
 
+/* Eq. 39 under the asymptotic law: u_max from ct_law_impact brackets the energy W between
+ * the work at u_max (1 -+ 1e-12) (the closed-form work itself is only good to ~1e-13 near h0),
+ * and below first yield it is Eq. 33's work inverted by hand, from W = 1e-300 up to just below
+ * the energy that reaches h0. */
+static void law_impact_u_max_solves_eq39(void **state)
+{
+    (void)state;
+    double fxs[] = {1.2, 1.5, 1.8}, fzs[] = {1.1, 1.5, 1.9}, Es[] = {100.0, 1e4};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            for (int c = 0; c < 2; c++) {
+                ct_params p = make(fxs[a], fzs[b], Es[c], 10.0);
+                double eps_y = 1.0 / Es[c], uy = eps_y * p.Hstar, alpha = ct_alpha(&p);
+                double W_top = asym_work_load(&p, p.h0), W_y = asym_work_load(&p, uy);
+                /* Eq. 33 integrated: P_Y K x^(2+a) h0 / ((2+a) eps_y fx H), K as in MODEL.md */
+                double K = (1.0 - 1.0 / p.fz) / (1.0 - 1.0 / (p.fx * p.fz));
+                double pre = K / ((2.0 + alpha) * eps_y * p.fx * p.Hstar);
+                for (int k = 0; k <= 40; k++) {
+                    double W =
+                        k < 40 ? 1e-300 * pow(W_top / 1e-300, k / 40.0) : W_top * (1.0 - 1e-12);
+                    for (int law = 1; law < 3; law++) {
+                        double um, e;
+                        assert_int_equal(ct_law_impact(&p, (ct_law)law, W, &um, &e), CT_OK);
+                        if (W <= W_y) {
+                            assert_true(e == 1.0);
+                            assert_rel(um, pow(W / pre, 1.0 / (2.0 + alpha)), 1e-13);
+                        } else {
+                            assert_true(e < 1.0);
+                            assert_true(asym_work_load(&p, um * (1.0 - 1e-12)) < W);
+                            assert_true(asym_work_load(&p, fmin(um * (1.0 + 1e-12), p.h0)) > W);
+                        }
+                    }
+                }
+            }
+}
+
+static int gsl_handler_calls;
+
+static void count_gsl_error(const char *reason, const char *file, int line, int gsl_errno)
+{
+    (void)reason;
+    (void)file;
+    (void)line;
+    (void)gsl_errno;
+    gsl_handler_calls++;
+}
+
+/* ct_law_impact keeps no global state: it neither calls GSL's error handler (whose default
+ * aborts) nor switches it; inputs inside and outside every law's range give a status. */
+static void law_impact_status_without_gsl_handler(void **state)
+{
+    (void)state;
+    gsl_error_handler_t *before = gsl_set_error_handler(count_gsl_error);
+    gsl_handler_calls = 0;
+    ct_params p = make(1.5, 1.3, 500.0, 10.0);
+    double W_top = asym_work_load(&p, p.h0); /* the asymptotic law's energy at u = h0 */
+    struct {
+        double W;
+        int series, asym;
+    } cases[] = {
+        {1e-320, CT_OK, CT_OK}, /* subnormal: elastic, e = 1 */
+        {1e-4, CT_OK, CT_OK},
+        {W_top * (1.0 - 1e-12), CT_OK, CT_OK},
+        {W_top, CT_OK, CT_ERANGE},   /* u_max would be h0: the series still applies */
+        {1e3, CT_ERANGE, CT_ERANGE}, /* beyond H* for the series */
+        {DBL_MAX, CT_ERANGE, CT_ERANGE},
+        {INFINITY, CT_EINVAL, CT_EINVAL},
+        {NAN, CT_EINVAL, CT_EINVAL},
+        {-1.0, CT_EINVAL, CT_EINVAL},
+        {0.0, CT_EINVAL, CT_EINVAL},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++)
+        for (int law = 0; law < 3; law++) {
+            double um = -1.0, e = -1.0;
+            int st = ct_law_impact(&p, (ct_law)law, cases[c].W, &um, &e);
+            assert_int_equal(st, law == CT_LAW_SERIES ? cases[c].series : cases[c].asym);
+            if (st == CT_OK)
+                assert_true(isfinite(um) && um > 0.0 && um <= p.h0 && e > 0.0 && e <= 1.0);
+            else
+                assert_true(um == -1.0 && e == -1.0 && ct_error_message()[0] != '\0');
+        }
+    double um, e;
+    assert_int_equal(ct_law_impact(&p, (ct_law)7, 1e-4, &um, &e), CT_EINVAL);
+    ct_params bad = p;
+    bad.fz = 2.0;
+    assert_int_equal(ct_law_impact(&bad, CT_LAW_ASYMPTOTIC, 1e-4, &um, &e), CT_EINVAL);
+    bad = p;
+    bad.fx = NAN;
+    assert_int_equal(ct_law_impact(&bad, CT_LAW_SERIES, 1e-4, &um, &e), CT_EINVAL);
+    assert_int_equal(gsl_handler_calls, 0);
+    assert_true(gsl_set_error_handler(before) == count_gsl_error);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(eq19_at_nodes_against_direct_sum),
         cmocka_unit_test(eq33_equals_eq21_at_nodes),
+        cmocka_unit_test(series_unload_against_direct_sum),
+        cmocka_unit_test(series_elastic_branch_eq21),
+        cmocka_unit_test(laws_refuse_outside_their_domain),
         cmocka_unit_test(stable_near_one_and_tiny_u),
         cmocka_unit_test(asymptotic_energies_against_gsl),
         cmocka_unit_test(paper_fig4_claims),
@@ -348,6 +613,8 @@ int main(void)
         cmocka_unit_test(paper_fig7_fig8_claims),
         cmocka_unit_test(asymptotic_e_power_law),
         cmocka_unit_test(law_impact_elastic_below_critical),
+        cmocka_unit_test(law_impact_u_max_solves_eq39),
+        cmocka_unit_test(law_impact_status_without_gsl_handler),
     };
     return cmocka_run_group_tests_name("laws", tests, NULL, NULL);
 }

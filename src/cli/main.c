@@ -168,9 +168,13 @@ static void put_field(FILE *f, double x)
  * asymptotic; NaN where a law does not apply. */
 static void law_forces(const ct_params *p, int unload, double hi, double u, double out[3])
 {
-    out[0] = unload ? ct_series_unload(p, hi, u) : ct_series_load(p, u);
-    out[1] = unload ? ct_asym_unload(p, hi, u, 0) : ct_asym_load(p, u);
-    out[2] = unload ? ct_asym_unload(p, hi, u, 1) : out[1];
+    double ps = 0.0, pa = 0.0, pc = 0.0;
+    int ss = unload ? ct_series_unload(p, hi, u, &ps) : ct_series_load(p, u, &ps);
+    int sa = unload ? ct_asym_unload(p, hi, u, 0, &pa) : ct_asym_load(p, u, &pa);
+    int sc = unload ? ct_asym_unload(p, hi, u, 1, &pc) : sa;
+    out[0] = ss ? NAN : ps;
+    out[1] = sa ? NAN : pa;
+    out[2] = sc ? NAN : unload ? pc : pa;
 }
 
 /* A curve branch: the breakpoints in [lo, hi] (when fewer than 1e5) and a uniform grid, P
