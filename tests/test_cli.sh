@@ -119,6 +119,20 @@ expect 2 "bad on_error" -- "$ct" run -q "$tmp/s.ini" --set solver.on_error=maybe
 paste -d, "$tmp/chk.csv" "$tmp/nochk.csv" | awk -F, 'NR > 1 { if ($4 != $13 || $14 != "" || $15 != "") exit 1 }' &&
     ok || bad "solver.check = none"
 
+# a path that is no regular file is written in place, never renamed over: a FIFO stays a
+# FIFO and gets the rows (and so does /dev/null stay a device, which CI runs as root)
+mkfifo "$tmp/fifo"
+cat "$tmp/fifo" >"$tmp/fifo.out" &
+reader=$!
+expect 0 "output to a FIFO" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/fifo"
+wait $reader
+[ -p "$tmp/fifo" ] && [ "$(wc -l <"$tmp/fifo.out")" -eq 4 ] && ok || bad "FIFO replaced or not written"
+if [ -c /dev/null ]; then
+    expect 0 "output to /dev/null" -- "$ct" run -q "$tmp/s.ini" -o /dev/null
+    [ -c /dev/null ] && ok || bad "/dev/null is no longer a device"
+fi
+expect 2 "output to a directory" -- "$ct" run -q "$tmp/s.ini" -o "$tmp"
+
 # the shipped scenes run
 for scene in "$src"/scripts/scenes/*.ini; do
     expect 0 "scene $(basename "$scene")" -- "$ct" run -q "$scene" -o "$tmp/scene.csv"

@@ -1,17 +1,38 @@
 #include "output.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
-    if (!strcmp(path, "-")) {
+    /* stdout, and a path that exists but is no regular file (/dev/null, a FIFO, a
+     * terminal): rows are held in memory and written there at commit. Renaming a temporary
+     * file over such a path would replace the device itself. */
+    struct stat st;
+    int special = strcmp(path, "-") && stat(path, &st) == 0 && !S_ISREG(st.st_mode);
+    if (special && S_ISDIR(st.st_mode)) {
+        snprintf(err, errlen, "%s: cannot write: is a directory", path);
+        return -1;
+    }
+    if (!strcmp(path, "-") || special) {
+        if (special && access(path, W_OK) != 0) {
+            snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+            return -1;
+        }
+        if (special && !(o->special = strdup(path))) {
+            snprintf(err, errlen, "out of memory");
+            return -1;
+        }
         o->f = open_memstream(&o->mem, &o->mem_size);
         if (!o->f) {
             snprintf(err, errlen, "cannot buffer output: %s", strerror(errno));
+            free(o->special);
+            o->special = NULL;
             return -1;
         }
         return 0;
@@ -49,6 +70,28 @@ int ct_out_commit(ct_out *o, char *err, size_t errlen)
     if (fclose(o->f) != 0)
         bad = 1;
     o->f = NULL;
+    if (o->special) { /* written in place: open(2) without O_CREAT or O_TRUNC */
+        int fd = bad ? -1 : open(o->special, O_WRONLY | O_NOCTTY);
+        size_t done = 0;
+        while (fd >= 0 && done < o->mem_size) {
+            ssize_t w = write(fd, o->mem + done, o->mem_size - done);
+            if (w < 0 && errno == EINTR)
+                continue;
+            if (w <= 0)
+                break;
+            done += (size_t)w;
+        }
+        if (fd < 0 || done < o->mem_size)
+            bad = 1;
+        if (fd >= 0 && close(fd) != 0)
+            bad = 1;
+        if (bad)
+            snprintf(err, errlen, "%s: cannot write: %s", o->special, strerror(errno));
+        free(o->mem);
+        free(o->special);
+        o->mem = o->special = NULL;
+        return bad ? -1 : 0;
+    }
     if (!o->path) {
         if (!bad && o->mem_size && fwrite(o->mem, 1, o->mem_size, stdout) != o->mem_size)
             bad = 1;
@@ -82,7 +125,8 @@ void ct_out_abort(ct_out *o)
     free(o->tmp_path);
     free(o->path);
     free(o->mem);
-    o->tmp_path = o->path = o->mem = NULL;
+    free(o->special);
+    o->tmp_path = o->path = o->mem = o->special = NULL;
 }
 
 void ct_progress_start(ct_progress *p, size_t total)

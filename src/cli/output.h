@@ -8,7 +8,8 @@ typedef struct {
     char *path;     /* final path, or NULL for stdout */
     char *tmp_path; /* temporary file beside it */
     FILE *f;        /* where rows go */
-    char *mem;      /* stdout: rows are held here until commit */
+    char *special;  /* a path that is no regular file (a device, a FIFO), written in place */
+    char *mem;      /* stdout and special paths: rows are held here until commit */
     size_t mem_size;
 } ct_out;
 
