@@ -6,6 +6,13 @@
  * raised in the calling thread. Lengths are in the unit of l_0 and h_0, forces per unit
  * depth, energies per unit depth.
  *
+ * Thread safety: the library keeps no global state and changes none (not the OpenMP thread
+ * count, not GSL's error handler). A function that takes a const handle (const ct_bundle *,
+ * const ct_curve *) only reads it: any number of threads may call such functions on one
+ * handle at once. A function that takes a non-const handle (ct_bundle_advance, ct_impact,
+ * ct_curve_build, ct_bundle_set_threads, ...) needs that handle to itself. Error messages are
+ * per thread. Results do not depend on the number of threads.
+ *
  * SPDX-License-Identifier: GPL-3.0-or-later
  */
 #ifndef CANTACT_H
