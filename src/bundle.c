@@ -192,6 +192,19 @@ void ct_bundle_arrays(ct_bundle *b, double **top, double **length, double **area
     *plastic_strain = b->plastic_strain;
 }
 
+void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double length, double area)
+{
+    const int team = count >= b->parallel_min ? ct_default_threads() : 1;
+    (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
+    for (ptrdiff_t j = 0; j < (ptrdiff_t)count; j++) {
+        b->top[k0 + (size_t)j] = top;
+        b->length[k0 + (size_t)j] = length;
+        b->area[k0 + (size_t)j] = area;
+        b->plastic_strain[k0 + (size_t)j] = 0.0;
+    }
+}
+
 void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted)
 {
     if (b->kind && b->kind->free)

@@ -48,6 +48,9 @@ typedef struct {
 int ct_bundle_create(ct_bundle **out, const ct_layer *layer, size_t n, const char *what);
 void ct_bundle_arrays(ct_bundle *b, double **top, double **length, double **area,
                       double **plastic_strain);
+/* Sets rods [k0, k0 + count) to one top, length and area, virgin; large ranges are filled by
+ * the thread team, so that pages land where the sums will read them (first touch). */
+void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double length, double area);
 /* Hands the surface's metadata to the bundle (freed with it); omitted rods are counted. */
 void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted);
 /* The metadata if b was made by this kind of surface, else NULL. */

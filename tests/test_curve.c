@@ -198,11 +198,25 @@ static void rigid_plastic_rod_keeps_its_plateau(void **state)
 
 /* The curve does not depend on the thread count: a bundle far above the parallel
  * threshold, arbitrary tops after a history (many runs to merge), 1 and 2 threads. */
+static void compare_threads(ct_bundle *b);
+
 static void bitwise_identical_for_any_thread_count(void **state)
 {
     (void)state;
     ct_bundle *b = random_bundle(60000, 2);
     ct_bundle_advance(b, 0.8);
+    compare_threads(b);
+    ct_bundle_free(b);
+    /* segments above the threshold, after a history: runs merged within fixed blocks */
+    ct_params p = base();
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 16, INFINITY), CT_OK);
+    ct_bundle_advance(b, 0.45);
+    compare_threads(b);
+    ct_bundle_free(b);
+}
+
+static void compare_threads(ct_bundle *b)
+{
     ct_curve *c[2];
     for (int t = 0; t < 2; t++) {
         ct_bundle_set_threads(b, t + 1);
@@ -222,7 +236,6 @@ static void bitwise_identical_for_any_thread_count(void **state)
     }
     ct_curve_free(c[0]);
     ct_curve_free(c[1]);
-    ct_bundle_free(b);
 }
 
 /* ---- a const bundle evaluated from two threads at once ---- */

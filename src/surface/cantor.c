@@ -273,14 +273,7 @@ int ct_cantor_bundle(ct_bundle **out, const ct_params *p, ct_representation rep,
             /* middles carry s_i / 2^i, the tips l_N / 2^N */
             double a = (i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i)) *
                        ldexp(1.0, (int)-i);
-            /* first touch in parallel, so pages land where the threads will read them */
-#pragma omp parallel for schedule(static) if (pieces >= CT_PARALLEL_MIN_RODS)
-            for (ptrdiff_t j = 0; j < (ptrdiff_t)pieces; j++) {
-                top[k0 + (size_t)j] = t;
-                length[k0 + (size_t)j] = l;
-                area[k0 + (size_t)j] = a;
-                eps_p[k0 + (size_t)j] = 0.0;
-            }
+            ct_bundle_fill(b, k0, pieces, t, l, a);
         }
     }
     *out = b;
