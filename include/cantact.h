@@ -360,6 +360,13 @@ typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);
 typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundle *b,
                               const ct_curve *c, void *ctx);
 
+/* How a sweep evaluates impacts. The curve answers each speed in O(log n) after a build that
+ * costs about 170 bytes per rod event; the rod path holds nothing but the bundle and solves
+ * all speeds together by Newton's method on the closed forms summed rod by rod (a few tens
+ * of passes over the rods). Auto takes the rod path when the curve would not fit in half the
+ * available memory, or when it has over 4e6 events for at most 32 impacts. */
+typedef enum { CT_PATH_AUTO = 0, CT_PATH_CURVE = 1, CT_PATH_RODS = 2 } ct_sweep_path;
+
 typedef struct {
     const double *V_star; /* speeds, dimensionless, any order */
     size_t nvel;
@@ -370,6 +377,8 @@ typedef struct {
     void *progress_ctx;
     ct_observer_fn observe; /* optional */
     void *observe_ctx;
+    ct_sweep_path path; /* CT_PATH_AUTO (0) by default; observers and composite rules always
+                           use the curve */
 } ct_sweep_spec;
 
 /* Runs every speed from b's state (b itself is not changed): rows[speed * impacts + i - 1]

@@ -503,7 +503,7 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
     for (size_t i0 = 0; i0 < m; i0 += CT_NODE_CHUNK) {
         const size_t mc = m - i0 < CT_NODE_CHUNK ? m - i0 : CT_NODE_CHUNK;
         if (!ws) { /* serial: the same tree, one counter per output */
-            double v[64][2 * CT_NODE_CHUNK], blk[2 * CT_NODE_CHUNK];
+            double v[64][3 * CT_NODE_CHUNK], blk[3 * CT_NODE_CHUNK];
             int level[64], sp = 0;
             for (ptrdiff_t j = 0; j < nb; j++) {
                 size_t k0 = (size_t)j * CT_BLOCK;
@@ -568,12 +568,13 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
     const double *restrict adv = a->adv + i0, *restrict u0 = a->u0 + i0, *restrict u1 = a->u1 + i0;
     const double *top = b->top, *length = b->length, *area = b->area, *eps_p = b->plastic_strain;
     const double E = b->E, eps_y = b->eps_y;
-    double s[2][CT_NODE_CHUNK], c[2][CT_NODE_CHUNK];
+    double s[3][CT_NODE_CHUNK], c[3][CT_NODE_CHUNK];
     for (size_t i = 0; i < m; i++)
-        s[0][i] = s[1][i] = c[0][i] = c[1][i] = 0.0;
+        for (int o = 0; o < 3; o++)
+            s[o][i] = c[o][i] = 0.0;
     for (size_t k = k0; k < k1; k++) {
         const double tk = top[k], lk = length[k], ak = area[k], pk = eps_p[k], rl = 1.0 / lk;
-        const double EaL = E * ak * lk, half = 0.5 * E * ak * lk;
+        const double Ea = E * ak, EaL = E * ak * lk, half = 0.5 * E * ak * lk;
         for (size_t i = 0; i < m; i++) {
             double strain = (adv[i] - tk) * rl;
             double p = strain - pk > eps_y ? strain - eps_y : pk;
@@ -583,8 +584,9 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
             wa = da > 0.0 ? wa : 0.0;
             wb = db > 0.0 ? wb : 0.0;
             double de = db > eps_y ? eps_y : db;
-            double x[2] = {EaL * (wb - wa), db > 0.0 ? half * de * de : 0.0};
-            for (int o = 0; o < 2; o++) {
+            de = db > 0.0 ? de : 0.0;
+            double x[3] = {EaL * (wb - wa), db > 0.0 ? half * de * de : 0.0, Ea * de};
+            for (int o = 0; o < 3; o++) {
                 double t = s[o][i] + x[o];
                 double big_s = (s[o][i] - t) + x[o], big_x = (x[o] - t) + s[o][i];
                 c[o][i] += fabs(s[o][i]) >= fabs(x[o]) ? big_s : big_x;
@@ -592,21 +594,23 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
             }
         }
     }
-    for (int o = 0; o < 2; o++)
+    for (int o = 0; o < 3; o++)
         for (size_t i = 0; i < m; i++)
             out[(size_t)o * CT_NODE_CHUNK + i] = s[o][i] + c[o][i];
 }
 
-int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
-                          size_t m, double *W_load, double *W_unload)
+int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0,
+                          const double *u1, size_t m, double *W_load, double *W_unload, double *P)
 {
     closed_args a = {adv, u0, u1};
-    double *out = malloc(2 * (m ? m : 1) * sizeof(double));
+    double *out = malloc(3 * (m ? m : 1) * sizeof(double));
     if (!out)
         return ct_error_set(CT_ENOMEM, "closed forms of %zu impacts: out of memory", m);
-    int st = blocked_apply(b, closed_kernel, &a, m, 2, out);
+    int st = blocked_apply(b, closed_kernel, &a, m, 3, out);
     memcpy(W_load, out, m * sizeof(double));
     memcpy(W_unload, out + m, m * sizeof(double));
+    if (P)
+        memcpy(P, out + 2 * m, m * sizeof(double));
     free(out);
     return st;
 }

@@ -232,6 +232,23 @@ static void add_comp(double *s, double *c, double x)
     *s = t;
 }
 
+double ct_curve_bytes(size_t events)
+{
+    /* events twice (the merge's buffer), run bounds, and 8 doubles per breakpoint */
+    return (double)events * (2.0 * sizeof(event) + sizeof(size_t) + 8.0 * sizeof(double));
+}
+
+size_t ct_curve_events(const ct_bundle *b)
+{
+    const size_t n = ct_bundle_size(b);
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays((ct_bundle *)b, &top, &length, &area, &eps_p); /* read only */
+    size_t runs = 0;
+    for (size_t k = 0; k < n; k++) /* block starts begin runs, as in ct_curve_build */
+        runs += k % CT_BLOCK == 0 || !same_rod(top, length, eps_p, k);
+    return 2 * runs;
+}
+
 int ct_curve_build(ct_curve *c, const ct_bundle *b)
 {
     const size_t n = ct_bundle_size(b);
@@ -262,8 +279,7 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     const size_t nruns = nb ? c->block_runs[nb] : 0, ne = 2 * nruns;
     if (ne == 0)
         return CT_OK;
-    /* events twice (the merge's buffer), run bounds, and 8 doubles per breakpoint */
-    const double need = (double)ne * (2.0 * sizeof(event) + sizeof(size_t) + 8.0 * sizeof(double));
+    const double need = ct_curve_bytes(ne);
     const double have = (double)ct_available_memory() +
                         (double)(c->ecap + c->tcap) * sizeof(event) + 8.0 * sizeof(double) * c->cap;
     if (need > 0.9 * have)

@@ -161,7 +161,7 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
 }
 
 /* e from W_load and W_unload, and the closed forms' check when they are given (not NaN). */
-int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_result *res)
+int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result *res)
 {
     const int checked = !isnan(res->W_load_closed);
     const double u = res->u_max, W = res->kinetic_energy;
@@ -169,7 +169,7 @@ int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_re
         /* the solve's tolerance, against the closed form summed rod by rod; near first
          * contact the residual cannot fall below what a few ulps of u change */
         double resid = fabs(res->W_load_closed - W);
-        double floor = 8.0 * DBL_EPSILON * fabs(u) * ct_curve_force(c, u);
+        double floor = 8.0 * DBL_EPSILON * fabs(u) * P_max;
         if (!(resid <= opts->tolerance * W || resid <= floor))
             return ct_error_set(CT_ENOCONV,
                                 "u_max solve: |W(u) - W| / W = %.3g against the closed form rod "
@@ -247,7 +247,7 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
             return st;
         break;
     }
-    return ct_impact_finish(c, opts, res);
+    return ct_impact_finish(ct_curve_force(c, u), opts, res);
 }
 
 int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_result *res)

@@ -8,20 +8,6 @@
 #define CT_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define CT_PRINTF(a, b)
-/* ---- impacts on a curve (src/impact.c), for the sweep ---- */
-
-/* The impact of energy W from the state c's state reaches when loaded to U (-INFINITY: c's
- * state itself), closed forms left NaN; CT_ESKIPPED when it stays below U. */
-int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
-                       const ct_impact_opts *opts, ct_impact_result *res);
-/* e, e_rounding and, when W_load_closed is set, the closed forms' check and e_closed. */
-int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_result *res);
-/* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
- * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
- * energy at u1[i]. Bitwise ct_bundle_work and ct_bundle_elastic_energy of that state. */
-int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
-                          size_t m, double *W_load, double *W_unload);
-
 #endif
 
 /* Records a detailed message for the calling thread and returns status, so that
@@ -55,6 +41,10 @@ void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double le
 void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted);
 /* The metadata if b was made by this kind of surface, else NULL. */
 const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_surface_kind *kind);
+/* Events a curve of b's state would hold (two per run of identical rods): one pass. */
+size_t ct_curve_events(const ct_bundle *b);
+/* Bytes a curve of that many events needs while it is built. */
+double ct_curve_bytes(size_t events);
 /* Bytes the kernel can give without swapping. */
 size_t ct_available_memory(void);
 /* The thread count a sum over b's rods uses (1 below the parallel threshold). */
@@ -66,13 +56,15 @@ int ct_bundle_team(const ct_bundle *b);
  * state itself), closed forms left NaN; CT_ESKIPPED when it stays below U. */
 int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
                        const ct_impact_opts *opts, ct_impact_result *res);
-/* e, e_rounding and, when W_load_closed is set, the closed forms' check and e_closed. */
-int ct_impact_finish(const ct_curve *c, const ct_impact_opts *opts, ct_impact_result *res);
+/* e, e_rounding and, when W_load_closed is set, the closed forms' check (P_max: the force at
+ * u_max, for the rounding floor of the u_max solve) and e_closed. */
+int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result *res);
 /* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
  * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
- * energy at u1[i]. Bitwise ct_bundle_work and ct_bundle_elastic_energy of that state. */
+ * energy at u1[i] (bitwise ct_bundle_work and ct_bundle_elastic_energy of that state) and,
+ * when P is not NULL, P[i] its force at u1[i]. */
 int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
-                          size_t m, double *W_load, double *W_unload);
+                          size_t m, double *W_load, double *W_unload, double *P);
 
 /* ---- the paper's laws ---- */
 

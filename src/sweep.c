@@ -3,6 +3,7 @@
  * these: the policy lives here once. */
 #include "internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -58,12 +59,23 @@ int ct_cantor_plan_build(const ct_cantor_plan *plan, ct_bundle **out, ct_plan_in
             return st;
         double reach = ct_bundle_first_yield(probe);
         int ok = 1;
-        for (long i = 0; i < plan->impacts && ok; i++) {
-            ct_impact_result r;
-            ok = ct_impact(probe, vmax * vmax * scale, &plan->opts, &r) == CT_OK;
-            if (ok && r.u_max > reach)
-                reach = r.u_max;
+        ct_sweep_row *rows = malloc((size_t)plan->impacts * sizeof *rows);
+        ct_sweep_spec spec = {.V_star = &vmax, .nvel = 1, .impacts = plan->impacts};
+        spec.opts = plan->opts;
+        spec.opts.rule = CT_QUAD_BREAKPOINTS; /* only u_max is needed: the exact rule */
+        spec.opts.check = 0;
+        st = rows ? ct_sweep(probe, &spec, rows) : ct_error_set(CT_ENOMEM, "plan: out of memory");
+        if (st) {
+            ct_bundle_free(probe);
+            free(rows);
+            return st;
         }
+        for (long i = 0; i < plan->impacts && ok; i++) {
+            ok = rows[i].status == CT_OK;
+            if (ok && rows[i].r.u_max > reach)
+                reach = rows[i].r.u_max;
+        }
+        free(rows);
         ct_bundle_free(probe);
         if (ok)
             u_reach = reach * (1.0 + 1e-9);
@@ -145,6 +157,199 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
     return CT_OK;
 }
 
+/* ---- the rod path: no curve, all speeds of an impact round solved together ---- */
+
+#define GRID 24        /* shared starting points of the Newton iterations (virgin state) */
+#define MAX_NEWTON 400 /* iterations; each is one pass over the rods for all open speeds */
+
+/* One impact round on the rod path: row r[j] (j < m) has the state b advanced to U[j] and
+ * kinetic energy W[j]. u_max by Newton's method on the closed-form work summed rod by rod:
+ * W(u) is convex, so from any point right of the root the iterates fall monotonically onto
+ * it; each iteration evaluates every open speed in one pass over the rods. */
+static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_sweep_row **r,
+                      const double *U, const double *W, double W_crit0, double x0)
+{
+    const ct_layer *L = ct_bundle_layer(b);
+    const double scale = L->l0 * L->E * L->h0, Hstar = L->Hstar;
+    const double tol = s->opts.tolerance;
+    int st = CT_OK;
+    double *buf = malloc(9 * (m + GRID) * sizeof(double));
+    size_t *open_ = malloc((m + 1) * sizeof(size_t));
+    if (!buf || !open_) {
+        free(buf);
+        free(open_);
+        return ct_error_set(CT_ENOMEM, "rod path of %zu impacts: out of memory", m);
+    }
+    double *u0 = buf, *u = u0 + m, *Wc = u + m, *adv = Wc + m, *a0 = adv + m + GRID,
+           *a1 = a0 + m + GRID, *Wl = a1 + m + GRID, *Wu = Wl + m + GRID, *P = Wu + m + GRID;
+    /* where each state starts, and the energy that makes its first rod yield */
+    size_t q = 0;
+    for (size_t j = 0; j < m; j++) {
+        u0[j] = U[j] > -INFINITY ? ct_bundle_release(b, U[j]) : x0;
+        u[j] = Hstar;
+        if (U[j] > -INFINITY) { /* the state's first yield is U: its energy to get back there */
+            adv[q] = a0[q] = U[j];
+            a0[q] = u0[j];
+            a1[q] = U[j];
+            open_[q++] = j;
+        } else {
+            Wc[j] = W_crit0;
+        }
+    }
+    if (q && (st = ct_bundle_closed_many(b, adv, a0, a1, q, Wl, Wu, NULL)))
+        goto done;
+    for (size_t k = 0; k < q; k++)
+        Wc[open_[k]] = Wl[k];
+    /* a shared geometric grid on the virgin state brackets every virgin speed from the right */
+    double g[GRID], gW[GRID], gWu[GRID], gP[GRID], lo = x0 > 0.0 ? x0 : 0.0;
+    double first = fmax(lo, 1e-9 * Hstar);
+    for (int k = 0; k < GRID; k++) {
+        g[k] = first * pow(Hstar / first, (double)(k + 1) / GRID);
+        adv[k] = -INFINITY;
+        a0[k] = x0;
+    }
+    g[GRID - 1] = Hstar;
+    if ((st = ct_bundle_closed_many(b, adv, a0, g, GRID, gW, gWu, gP)))
+        goto done;
+    for (size_t j = 0; j < m; j++)
+        if (U[j] == -INFINITY)
+            for (int k = 0; k < GRID; k++)
+                if (gW[k] > W[j]) {
+                    u[j] = g[k];
+                    break;
+                }
+    /* Newton from the right */
+    size_t nopen = 0;
+    for (size_t j = 0; j < m; j++)
+        open_[nopen++] = j;
+    for (int it = 0; nopen && it < MAX_NEWTON; it++) {
+        for (size_t k = 0; k < nopen; k++) {
+            size_t j = open_[k];
+            adv[k] = U[j];
+            a0[k] = u0[j];
+            a1[k] = u[j];
+        }
+        if ((st = ct_bundle_closed_many(b, adv, a0, a1, nopen, Wl, Wu, P)))
+            goto done;
+        size_t still = 0;
+        for (size_t k = 0; k < nopen; k++) {
+            size_t j = open_[k];
+            ct_impact_result *res = &r[j]->r;
+            if (it == 0 && u[j] == Hstar && !(W[j] < Wl[k])) {
+                r[j]->status = ct_error_set(CT_ERANGE,
+                                            "impact energy %.6g reaches u_max >= H* = %g (the "
+                                            "layer would be crushed, strains >= 1): outside the "
+                                            "model; lower V* or raise H",
+                                            W[j], Hstar);
+                continue;
+            }
+            double resid = Wl[k] - W[j];
+            double floor = 8.0 * DBL_EPSILON * fabs(u[j]) * P[k];
+            double next = P[k] > 0.0 ? u[j] - resid / P[k] : u[j];
+            next = next < u0[j] ? u0[j] : next;
+            if (fabs(resid) <= tol * W[j] || fabs(resid) <= floor || !(next < u[j])) {
+                res->kinetic_energy = W[j];
+                res->V_star = sqrt(W[j] / scale);
+                res->V_star_crit = sqrt(Wc[j] / scale);
+                res->u_contact = u0[j];
+                res->u_max = u[j];
+                res->elastic = W[j] <= Wc[j];
+                res->W_load = res->W_load_closed = Wl[k];
+                res->W_unload = res->W_unload_closed = res->elastic ? Wl[k] : Wu[k];
+                res->e_closed = res->quad_error = NAN;
+                r[j]->status = CT_OK;
+                if (!(u[j] - u0[j] > 16.0 * DBL_EPSILON * fabs(u0[j])))
+                    r[j]->status = ct_error_set(
+                        CT_ENOCONV,
+                        "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
+                        "resolution of u near %.17g: this impact is too weak to resolve on rods "
+                        "this stiff (raise V*)",
+                        u[j] - u0[j], u0[j]);
+                else if ((r[j]->status = ct_impact_finish(P[k], &s->opts, res)) == CT_OK)
+                    res->u_release = res->elastic ? u0[j] : ct_bundle_release(b, u[j]);
+                if (r[j]->status == CT_OK)
+                    r[j]->message[0] = '\0';
+                else
+                    fail_row(r[j], r[j]->status, ct_error_message());
+                continue;
+            }
+            u[j] = next;
+            open_[still++] = j;
+        }
+        nopen = still;
+    }
+    for (size_t k = 0; k < nopen; k++)
+        fail_row(r[open_[k]], CT_ENOCONV, "u_max solve: Newton's method did not converge");
+done:
+    free(buf);
+    free(open_);
+    return st;
+}
+
+/* Every impact of every speed on the rod path, round by round (impact 1 of all speeds, then
+ * impact 2, ...): the state of a speed is b advanced to the largest u_max it reached. */
+static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
+{
+    const ct_layer *L = ct_bundle_layer(b);
+    const double scale = L->l0 * L->E * L->h0;
+    const size_t impacts = (size_t)s->impacts, nv = s->nvel;
+    double W_crit0, uy;
+    int st;
+    if ((st = ct_critical_energy(b, &W_crit0, &uy)))
+        return st;
+    const double x0 = ct_bundle_first_contact(b);
+    double *U = malloc(2 * (nv + 1) * sizeof(double)), *W = U ? U + nv + 1 : NULL;
+    ct_sweep_row **r = malloc((nv + 1) * sizeof *r);
+    size_t *which = malloc((nv + 1) * sizeof *which);
+    double *Ur = malloc((nv + 1) * sizeof *Ur);
+    if (!U || !r || !which || !Ur) {
+        st = ct_error_set(CT_ENOMEM, "rod path of %zu speeds: out of memory", nv);
+        goto done;
+    }
+    for (size_t v = 0; v < nv; v++)
+        U[v] = -INFINITY;
+    for (size_t i = 0; i < impacts; i++) {
+        size_t m = 0;
+        for (size_t v = 0; v < nv; v++) {
+            if (i > 0 && rows[v * impacts + i - 1].status)
+                continue; /* the speed failed: its later impacts stay "not run" */
+            r[m] = &rows[v * impacts + i];
+            Ur[m] = U[v];
+            W[m] = s->V_star[v] * s->V_star[v] * scale;
+            which[m++] = v;
+        }
+        if ((st = rods_round(b, s, m, r, Ur, W, W_crit0, x0)))
+            goto done;
+        for (size_t k = 0; k < m; k++) {
+            size_t v = which[k];
+            if (r[k]->status)
+                fail_from(rows, impacts, v, i, r[k]->status, r[k]->message);
+            else if (!r[k]->r.elastic && r[k]->r.u_max > U[v])
+                U[v] = r[k]->r.u_max;
+        }
+        if (s->progress)
+            s->progress((i + 1) * nv / impacts, nv, s->progress_ctx);
+    }
+done:
+    free(U);
+    free(r);
+    free(which);
+    free(Ur);
+    return st;
+}
+
+/* Whether the rod path serves this sweep better than a curve (ct_sweep_path). */
+static int use_rods(const ct_bundle *b, const ct_sweep_spec *s)
+{
+    if (s->observe || !(s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED))
+        return 0;
+    if (s->path != CT_PATH_AUTO)
+        return s->path == CT_PATH_RODS;
+    size_t events = ct_curve_events(b);
+    double need = ct_curve_bytes(events), avail = (double)ct_available_memory();
+    return need > 0.5 * avail || (events > 4000000 && s->nvel * (size_t)s->impacts <= 32);
+}
+
 /* The first failed row in order, under stop_on_error. */
 static int first_failure(const ct_sweep_row *rows, size_t n)
 {
@@ -176,6 +381,12 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
             row->V_star = s->V_star[v];
             fail_row(row, CT_ESKIPPED, "not run");
         }
+
+    if (use_rods(b, s)) {
+        if ((st = sweep_by_rods(b, s, rows)))
+            return st;
+        return s->stop_on_error ? first_failure(rows, nrows) : CT_OK;
+    }
 
     ct_curve *first = NULL, *later = NULL;
     ct_bundle *work = NULL;
@@ -235,7 +446,7 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
             if (s->progress && !by_state[v])
                 s->progress(v + 1, s->nvel, s->progress_ctx);
         }
-        if (closed && (st = ct_bundle_closed_many(b, adv, u0, u1, m, Wl, Wu)))
+        if (closed && (st = ct_bundle_closed_many(b, adv, u0, u1, m, Wl, Wu, NULL)))
             goto done;
         for (size_t v = 0; v < s->nvel; v++) {
             if (by_state[v])
@@ -253,7 +464,7 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
                         row->r.W_unload = row->r.W_unload_closed;
                     }
                 }
-                int rs = ct_impact_finish(first, &s->opts, &row->r);
+                int rs = ct_impact_finish(ct_curve_force(first, row->r.u_max), &s->opts, &row->r);
                 if (rs) {
                     fail_from(rows, impacts, v, i, rs, ct_error_message());
                     break;

@@ -241,6 +241,49 @@ static void crushing_speed_is_one_row(void **state)
     ct_bundle_free(b);
 }
 
+/* The rod path (no curve; Newton's method on the rod sums, all speeds together) against the
+ * curve path: stage rods at the fractal depth with repeated impacts, segments after their
+ * state carries over, and arbitrary tops. A crushing speed fails the same way on both. */
+static void rod_path_equals_curve_path(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    enum { NV = 8, IMP = 3 };
+    const double V[NV] = {3e-5, 1e-4, 2e-4, 1e-3, 3e-3, 1e-2, 3e-2, 60.0};
+    ct_bundle *b[3];
+    assert_int_equal(ct_cantor_bundle(&b[0], &p, CT_REP_STAGES, 147, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b[1], &p, CT_REP_SEGMENTS, 12, INFINITY), CT_OK);
+    double top[500], area[500];
+    for (int k = 0; k < 500; k++) { /* tops spread over [0, 2 h0), areas summing to l0 */
+        top[k] = 2.0 * fmod(0.618033988749895 * k, 1.0);
+        area[k] = 1.0 / 500.0;
+    }
+    ct_layer L = {.E = 500.0, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 1.0};
+    assert_int_equal(ct_bundle_from_rods(&b[2], &L, 500, top, area), CT_OK);
+    for (int k = 0; k < 3; k++) {
+        ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = IMP};
+        ct_impact_opts_default(&spec.opts);
+        ct_sweep_row c[NV * IMP], r[NV * IMP];
+        spec.path = CT_PATH_CURVE;
+        assert_int_equal(ct_sweep(b[k], &spec, c), CT_OK);
+        spec.path = CT_PATH_RODS;
+        assert_int_equal(ct_sweep(b[k], &spec, r), CT_OK);
+        for (int q = 0; q < NV * IMP; q++) {
+            assert_int_equal(r[q].status, c[q].status);
+            if (c[q].status)
+                continue;
+            assert_int_equal(r[q].r.elastic, c[q].r.elastic);
+            assert_rel(r[q].r.e, c[q].r.e, 1e-13);
+            assert_rel(r[q].r.e_closed, c[q].r.e_closed, 1e-13);
+            assert_rel(r[q].r.u_max, c[q].r.u_max, 1e-14);
+            assert_rel(r[q].r.u_release, c[q].r.u_release, 1e-14);
+            assert_rel(r[q].r.V_star_crit, c[q].r.V_star_crit, 1e-13);
+        }
+        assert_int_equal(c[(NV - 1) * IMP].status, CT_ERANGE); /* V* = 60 crushes */
+        ct_bundle_free(b[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -249,6 +292,7 @@ int main(void)
         cmocka_unit_test(vstar_crit_does_not_depend_on_the_other_speeds),
         cmocka_unit_test(pruning_changes_no_reported_number),
         cmocka_unit_test(crushing_speed_is_one_row),
+        cmocka_unit_test(rod_path_equals_curve_path),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }

@@ -59,7 +59,8 @@ static const char *run_help =
     "\n"
     "Scene keys: [surface] fx fz H h0 l0 depth representation; [material] E sigma_y;\n"
     "[impact] V_star | mass velocity, impacts; [solver] quadrature nodes tolerance\n"
-    "depth_tolerance threads on_error (stop|skip) check (closed|none); [output] file what.\n"
+    "depth_tolerance threads on_error (stop|skip) check (closed|none) path (auto|curve|rods);\n"
+    "[output] file what.\n"
     "See README.md.\n";
 
 static const char *geometry_help =
@@ -501,6 +502,7 @@ static int cmd_run(int argc, char **argv)
         .progress_ctx = &prog,
         .observe = (opened_c || opened_p) ? observe : NULL,
         .observe_ctx = &obs,
+        .path = sc.path,
     };
     st = ct_sweep(b, &spec, rows);
     ct_progress_end(&prog);

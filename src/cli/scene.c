@@ -58,6 +58,7 @@ static const key_spec known_keys[] = {
     {"solver", "threads", 0},
     {"solver", "on_error", 0},
     {"solver", "check", 0},
+    {"solver", "path", 0},
     {"output", "file", 0},
     {"output", "what", 0},
 };
@@ -449,6 +450,17 @@ static int interpret(parse_state *s, ct_scene *sc)
             sc->skip_failed = 1;
         else if (strcmp(e->value, "stop"))
             return bad(e, "solver", "on_error", "must be stop or skip");
+    }
+    sc->path = CT_PATH_AUTO;
+    if ((e = get(s, "solver", "path"))) {
+        if (!strcmp(e->value, "auto"))
+            sc->path = CT_PATH_AUTO;
+        else if (!strcmp(e->value, "curve"))
+            sc->path = CT_PATH_CURVE;
+        else if (!strcmp(e->value, "rods"))
+            sc->path = CT_PATH_RODS;
+        else
+            return bad(e, "solver", "path", "must be auto, curve or rods");
     }
     if ((e = get(s, "solver", "check"))) {
         if (!strcmp(e->value, "closed"))

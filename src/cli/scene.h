@@ -19,6 +19,7 @@ typedef struct {
     double depth_tolerance; /* relative tolerance of depth auto */
     int threads;            /* 0: OpenMP default */
     int skip_failed;        /* solver.on_error = skip: a failed impact is a row, not the end */
+    ct_sweep_path path;     /* solver.path: auto, curve or rods */
     char *output;           /* CSV path, "-" for stdout */
     unsigned what;          /* CT_OUT_* bits */
 } ct_scene;
