@@ -57,7 +57,8 @@ static const char *run_help =
     "  -q                        no summary on stderr\n"
     "  -h, --help                this help\n"
     "\n"
-    "Scene keys: [surface] fx fz H h0 l0 depth representation; [material] E sigma_y;\n"
+    "Scene keys: [surface] type (cantor) fx fz H h0 l0 depth representation;\n"
+    "[material] E sigma_y;\n"
     "[impact] V_star | mass velocity, impacts; [solver] quadrature nodes tolerance\n"
     "depth_tolerance threads on_error (stop|skip) check (closed|none) path (auto|curve|rods);\n"
     "[output] file what.\n"
@@ -298,6 +299,31 @@ static int load_scene_args(int argc, char **argv, const char *cmd, const char *h
     return -1;
 }
 
+/* The scene's surface as a bundle of rods. Each kind of surface (src/surface/) has its
+ * builder; the library plans (depth, and which rods no impact of the scene can reach).
+ * keep_all: leave out nothing (the profile shows the whole surface). */
+static int build_surface(const ct_scene *sc, int keep_all, ct_bundle **b, ct_plan_info *info)
+{
+    switch (sc->surface_type) {
+    case CT_SURFACE_CANTOR:
+    default: {
+        ct_cantor_plan plan = {
+            .params = sc->params,
+            .depth = sc->depth,
+            .representation = sc->representation,
+            .depth_tolerance = sc->depth_tolerance,
+            .V_star = sc->V_star,
+            .nvel = sc->nvel,
+            .impacts = sc->impacts,
+            .opts = sc->opts,
+            .keep_all_rods = keep_all,
+            .threads = sc->threads,
+        };
+        return ct_cantor_plan_build(&plan, b, info);
+    }
+    }
+}
+
 /* What the run writes while the sweep goes: curve branches and, after the last impact of
  * the last speed, the profile of the surface in that state. */
 typedef struct {
@@ -422,21 +448,8 @@ static int cmd_run(int argc, char **argv)
         opened_p = 1;
     }
 
-    /* the library plans: depth, and which rods no impact of the scene can reach */
-    ct_cantor_plan plan = {
-        .params = sc.params,
-        .depth = sc.depth,
-        .representation = sc.representation,
-        .depth_tolerance = sc.depth_tolerance,
-        .V_star = sc.V_star,
-        .nvel = sc.nvel,
-        .impacts = sc.impacts,
-        .opts = sc.opts,
-        .keep_all_rods = !!(sc.what & CT_OUT_PROFILE), /* the profile shows the whole surface */
-        .threads = sc.threads,
-    };
     ct_plan_info info;
-    if ((st = ct_cantor_plan_build(&plan, &b, &info)))
+    if ((st = build_surface(&sc, !!(sc.what & CT_OUT_PROFILE), &b, &info)))
         goto lib_fail;
     if (opened_p && info.depth > 20) {
         snprintf(err, sizeof err,

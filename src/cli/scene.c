@@ -38,9 +38,10 @@ typedef struct {
 } key_spec;
 
 static const key_spec known_keys[] = {
-    {"surface", "fx", 1},
-    {"surface", "fz", 1},
-    {"surface", "H", 1},
+    {"surface", "type", 0},
+    {"surface", "fx", 0}, /* fx, fz, H: required by type = cantor (interpret) */
+    {"surface", "fz", 0},
+    {"surface", "H", 0},
     {"surface", "h0", 0},
     {"surface", "l0", 0},
     {"surface", "depth", 0},
@@ -337,10 +338,25 @@ static int interpret(parse_state *s, ct_scene *sc)
 {
     int st;
     entry *e;
+    sc->surface_type = CT_SURFACE_CANTOR;
+    if ((e = get(s, "surface", "type"))) {
+        if (!strcmp(e->value, "cantor"))
+            sc->surface_type = CT_SURFACE_CANTOR;
+        else
+            return bad(e, "surface", "type", "must be cantor");
+    }
     for (size_t k = 0; k < NKEYS; k++)
         if (known_keys[k].required && !s->entries[k].set)
             return scene_error(CT_EINVAL, "%s: %s.%s: required key missing", s->name,
                                known_keys[k].section, known_keys[k].key);
+
+    if (sc->surface_type == CT_SURFACE_CANTOR) {
+        static const char *const cantor_required[] = {"fx", "fz", "H"};
+        for (size_t k = 0; k < 3; k++)
+            if (!get(s, "surface", cantor_required[k]))
+                return scene_error(CT_EINVAL, "%s: surface.%s: required key missing", s->name,
+                                   cantor_required[k]);
+    }
 
     ct_params *p = &sc->params;
     double H = 0.0;

@@ -8,7 +8,11 @@
 
 enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
 
+/* [surface] type: which kind of surface makes the rods (src/surface/). */
+typedef enum { CT_SURFACE_CANTOR = 0 } ct_surface_type;
+
 typedef struct {
+    ct_surface_type surface_type;
     ct_params params;
     long depth; /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
     ct_representation representation;
