@@ -283,6 +283,16 @@ static double law_f(double u, void *c)
     return l->unload ? asym_unload(l->p, l->u_max, u, l->consistent) : asym_load(l->p, u);
 }
 
+/* GSL's adaptive quadrature of F over [a, b] to 1e-13 relative; its status must be success. */
+static double qags(gsl_function *F, double a, double b, gsl_integration_workspace *w)
+{
+    double r = NAN, err;
+    int status = gsl_integration_qags(F, a, b, 0.0, 1e-13, 1000, w, &r, &err);
+    if (status != GSL_SUCCESS)
+        fail_msg("QAGS over [%.17g, %.17g]: %s", a, b, gsl_strerror(status));
+    return r;
+}
+
 static void asymptotic_energies_against_gsl(void **state)
 {
     (void)state;
@@ -292,16 +302,16 @@ static void asymptotic_energies_against_gsl(void **state)
     double eps_y = 1.0 / 500.0;
     double umaxs[] = {0.01, 0.05, 0.3};
     for (int k = 0; k < 3; k++) {
-        double um = umaxs[k], r, err, uy = eps_y * p.Hstar;
+        double um = umaxs[k], r, uy = eps_y * p.Hstar;
         law_ctx c = {&p, um, 0, 0};
         gsl_function F = {law_f, &c};
         /* split at the regime change u = eps_y H* where Eq. 33 meets Eq. 34 */
         double r1 = 0.0;
         if (um > uy) {
-            gsl_integration_qags(&F, 0.0, uy, 0.0, 1e-13, 1000, w, &r1, &err);
-            gsl_integration_qags(&F, uy, um, 0.0, 1e-13, 1000, w, &r, &err);
+            r1 = qags(&F, 0.0, uy, w);
+            r = qags(&F, uy, um, w);
         } else {
-            gsl_integration_qags(&F, 0.0, um, 0.0, 1e-13, 1000, w, &r, &err);
+            r = qags(&F, 0.0, um, w);
         }
         assert_rel(asym_work_load(&p, um), r1 + r, 1e-11);
         for (int cons = 0; cons < 2; cons++) {
@@ -311,8 +321,8 @@ static void asymptotic_energies_against_gsl(void **state)
             if (chiM <= 0.0)
                 continue;
             double split = chiM < um ? chiM : um;
-            gsl_integration_qags(&F, hbar, split, 0.0, 1e-13, 1000, w, &ra, &err);
-            gsl_integration_qags(&F, split, um, 0.0, 1e-13, 1000, w, &rb, &err);
+            ra = qags(&F, hbar, split, w);
+            rb = qags(&F, split, um, w);
             assert_rel(asym_work_unload(&p, um, cons), ra + rb, 1e-11);
         }
     }
@@ -597,6 +607,74 @@ static void law_impact_status_without_gsl_handler(void **state)
     assert_true(gsl_set_error_handler(before) == count_gsl_error);
 }
 
+/* Eq. 38, both branches and both forms, against stage sums written here from Eqs. 16, 23 and
+ * 24. The continuous law equals the discrete stages exactly where its boundaries fall on
+ * stages: chi_M h0 = h_m (Eq. 35: the deepest elastic stage is m, stages i > m have yielded)
+ * and, on the first branch, u = h_n; so u_max = eps_y H* + (1 - eps_y) h_m (Eq. 36).
+ *  - First branch (h_m <= u = h_n < u_max, n <= m), Eq. 24's first case: the elastic stages
+ *    n+1..m give E s_i (u - h_i)/H*, the yielded ones E s_i ((u - u_max)/H* + eps_y).
+ *  - Second branch as printed (u < h_m): Eq. 24's second case, every stage beyond n at
+ *    E s_i ((u - u_max)/H* + eps_y), i.e. l_{n+1} (Eq. 16) times it, with n the stage whose
+ *    release point h-bar_n = u_max - eps_y H* + eps_y h_n (Eq. 23's h_i << H* form) is u.
+ *  - Second branch derived consistently: each yielded stage unloads along its own line from
+ *    its own release point h-bar_i = h-bar_inf + eps_y h_i, E s_i (u - h-bar_i)/H*, summed
+ *    over the stages in contact (h-bar_i < u); at u = h-bar_n that is
+ *    E eps_y sum_{i > n} s_i (h_n - h_i) / H*, which carries the factor (1 - 1/fz)/(1 - beta)
+ *    (Eq. 21's bracket) the printed branch lacks. */
+static void eq38_both_forms_against_stage_sums(void **state)
+{
+    (void)state;
+    const ct_params ps[] = {make(1.5, 1.3, 300.0, 10.0), make(1.8, 1.7, 100.0, 3.0),
+                            make(1.2, 1.1, 1000.0, 100.0)};
+    for (int c = 0; c < 3; c++) {
+        const ct_params *p = &ps[c];
+        const long double fx = p->fx, fz = p->fz, eps_y = (long double)p->sigma_y / p->E;
+        const long double Hs = p->Hstar, PY = (long double)p->sigma_y * p->l0;
+        /* the deepest elastic stage m: u_max in the law's domain (<= h0), and past stage
+         * m - 1's top so that the first branch holds a node */
+#define UMAX_(m) (eps_y * Hs + (1 - eps_y) * p->h0 * powl(fz, -(m)))
+        long m = 1;
+        while (UMAX_(m) > p->h0 || !(p->h0 * powl(fz, -(m - 1)) < UMAX_(m)))
+            m++;
+#undef UMAX_
+        const long double hm = p->h0 * powl(fz, -m), u_max = eps_y * Hs + (1 - eps_y) * hm;
+        const long double hbar_inf = u_max - eps_y * Hs;
+#define S_(i) ((long double)p->l0 * powl(fx, -(i)) * (1 - 1 / fx))
+#define H_(i) ((long double)p->h0 * powl(fz, -(i)))
+        /* first branch at u = h_n, n < m (u = h_m is the branches' meeting point, where the
+         * consistent form jumps) */
+        int first_branch_checked = 0;
+        for (long n = m - 3; n < m; n++) {
+            long double u = H_(n), P = 0.0L;
+            if (!(u < u_max))
+                continue;
+            for (long i = n + 1; i <= m; i++)
+                P += p->E * S_(i) * (u - H_(i)) / Hs;
+            for (long i = m + 1; i < m + 6000; i++)
+                P += p->E * S_(i) * ((u - u_max) / Hs + eps_y);
+            for (int cons = 0; cons < 2; cons++)
+                assert_rel(asym_unload(p, (double)u_max, (double)u, cons), (double)(P / PY), 1e-11);
+            first_branch_checked++;
+        }
+        assert_true(first_branch_checked > 0);
+        /* second branch at u = h-bar_n for stages n beyond m */
+        for (long n = m + 1; n <= m + 6; n += 5) {
+            long double u = hbar_inf + eps_y * H_(n), printed = 0.0L, consistent = 0.0L;
+            printed = p->E * p->l0 * powl(fx, -(n + 1)) * ((u - u_max) / Hs + eps_y);
+            for (long i = n + 1; i < n + 6000; i++)
+                consistent += p->E * eps_y * S_(i) * (H_(n) - H_(i)) / Hs;
+            assert_rel(asym_unload(p, (double)u_max, (double)u, 0), (double)(printed / PY), 1e-11);
+            assert_rel(asym_unload(p, (double)u_max, (double)u, 1), (double)(consistent / PY),
+                       1e-11);
+            /* and the two differ where they should: by Eq. 21's bracket */
+            long double K = (1 - 1 / fz) / (1 - 1 / (fx * fz));
+            assert_rel((double)(consistent / printed), (double)K, 1e-11);
+        }
+#undef S_
+#undef H_
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -607,6 +685,7 @@ int main(void)
         cmocka_unit_test(laws_refuse_outside_their_domain),
         cmocka_unit_test(stable_near_one_and_tiny_u),
         cmocka_unit_test(asymptotic_energies_against_gsl),
+        cmocka_unit_test(eq38_both_forms_against_stage_sums),
         cmocka_unit_test(paper_fig4_claims),
         cmocka_unit_test(paper_fig5_fig6_claims),
         cmocka_unit_test(paper_convexity_claim),

@@ -284,6 +284,82 @@ static void rod_path_equals_curve_path(void **state)
     }
 }
 
+/* Two rods over five impacts, E = 100, sigma_y = 1 (eps_y = 0.01), H* = 10, l0 = h0 = 1:
+ *   rod  top   L     area   k = E s/L  yield          plateau F
+ *   A    0     10    1      10         0.1            1
+ *   B    0.12  9.88  0.988  10         0.12 + 0.0988  0.988
+ * Every impact has kinetic energy W0 = 0.095. A yields in the first impact and stays on its
+ * plateau whenever it is loaded past its previous maximum; B never yields (checked below).
+ * Loaded from the virgin surface to u in [0.12, 0.2188]: W(u) = 0.05 + (u - 0.1) +
+ * 5 (u - 0.12)^2 (A: 10 (0.1)^2/2 elastic, then F = 1 on the plateau; B: 10 (u - 0.12)^2/2).
+ * After a maximum U, A releases at U - 0.1 and reloads elastically to U (storing 0.05 again),
+ * B is unchanged; so impact k reaches u_k with
+ *   0.05 + (u_k - U) + 5 (u_k - 0.12)^2 = W0,   U = u_{k-1} (u_0 = 0.1: the virgin surface).
+ * With x_k = u_k - 0.12 and c = W0 - 0.05 = 0.045: 5 x_k^2 + x_k - (c + x_{k-1}) = 0,
+ *   x_k = (-1 + sqrt(1 + 20 (c + x_{k-1}))) / 10,   x_0 = -0.02.
+ * What comes back is A's elastic energy on its plateau, 0.05, and B's, 5 x_k^2:
+ *   e_k = sqrt((0.05 + 5 x_k^2) / W0).
+ * A releases at u_k - 0.1 = x_k + 0.02 < 0.12 (B's contact): u_release = x_k + 0.02. The
+ * critical energy of the state before impact k is what reaches the first yield: 0.05 for
+ * the virgin surface (A at 0.1), then 0.05 + 5 x_{k-1}^2 (A back at its maximum u_{k-1});
+ * V*_c = sqrt(W_c / (l0 E h0)) = sqrt(W_c / 100). The fixed point x* = sqrt(c/5) = 0.0949
+ * stays below B's yield at x = 0.0988, so B never yields; e rises to sqrt(0.095/0.095) = 1
+ * as the surface shakes down. */
+static void two_rods_five_impacts_on_paper(void **state)
+{
+    (void)state;
+    enum { IMP = 5 };
+    ct_layer L = {.E = 100.0, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 1.0};
+    const double top[2] = {0.0, 0.12}, area[2] = {1.0, 0.988}, W0 = 0.095;
+    long double x[IMP + 1], e[IMP + 1], Vc[IMP + 1];
+    x[0] = -0.02L;
+    for (int k = 1; k <= IMP; k++) {
+        x[k] = (-1.0L + sqrtl(1.0L + 20.0L * (0.045L + x[k - 1]))) / 10.0L;
+        e[k] = sqrtl((0.05L + 5.0L * x[k] * x[k]) / 0.095L);
+        Vc[k] = sqrtl((k == 1 ? 0.05L : 0.05L + 5.0L * x[k - 1] * x[k - 1]) / 100.0L);
+        assert_true(x[k] < 0.0988L); /* B stays elastic */
+    }
+    const double V = sqrt(W0 / 100.0);
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 2, top, area), CT_OK);
+    /* the shifted curve (the sweep's fast path), the rod path, and the state-carrying path
+     * (an observer), then ct_impact after ct_impact on the bundle itself */
+    const ct_sweep_path paths[] = {CT_PATH_CURVE, CT_PATH_RODS, CT_PATH_CURVE};
+    for (int q = 0; q < 4; q++) {
+        ct_sweep_row rows[IMP];
+        int calls = 0;
+        if (q < 3) {
+            ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = IMP, .path = paths[q]};
+            ct_impact_opts_default(&spec.opts);
+            if (q == 2) {
+                spec.observe = no_op_observer;
+                spec.observe_ctx = &calls;
+            }
+            assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+        } else {
+            for (int k = 0; k < IMP; k++) {
+                rows[k].status = ct_impact(b, W0, NULL, &rows[k].r);
+                assert_int_equal(rows[k].status, CT_OK);
+            }
+        }
+        for (int k = 1; k <= IMP; k++) {
+            const ct_impact_result *r = &rows[k - 1].r;
+            assert_int_equal(rows[k - 1].status, CT_OK);
+            assert_false(r->elastic);
+            assert_rel(r->u_max, (double)(0.12L + x[k]), 1e-14);
+            assert_rel(r->e, (double)e[k], 1e-13);
+            assert_rel(r->u_release, (double)(x[k] + 0.02L), 1e-13);
+            assert_rel(r->u_contact, k == 1 ? 0.0 : (double)(x[k - 1] + 0.02L), 1e-13);
+            assert_rel(r->V_star_crit, (double)Vc[k], 1e-13);
+            if (q != 1) /* the rod path is the closed form itself */
+                assert_rel(r->e_closed, (double)e[k], 1e-13);
+        }
+        if (q == 2)
+            assert_int_equal(calls, 2 * IMP);
+    }
+    ct_bundle_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -293,6 +369,7 @@ int main(void)
         cmocka_unit_test(pruning_changes_no_reported_number),
         cmocka_unit_test(crushing_speed_is_one_row),
         cmocka_unit_test(rod_path_equals_curve_path),
+        cmocka_unit_test(two_rods_five_impacts_on_paper),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }
