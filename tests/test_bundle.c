@@ -129,16 +129,9 @@ static int curve_points(const ct_bundle *b, double lo, double hi, double **pts, 
     return CT_OK;
 }
 
-static void bitwise_identical_for_any_thread_count(void **state)
+/* Force, work and elastic energy at a few u with 1, 2, 3 and 4 threads: bitwise the same. */
+static void same_bits_for_any_thread_count(ct_bundle *b)
 {
-    (void)state;
-    ct_params p = base();
-    ct_bundle *b;
-    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 19, INFINITY), CT_OK);
-    assert_int_equal(ct_bundle_size(b), ((size_t)1 << 20) - 1);
-    /* give the rods different states: load a clone region by region is not possible, so
-     * perturb through a history that yields some stages and not others */
-    ct_bundle_advance(b, 0.33);
     double ref[12];
     int threads[] = {1, 2, 3, 4};
     for (int t = 0; t < 4; t++) {
@@ -155,6 +148,37 @@ static void bitwise_identical_for_any_thread_count(void **state)
         else
             assert_memory_equal(ref, v, sizeof v);
     }
+}
+
+static void bitwise_identical_for_any_thread_count(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 19, INFINITY), CT_OK);
+    assert_int_equal(ct_bundle_size(b), ((size_t)1 << 20) - 1);
+    /* rods in different states: a history that yields some stages and not others */
+    ct_bundle_advance(b, 0.33);
+    same_bits_for_any_thread_count(b);
+    ct_bundle_free(b);
+    /* 2^20 - 1 rods are 512 blocks, a power of two, whose pairwise tree has one root. A
+     * count of 14 blocks (binary 1110) leaves three partial trees that the serial path and
+     * the thread team must join in the same order; irregular tops and areas make the
+     * rounding of each order visible. */
+    const size_t n = 13 * 2048 + 77;
+    double *top = malloc(n * sizeof(double)), *area = malloc(n * sizeof(double));
+    assert_non_null(top);
+    assert_non_null(area);
+    for (size_t k = 0; k < n; k++) {
+        top[k] = 0.4 * fmod(0.6180339887498949 * (double)k, 1.0);
+        area[k] = (1.0 + fmod(0.7548776662466927 * (double)k, 1.0)) / (double)n;
+    }
+    ct_layer L = {.E = 200.0, .sigma_y = 1.0, .Hstar = 3.0, .l0 = 1.0, .h0 = 1.0};
+    assert_int_equal(ct_bundle_from_rods(&b, &L, n, top, area), CT_OK);
+    free(top);
+    free(area);
+    ct_bundle_advance(b, 0.2);
+    same_bits_for_any_thread_count(b);
     ct_bundle_free(b);
 }
 
@@ -361,6 +385,34 @@ static void breakpoints_and_profile(void **state)
     ct_bundle_free(b);
 }
 
+/* The state follows the displacement history rod by rod (Eq. 10): loading past a rod's yield
+ * point sets eps_p = (u - top)/L - eps_y, unloading and reloading below the maximum change
+ * nothing, loading beyond it again moves eps_p on. Three rods, E = 100, sigma_y = 1, H* = 2. */
+static void advance_follows_the_history(void **state)
+{
+    (void)state;
+    ct_layer L = {.E = 100.0, .sigma_y = 1.0, .Hstar = 2.0, .l0 = 1.0, .h0 = 1.0};
+    const double top[3] = {0.0, 0.01, 0.3}, area[3] = {0.5, 0.3, 0.2}, eps_y = 0.01;
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 3, top, area), CT_OK);
+    /* u: 0.1 (rods 0, 1 yield: yield points 0.02 and 0.0299), 0.05, 0.08, 0.2, 0.0 */
+    const double path[] = {0.1, 0.05, 0.08, 0.2, 0.0}, max_so_far[] = {0.1, 0.1, 0.1, 0.2, 0.2};
+    for (int h = 0; h < 5; h++) {
+        ct_bundle_advance(b, path[h]);
+        for (int k = 0; k < 3; k++) {
+            ct_rod_info r;
+            assert_int_equal(ct_bundle_rod(b, (size_t)k, &r), CT_OK);
+            double Lk = 2.0 - top[k], strain = (max_so_far[h] - top[k]) / Lk;
+            double expected = strain > eps_y ? strain - eps_y : 0.0;
+            if (expected == 0.0)
+                assert_true(r.plastic_strain == 0.0);
+            else
+                assert_rel(r.plastic_strain, expected, 1e-13);
+        }
+    }
+    ct_bundle_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -370,6 +422,7 @@ int main(void)
         cmocka_unit_test(bitwise_identical_for_any_thread_count),
         cmocka_unit_test(many_nodes_match_single_nodes),
         cmocka_unit_test(truncation_bound_holds),
+        cmocka_unit_test(advance_follows_the_history),
         cmocka_unit_test(too_deep_is_refused_before_allocating),
         cmocka_unit_test(untouched_rods_are_left_out),
         cmocka_unit_test(breakpoints_and_profile),

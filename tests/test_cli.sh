@@ -78,6 +78,8 @@ expect 2 "binary garbage" -- "$ct" run "$tmp/bin.ini"
 # the crushed layer is refused (input outside the model): exit 2, no output
 expect 2 "crushed layer" -- "$ct" run "$tmp/s.ini" --set impact.V_star=5 -o "$tmp/crush.csv"
 grep -q "crushed" "$tmp/err" && ok || bad "crushed message"
+[ ! -e "$tmp/crush.csv" ] && ok || bad "a failed run left its output"
+ls "$tmp" | grep -q '\.tmp' && bad "a failed run left a temporary file: $(ls "$tmp")" || ok
 [ ! -e "$tmp/crush.csv" ] && ok || bad "no output when crushed"
 # a computation that cannot be done (a bundle too large for memory): exit 1
 expect 1 "too deep for memory" -- "$ct" run "$tmp/s.ini" --set surface.representation=segments --set surface.depth=40 -o "$tmp/deep.csv"

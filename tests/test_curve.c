@@ -111,6 +111,15 @@ static void check_curve(const ct_bundle *b)
             }
         }
     }
+    /* beyond the last breakpoint every rod sits on its plateau: P is flat, exactly (no
+     * rounding residue of the slope sum may tilt it), and equals the plateau sum */
+    const ct_layer *L = ct_bundle_layer(b);
+    double far1 = x[n - 1] + 0.25 * (L->Hstar - x[n - 1]),
+           far2 = x[n - 1] + 0.9 * (L->Hstar - x[n - 1]);
+    if (!(ct_curve_force(c, far1) == ct_curve_force(c, far2)))
+        fail_msg("P beyond the last breakpoint tilts: %.17g at %.17g, %.17g at %.17g",
+                 ct_curve_force(c, far1), far1, ct_curve_force(c, far2), far2);
+    assert_rel(ct_curve_force(c, far2), ct_bundle_force(b, far2), 8.0 * eps);
     /* below first contact: nothing */
     assert_true(ct_curve_force(c, x[0] - 0.1) == 0.0 && ct_curve_work(c, x[0] - 0.1) == 0.0);
     ct_curve_free(c);
