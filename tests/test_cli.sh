@@ -70,6 +70,14 @@ expect 2 "bad --set" -- "$ct" run "$tmp/s.ini" --set surface.fx=abc -o "$tmp/bad
 expect 0 "--set override" -- "$ct" run -q "$tmp/s.ini" --set impact.V_star=1e-6
 [ "$(wc -l <"$tmp/out")" -eq 2 ] && grep -q '^1,9.99999' "$tmp/out" && ok || bad "--set changes V*"
 
+# a scene from a pipe, a FIFO or standard input is read once, whole
+"$ct" run -q - <"$tmp/s.ini" >"$tmp/stdin.csv" 2>"$tmp/err" && [ "$(wc -l <"$tmp/stdin.csv")" -eq 4 ] &&
+    ok || bad "scene from standard input (-): $(cat "$tmp/err")"
+cat "$tmp/s.ini" | "$ct" run -q /dev/stdin >"$tmp/pipe.csv" 2>"$tmp/err" &&
+    cmp -s "$tmp/stdin.csv" "$tmp/pipe.csv" && ok || bad "scene from a pipe: $(cat "$tmp/err")"
+"$ct" run -q <(cat "$tmp/s.ini") >"$tmp/fifo_in.csv" 2>"$tmp/err" &&
+    cmp -s "$tmp/stdin.csv" "$tmp/fifo_in.csv" && ok || bad "scene from <(...): $(cat "$tmp/err")"
+
 expect 2 "unwritable output" -- "$ct" run "$tmp/s.ini" -o /nonexistent/dir/out.csv
 head -c 4 /dev/urandom >/dev/null
 printf '\x00\x01\x02garbage' >"$tmp/bin.ini"

@@ -6,6 +6,7 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <locale.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -145,7 +146,8 @@ static void unparsable_numbers(void **state)
     for (size_t k = 0; k < sizeof lines / sizeof lines[0]; k++) {
         char buf[512];
         with_line(buf, sizeof buf, lines[k]);
-        expect_error(buf, NULL, 0, "s.ini:5: surface.h0", "not a finite number");
+        expect_error(buf, NULL, 0, "s.ini:5: surface.h0",
+                     strstr(lines[k], "1e999") ? "overflows" : "not a finite number");
     }
     char buf[512];
     with_line(buf, sizeof buf, "depth = 12.5");
@@ -222,14 +224,157 @@ static void files_missing_and_binary(void **state)
     ct_scene_free(&sc);
 }
 
+/* Lines longer than inih's 200-byte buffer are read whole: a long comment whose tail looks
+ * like a key sets nothing, a long list keeps every value, a long key line keeps its value. */
+static void long_lines_read_whole(void **state)
+{
+    (void)state;
+    char text[8192], comment[400], list[4096];
+    memset(comment, 'x', sizeof comment);
+    memcpy(comment, "; ", 2);
+    snprintf(comment + 300, 100, " depth = 3 output.file = pwned.csv");
+    size_t n = 0;
+    n += (size_t)snprintf(list + n, sizeof list - n, "V_star = ");
+    for (int k = 1; k <= 60; k++)
+        n += (size_t)snprintf(list + n, sizeof list - n, "%s%.6e", k > 1 ? ", " : "", 1e-4 * k);
+    size_t bare = n; /* the list without its comment */
+    snprintf(list + n, sizeof list - n, "   ; a comment after the list");
+    snprintf(text, sizeof text,
+             "[surface]\n%s\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n[impact]\n%s\n",
+             comment, list);
+    ct_scene sc;
+    if (ct_scene_parse(&sc, "s.ini", text, NULL, 0) != CT_OK)
+        fail_msg("%s", ct_scene_message());
+    assert_int_equal(sc.depth, CT_DEPTH_AUTO); /* the comment's tail set nothing */
+    assert_string_equal(sc.output, "-");
+    assert_int_equal(sc.nvel, 60);
+    for (int k = 1; k <= 60; k++)
+        assert_true(fabs(sc.V_star[k - 1] - 1e-4 * k) <= 1e-6 * 1e-4 * k);
+    ct_scene_free(&sc);
+    /* a bad value on a long line is reported with that line, its value shortened */
+    list[bare] = '\0';
+    snprintf(text, sizeof text,
+             "[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n[impact]\n%s, -1\n",
+             list);
+    expect_error(text, NULL, 0, "s.ini:8: impact.V_star = ", "value 61: must be > 0");
+    assert_true(strlen(ct_scene_message()) < 300);
+}
+
+/* Section headers are checked whole; empty unknown sections are errors too. */
+static void section_headers_checked(void **state)
+{
+    (void)state;
+    char buf[512];
+    with_line(buf, sizeof buf, "[surface]junk");
+    expect_error(buf, NULL, 0, "s.ini:5:", "text after the section header");
+    with_line(buf, sizeof buf, "[surface]]");
+    expect_error(buf, NULL, 0, "s.ini:5:", "text after the section header");
+    with_line(buf, sizeof buf, "[nonsense]");
+    expect_error(buf, NULL, 0, "s.ini:5: [nonsense]: unknown section", NULL);
+    with_line(buf, sizeof buf, "[]");
+    expect_error(buf, NULL, 0, "s.ini:5:", "not a section name");
+    with_line(buf, sizeof buf, "[surface] ; a comment is fine");
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", buf, NULL, 0), CT_OK);
+    ct_scene_free(&sc);
+}
+
+/* List forms: every field present, nothing after log. */
+static void list_fields_checked(void **state)
+{
+    (void)state;
+    const char *bad_lists[] = {
+        "1e-3::1e-2:3",     "1e-3:1e-2::log",   ":1e-2:3",    "1e-3:1e-2:3:log x",
+        "1e-3:1e-2:3:logx", "1e-3:1e-2:3:log:", "1e-3,,1e-2", "1e-3,"};
+    for (size_t k = 0; k < sizeof bad_lists / sizeof *bad_lists; k++) {
+        char set[128];
+        snprintf(set, sizeof set, "impact.V_star=%s", bad_lists[k]);
+        const char *sets[] = {set};
+        expect_error(good, sets, 1, "impact.V_star", NULL);
+    }
+    const char *sets[] = {"impact.V_star= 1e-3 : 1e-2 : 3 : log "};
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, sets, 1), CT_OK);
+    assert_int_equal(sc.nvel, 3);
+    assert_true(fabs(sc.V_star[1] - sqrt(1e-5)) < 1e-15);
+    ct_scene_free(&sc);
+}
+
+/* Messages that say what happened: an indented key is a key (not a continuation of the
+ * previous value), a BOM file counts lines from 1, CR-only line ends are line ends, a
+ * denormal underflows, an impact energy that underflows names its key and line. */
+static void messages_say_what_happened(void **state)
+{
+    (void)state;
+    char buf[512];
+    ct_scene sc;
+    with_line(buf, sizeof buf, "    depth = 7");
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", buf, NULL, 0), CT_OK);
+    assert_int_equal(sc.depth, 7);
+    ct_scene_free(&sc);
+    expect_error("\xEF\xBB\xBF[surface]\nfx = 0.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n"
+                 "[impact]\nV_star = 1e-3\n",
+                 NULL, 0, "s.ini:2: surface.fx = 0.5", NULL);
+    assert_int_equal(ct_scene_parse(&sc, "s.ini",
+                                    "\xEF\xBB\xBF[surface]\rfx = 1.5\rfz = 1.3\rH = 10\r"
+                                    "[material]\rE = 500\r[impact]\rV_star = 1e-3\r",
+                                    NULL, 0),
+                     CT_OK);
+    assert_true(sc.params.fz == 1.3 && sc.nvel == 1);
+    ct_scene_free(&sc);
+    expect_error("[surface]\rfx = 1.5\rfz = 2.5\rH = 10\r[material]\rE = 500\r[impact]\r"
+                 "V_star = 1e-3\r",
+                 NULL, 0, "s.ini:3: surface.fz = 2.5", NULL);
+    with_line(buf, sizeof buf, "h0 = 1e-310");
+    expect_error(buf, NULL, 0, "s.ini:5: surface.h0 = 1e-310", "underflows");
+    with_line(buf, sizeof buf, "l0 = 1e999");
+    expect_error(buf, NULL, 0, "s.ini:5: surface.l0 = 1e999", "overflows");
+    const char *tiny[] = {"impact.V_star=1e-200"};
+    expect_error(good, tiny, 1, "impact.V_star = 1e-200", "impact energy");
+}
+
+/* The C locale whatever the caller's: a German LC_NUMERIC (decimal comma) changes nothing.
+ * The locale is compiled here with localedef into a scratch directory (LOCPATH). */
+static void numbers_in_the_c_locale(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/ct_locale_XXXXXX", cmd[256];
+    if (!mkdtemp(dir))
+        fail_msg("mkdtemp failed");
+    snprintf(cmd, sizeof cmd, "localedef -i de_DE -c -f UTF-8 %s/de_DE.UTF-8 >/dev/null 2>&1", dir);
+    int rc = system(cmd);
+    setenv("LOCPATH", dir, 1);
+    const char *set = rc == 0 ? setlocale(LC_NUMERIC, "de_DE.UTF-8") : NULL;
+    if (!set) {
+        snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+        (void)!system(cmd);
+        fail_msg("cannot make a de_DE locale (localedef, package locales)");
+    }
+    assert_true(strtod("1,5", NULL) == 1.5); /* the locale does bite */
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, NULL, 0), CT_OK);
+    assert_true(sc.params.fx == 1.5 && sc.params.fz == 1.3);
+    ct_scene_free(&sc);
+    const char *comma[] = {"surface.fx=1,5"};
+    expect_error(good, comma, 1, "surface.fx = 1,5", "not a finite number");
+    assert_true(strtod("1,5", NULL) == 1.5); /* and the caller's locale is back */
+    setlocale(LC_NUMERIC, "C");
+    unsetenv("LOCPATH");
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    (void)!system(cmd);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(defaults_and_values), cmocka_unit_test(velocity_lists),
-        cmocka_unit_test(set_overrides),       cmocka_unit_test(unknown_section_and_key),
-        cmocka_unit_test(duplicate_key),       cmocka_unit_test(missing_required),
-        cmocka_unit_test(unparsable_numbers),  cmocka_unit_test(out_of_range),
-        cmocka_unit_test(malformed_line),      cmocka_unit_test(files_missing_and_binary),
+        cmocka_unit_test(defaults_and_values),     cmocka_unit_test(velocity_lists),
+        cmocka_unit_test(set_overrides),           cmocka_unit_test(unknown_section_and_key),
+        cmocka_unit_test(duplicate_key),           cmocka_unit_test(missing_required),
+        cmocka_unit_test(unparsable_numbers),      cmocka_unit_test(out_of_range),
+        cmocka_unit_test(malformed_line),          cmocka_unit_test(files_missing_and_binary),
+        cmocka_unit_test(long_lines_read_whole),   cmocka_unit_test(section_headers_checked),
+        cmocka_unit_test(list_fields_checked),     cmocka_unit_test(messages_say_what_happened),
+        cmocka_unit_test(numbers_in_the_c_locale),
     };
     return cmocka_run_group_tests_name("scene", tests, NULL, NULL);
 }

@@ -6,6 +6,7 @@
 #include <stdarg.h>
 
 #include <ctype.h>
+#include <locale.h>
 #include <errno.h>
 #include <math.h>
 #include <stdio.h>
@@ -13,6 +14,13 @@
 #include <string.h>
 
 static _Thread_local char scene_message[512];
+
+/* Marks a value held aside by the line reader (a line longer than inih's buffer). */
+#define LONG_VALUE_MARK '\x01'
+
+/* Scenes larger than this are refused: a scene is a few hundred bytes, a long speed list a
+ * few megabytes. */
+#define CT_MAX_SCENE_BYTES (64u << 20)
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))
@@ -78,8 +86,9 @@ typedef struct {
     int section_line; /* line of the latest [section] header */
     int error_line;   /* line of the handler's first error */
     int status;
-    const char *text; /* string reader */
-    FILE *file;       /* file reader */
+    const char *text;   /* what is left to read */
+    char **long_values; /* values of lines longer than inih's buffer, by placeholder index */
+    size_t nlong;
 } parse_state;
 
 static int find_key(const char *section, const char *key)
@@ -137,6 +146,8 @@ static int handler(void *user, const char *section, const char *key, const char 
         return 0; /* inih goes on after an error; the first one is reported */
     s->error_line = s->line;
     snprintf(where, sizeof where, "%s:%d", s->name, s->line);
+    if (value[0] == LONG_VALUE_MARK) /* a value too long for inih's buffer, held aside */
+        value = s->long_values[strtoul(value + 1, NULL, 10)];
     if (!section[0])
         s->status = scene_error(CT_EINVAL, "%s: %s: key outside any section", where, key);
     else
@@ -144,40 +155,126 @@ static int handler(void *user, const char *section, const char *key, const char 
     return s->status == CT_OK;
 }
 
-/* inih reads line by line through these readers; counting here gives every key its line,
- * and every section header its own. */
-static void note_line(parse_state *s, const char *buf)
+/* inih reads line by line through this reader, which hands it every line in a normal form
+ * and counts lines, so that every key has its line: line ends \n, \r\n or a lone \r; a UTF-8
+ * byte-order mark dropped; leading white space dropped (inih would read an indented line as
+ * the continuation of the previous value); section headers checked whole ("[name]", then
+ * only a comment) against the known sections, empty ones included. inih cuts lines at its
+ * buffer size (200 bytes) and would read the rest as a new line: a longer comment is handed
+ * over empty, and a longer key line as "key = <mark><index>" with its value held aside. */
+/* Records a reader error (fmt takes the file, the line and arg) and ends the reading. */
+static char *reader_error(parse_state *s, const char *fmt, const char *arg)
 {
-    s->line++;
-    while (isspace((unsigned char)*buf))
-        buf++;
-    if (*buf == '[')
-        s->section_line = s->line;
+    char msg[400];
+    snprintf(msg, sizeof msg, fmt, s->name, s->line, arg);
+    s->error_line = s->line;
+    s->status = scene_error(CT_EINVAL, "%s", msg);
+    return NULL;
 }
 
-static char *read_file_line(char *buf, int size, void *stream)
+static int is_comment_start(char c)
 {
-    parse_state *s = stream;
-    char *r = fgets(buf, size, s->file);
-    if (r)
-        note_line(s, buf);
-    return r;
+    return c == ';' || c == '#';
 }
 
 static char *read_string_line(char *buf, int size, void *stream)
 {
     parse_state *s = stream;
-    if (!*s->text)
+    if (s->status != CT_OK || !*s->text)
         return NULL;
-    int n = 0;
-    while (n < size - 1 && s->text[n] && s->text[n] != '\n')
+    const char *p = s->text;
+    size_t n = 0;
+    while (p[n] && p[n] != '\n' && p[n] != '\r')
         n++;
-    if (n < size - 1 && s->text[n] == '\n')
-        n++;
-    memcpy(buf, s->text, (size_t)n);
-    buf[n] = '\0';
-    s->text += n;
-    note_line(s, buf);
+    const char *next = p + n;
+    if (next[0] == '\r' && next[1] == '\n')
+        next += 2;
+    else if (*next)
+        next++;
+    s->text = next;
+    s->line++;
+    if (s->line == 1 && n >= 3 && !memcmp(p, "\xEF\xBB\xBF", 3)) {
+        p += 3;
+        n -= 3;
+    }
+    while (n && isspace((unsigned char)*p))
+        p++, n--;
+    while (n && isspace((unsigned char)p[n - 1]))
+        n--;
+    if (n == 0 || is_comment_start(*p)) {
+        snprintf(buf, (size_t)size, "\n");
+        return buf;
+    }
+    if (*p == '[') {
+        const char *close = memchr(p, ']', n), *end = p + n;
+        char name[64], shown[64];
+        snprintf(shown, sizeof shown, "%.*s", (int)(n < 60 ? n : 60), p);
+        if (!close)
+            return reader_error(s, "%s:%d: %s: malformed section header (expected [name])", shown);
+        const char *after = close + 1;
+        while (after < end && isspace((unsigned char)*after))
+            after++;
+        if (after < end && !is_comment_start(*after))
+            return reader_error(s, "%s:%d: %s: text after the section header", shown);
+        const char *a = p + 1, *b = close;
+        while (a < b && isspace((unsigned char)*a))
+            a++;
+        while (b > a && isspace((unsigned char)b[-1]))
+            b--;
+        if (b == a || (size_t)(b - a) >= sizeof name || memchr(a, '[', (size_t)(b - a)))
+            return reader_error(s, "%s:%d: %s: not a section name", shown);
+        memcpy(name, a, (size_t)(b - a));
+        name[b - a] = '\0';
+        if (!section_known(name))
+            return reader_error(s,
+                                "%s:%d: [%s]: unknown section (known: surface, material, "
+                                "impact, solver, output)",
+                                name);
+        s->section_line = s->line;
+        snprintf(buf, (size_t)size, "[%s]\n", name);
+        return buf;
+    }
+    if (n + 2 <= (size_t)size) {
+        memcpy(buf, p, n);
+        buf[n] = '\n';
+        buf[n + 1] = '\0';
+        return buf;
+    }
+    /* a key line longer than inih's buffer: split it here as inih would (at the first '='
+     * or ':', an inline comment starts at ';' after white space) */
+    const char *sep = p;
+    while (sep < p + n && *sep != '=' && *sep != ':')
+        sep++;
+    if (sep == p + n)
+        return reader_error(s, "%s:%d: malformed line (expected [section] or key = value)%s", "");
+    const char *kend = sep;
+    while (kend > p && isspace((unsigned char)kend[-1]))
+        kend--;
+    if ((size_t)(kend - p) + 32 > (size_t)size)
+        return reader_error(s, "%s:%d: key longer than %s characters", "160");
+    const char *v = sep + 1, *vend = p + n;
+    while (v < vend && isspace((unsigned char)*v))
+        v++;
+    for (const char *c = v + 1; c < vend; c++)
+        if (*c == ';' && isspace((unsigned char)c[-1])) {
+            vend = c;
+            break;
+        }
+    while (vend > v && isspace((unsigned char)vend[-1]))
+        vend--;
+    char **grown = realloc(s->long_values, (s->nlong + 1) * sizeof *grown);
+    char *value = grown ? malloc((size_t)(vend - v) + 1) : NULL;
+    if (grown)
+        s->long_values = grown;
+    if (!value) {
+        s->status = scene_error(CT_ENOMEM, "scene: out of memory");
+        return NULL;
+    }
+    memcpy(value, v, (size_t)(vend - v));
+    value[vend - v] = '\0';
+    s->long_values[s->nlong] = value;
+    snprintf(buf, (size_t)size, "%.*s = %c%zu\n", (int)(kend - p), p, LONG_VALUE_MARK, s->nlong);
+    s->nlong++;
     return buf;
 }
 
@@ -185,24 +282,40 @@ static char *read_string_line(char *buf, int size, void *stream)
 
 static int bad(const entry *e, const char *section, const char *key, const char *why)
 {
-    return scene_error(CT_EINVAL, "%s: %s.%s = %s: %s", e->where, section, key, e->value, why);
+    size_t n = strlen(e->value);
+    return scene_error(CT_EINVAL, "%s: %s.%s = %.*s%s: %s", e->where, section, key,
+                       (int)(n > 80 ? 72 : n), e->value, n > 80 ? "..." : "", why);
 }
 
-static int parse_number(const char *text, double *out)
+/* A number the whole text spells (white space around it allowed), finite and representable;
+ * else 0 with *why (when not NULL) saying what is wrong. */
+static int parse_number_why(const char *text, double *out, const char **why)
 {
     char *end;
+    const char *reason = "not a finite number";
     while (isspace((unsigned char)*text))
         text++;
-    if (!*text)
-        return 0;
     errno = 0;
-    double v = strtod(text, &end);
+    double v = *text ? strtod(text, &end) : 0.0;
+    if (!*text)
+        goto fail;
     while (isspace((unsigned char)*end))
         end++;
-    if (*end || end == text || !isfinite(v) || errno == ERANGE)
-        return 0;
+    if (*end || end == text)
+        goto fail;
+    if (errno == ERANGE) {
+        reason = fabs(v) >= 1.0 ? "overflows double precision (|value| > 1.8e308)"
+                                : "underflows double precision (0 < |value| < 2.2e-308)";
+        goto fail;
+    }
+    if (!isfinite(v)) /* inf, nan spelled out */
+        goto fail;
     *out = v;
     return 1;
+fail:
+    if (why)
+        *why = reason;
+    return 0;
 }
 
 static int parse_integer(const char *text, long *out)
@@ -236,8 +349,9 @@ static int number_key(parse_state *s, const char *section, const char *key, doub
     if (!e)
         return CT_OK; /* default stays */
     double v;
-    if (!parse_number(e->value, &v))
-        return bad(e, section, key, "not a finite number");
+    const char *why;
+    if (!parse_number_why(e->value, &v, &why))
+        return bad(e, section, key, why);
     if (!(v > lo && v < hi))
         return bad(e, section, key, range);
     *out = v;
@@ -266,23 +380,46 @@ static int velocity_list(const entry *e, const char *key, double **out, size_t *
     double *vals = NULL;
     size_t n = 0;
     if (strchr(v, ':')) {
+        /* exactly three or four fields, none empty: strtok would skip empty ones */
         char buf[256];
+        if (strlen(v) >= sizeof buf)
+            return bad(e, "impact", key, "from:to:count[:log] longer than 255 characters");
         snprintf(buf, sizeof buf, "%s", v);
-        char *parts[5];
+        char *parts[4];
         int np = 0;
-        for (char *tok = strtok(buf, ":"); tok && np < 5; tok = strtok(NULL, ":"))
-            parts[np++] = tok;
+        for (char *f = buf;;) {
+            char *colon = strchr(f, ':');
+            if (colon)
+                *colon = '\0';
+            if (np == 4)
+                return bad(e, "impact", key, "expected from:to:count[:log] (too many fields)");
+            parts[np++] = f;
+            if (!colon)
+                break;
+            f = colon + 1;
+        }
         double from, to;
         long cnt;
         int logscale = 0;
-        if (np < 3 || np > 4 || !parse_number(parts[0], &from) || !parse_number(parts[1], &to) ||
-            !parse_integer(parts[2], &cnt))
+        const char *why;
+        if (np < 3)
             return bad(e, "impact", key, "expected from:to:count[:log]");
+        for (int k = 0; k < 2; k++)
+            if (!parse_number_why(parts[k], k ? &to : &from, &why)) {
+                char msg[160];
+                snprintf(msg, sizeof msg, "expected from:to:count[:log]: %s field %s",
+                         k ? "the second" : "the first", why);
+                return bad(e, "impact", key, msg);
+            }
+        if (!parse_integer(parts[2], &cnt))
+            return bad(e, "impact", key, "expected from:to:count[:log]: count is no integer");
         if (np == 4) {
-            char *m = parts[3];
+            char *m = parts[3], *end = m + strlen(m);
             while (isspace((unsigned char)*m))
                 m++;
-            if (strncmp(m, "log", 3) || (m[3] && !isspace((unsigned char)m[3])))
+            while (end > m && isspace((unsigned char)end[-1]))
+                end--;
+            if (end - m != 3 || strncmp(m, "log", 3))
                 return bad(e, "impact", key, "the fourth field may only be 'log'");
             logscale = 1;
         }
@@ -317,10 +454,14 @@ static int velocity_list(const entry *e, const char *key, double **out, size_t *
             char *comma = strchr(start, ',');
             if (comma)
                 *comma = '\0';
-            if (!parse_number(start, &vals[n]) || !(vals[n] > 0.0)) {
+            const char *why = "must be > 0";
+            vals[n] = NAN;
+            if (!parse_number_why(start, &vals[n], &why) || !(vals[n] > 0.0)) {
+                char msg[160];
+                snprintf(msg, sizeof msg, "value %zu: %s", n + 1, why);
                 free(vals);
                 free(buf);
-                return bad(e, "impact", key, "each value must be a finite number > 0");
+                return bad(e, "impact", key, msg);
             }
             n++;
             if (!comma)
@@ -436,6 +577,18 @@ static int interpret(parse_state *s, ct_scene *sc)
             if (!isfinite(sc->V_star[k]) || !(sc->V_star[k] > 0.0))
                 return bad(evel, "impact", "velocity",
                            "gives a V* that is not a finite number > 0");
+        }
+    }
+    /* every impact energy V*^2 l0 E h0 must be a number the solver can use */
+    for (size_t k = 0; k < sc->nvel; k++) {
+        double W = sc->V_star[k] * sc->V_star[k] * ct_energy_scale(p);
+        if (!isfinite(W) || !(W > 0.0)) {
+            char msg[200];
+            snprintf(msg, sizeof msg,
+                     "V* = %g (value %zu) gives the impact energy V*^2 l0 E h0 = %g, not a finite "
+                     "number > 0",
+                     sc->V_star[k], k + 1, W);
+            return bad(ev ? ev : evel, "impact", ev ? "V_star" : "velocity", msg);
         }
     }
     sc->impacts = 1;
@@ -587,6 +740,9 @@ static int finish(parse_state *s, int ini_status, ct_scene *scene, const char *c
         st = interpret(s, scene);
     for (size_t k = 0; k < NKEYS; k++)
         free(s->entries[k].value);
+    for (size_t k = 0; k < s->nlong; k++)
+        free(s->long_values[k]);
+    free(s->long_values);
     if (st)
         ct_scene_free(scene);
     return st;
@@ -600,41 +756,78 @@ int ct_scene_parse(ct_scene *scene, const char *name, const char *text,
     memset(scene, 0, sizeof *scene);
     s.name = name;
     s.text = text;
+    /* numbers are read in the C locale whatever the caller's (a decimal comma would make
+     * "1.5" fail and "1,5" pass): uselocale is per thread, and restored */
+    locale_t c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    locale_t before = c_locale ? uselocale(c_locale) : (locale_t)0;
     int r = ini_parse_stream(read_string_line, &s, handler, &s);
-    return finish(&s, r, scene, overrides, noverrides);
+    int st = finish(&s, r, scene, overrides, noverrides);
+    if (c_locale) {
+        uselocale(before);
+        freelocale(c_locale);
+    }
+    return st;
 }
 
 int ct_scene_load(ct_scene *scene, const char *path, const char *const *overrides,
                   size_t noverrides)
 {
-    parse_state s;
-    memset(&s, 0, sizeof s);
     memset(scene, 0, sizeof *scene);
-    s.name = path;
-    s.file = fopen(path, "rb");
-    if (!s.file)
+    /* read once, whole: a pipe or FIFO cannot be read twice; "-" is standard input */
+    int is_stdin = !strcmp(path, "-");
+    const char *name = is_stdin ? "(standard input)" : path;
+    FILE *f = is_stdin ? stdin : fopen(path, "rb");
+    if (!f)
         return scene_error(CT_EIO, "%s: cannot open: %s", path, strerror(errno));
-    /* Binary garbage: a NUL byte cannot be in a text scene. */
-    int c, nul = 0, lines = 1;
-    while ((c = fgetc(s.file)) != EOF) {
-        if (c == '\n')
-            lines++;
-        if (c == 0) {
-            nul = 1;
-            break;
+    size_t cap = 4096, n = 0;
+    char *text = malloc(cap);
+    int st = CT_OK;
+    while (text) {
+        if (n + 1 >= cap) {
+            if (cap >= CT_MAX_SCENE_BYTES) {
+                st = scene_error(CT_EINVAL, "%s: larger than %u MiB: not a scene file", name,
+                                 CT_MAX_SCENE_BYTES >> 20);
+                break;
+            }
+            char *t = realloc(text, cap * 2);
+            if (!t) {
+                free(text);
+                text = NULL;
+                break;
+            }
+            text = t;
+            cap *= 2;
         }
+        size_t got = fread(text + n, 1, cap - 1 - n, f);
+        n += got;
+        if (got == 0)
+            break;
     }
-    if (nul || ferror(s.file)) {
-        fclose(s.file);
-        return scene_error(nul ? CT_EINVAL : CT_EIO, "%s:%d: %s", path, lines,
-                           nul ? "binary data (NUL byte): not a scene file" : "read error");
+    if (!text)
+        st = scene_error(CT_ENOMEM, "%s: out of memory", name);
+    else if (!st && ferror(f))
+        st = scene_error(CT_EIO, "%s: read error: %s", name, strerror(errno));
+    if (!is_stdin)
+        fclose(f);
+    if (st) {
+        free(text);
+        return st;
     }
-    rewind(s.file);
-    int r = ini_parse_stream(read_file_line, &s, handler, &s);
-    fclose(s.file);
-    return finish(&s, r, scene, overrides, noverrides);
+    text[n] = '\0';
+    /* binary garbage: a NUL byte cannot be in a text scene */
+    const char *nul = memchr(text, '\0', n);
+    if (nul) {
+        int line = 1;
+        for (const char *c = text; c < nul; c++)
+            line += *c == '\n' || (*c == '\r' && c[1] != '\n');
+        free(text);
+        return scene_error(CT_EINVAL, "%s:%d: binary data (NUL byte): not a scene file", name,
+                           line);
+    }
+    st = ct_scene_parse(scene, name, text, overrides, noverrides);
+    free(text);
+    return st;
 }
-
 void ct_scene_free(ct_scene *scene)
 {
     if (!scene)
