@@ -3,7 +3,7 @@
 set -euo pipefail
 
 CT_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-CT_PACKAGES=(gcc meson ninja-build pkg-config libcmocka-dev libinih-dev libgsl-dev gnuplot-nox)
+CT_PACKAGES=(gcc meson ninja-build pkg-config libcmocka-dev libinih-dev libgsl-dev gnuplot-nox locales)
 
 ct_need_packages() {
     local missing=() p
@@ -26,12 +26,15 @@ ct_need_packages() {
         "${missing[@]}" >/dev/null
 }
 
-# ct_build DIR [meson options...]: configure once, then build.
+# ct_build DIR [meson options...]: configure once (an existing build directory gets the
+# options given, e.g. -Dtests=true after a setup without tests), then build.
 ct_build() {
     local dir=$1
     shift
     if [ ! -f "$CT_ROOT/$dir/build.ninja" ]; then
         meson setup "$CT_ROOT/$dir" "$CT_ROOT" "$@" >/dev/null
+    elif [ $# -gt 0 ]; then
+        meson configure "$CT_ROOT/$dir" "$@" >/dev/null
     fi
     ninja -C "$CT_ROOT/$dir" >/dev/null
 }

@@ -57,6 +57,13 @@ int ct_layer_validate(const ct_layer *l)
     if (!isfinite(l->l0 * l->E * l->h0) || !(l->l0 * l->E * l->h0 > 0.0))
         return ct_error_set(CT_EINVAL, "l0 E h0 = %g: must be a finite positive number",
                             l->l0 * l->E * l->h0);
+    /* E s L (a rod's stiffness times its length) bounds every work term: it must be finite,
+     * else energies overflow (E l0 H* in units of sigma_y l0 h0 is E/sigma_y times H* / h0) */
+    if (!isfinite(l->E * l->l0 * l->Hstar))
+        return ct_error_set(CT_EINVAL,
+                            "E l0 H* = %g * %g * %g overflows double precision: energies of this "
+                            "layer cannot be represented (lower E/sigma_y or H*/h0)",
+                            l->E, l->l0, l->Hstar);
     return CT_OK;
 }
 

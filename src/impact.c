@@ -34,8 +34,10 @@ static int crushed(double W, double Hstar)
                         W, Hstar);
 }
 
-/* u_max on the curve, with the model's limits: no rod, crushed layer, unresolvable. */
-static int curve_umax(const ct_curve *c, double W, double Hstar, double *u_max)
+/* u_max on the curve, with the model's limits: no rod, crushed layer, and (when
+ * `resolve`: an impact that yields, whose e depends on it) a penetration below the
+ * resolution of u. An elastic impact has e = 1 whatever its u_max's last digits. */
+static int curve_umax(const ct_curve *c, double W, double Hstar, int resolve, double *u_max)
 {
     double u0 = ct_curve_first_contact(c);
     if (!isfinite(W) || W < 0.0)
@@ -55,7 +57,7 @@ static int curve_umax(const ct_curve *c, double W, double Hstar, double *u_max)
         return crushed(W, Hstar);
     /* Near first contact P(u) is ill-conditioned: u - top loses digits, so a penetration of
      * a few ulps of u carries no information about e. */
-    if (!(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
+    if (resolve && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
         return ct_error_set(CT_ENOCONV,
                             "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
                             "resolution of u near %.17g: this impact is too weak to resolve on "
@@ -74,7 +76,7 @@ int ct_solve_umax(const ct_bundle *b, double W, double tolerance, double *u_max)
     if ((st = ct_curve_alloc(&c)))
         return st;
     if (!(st = ct_curve_build(c, b)))
-        st = curve_umax(c, W, ct_bundle_layer(b)->Hstar, u_max);
+        st = curve_umax(c, W, ct_bundle_layer(b)->Hstar, 1, u_max);
     ct_curve_free(c);
     return st;
 }
@@ -96,9 +98,9 @@ static int force_batch(const double *u, size_t m, double *P, void *ctx)
 
 /* A composite rule over the rod-by-rod force of the state after u_adv on [lo, hi]. */
 static int composite(const ct_bundle *b, double u_adv, double lo, double hi,
-                     const ct_impact_opts *opts, double *result)
+                     const ct_impact_opts *opts, double *result, double *abserr)
 {
-    double cost = (double)opts->nodes * (double)ct_bundle_size(b) * 1.5, abserr;
+    double cost = (double)opts->nodes * (double)ct_bundle_size(b) * 1.5;
     if (cost > CT_MAX_QUAD_ROD_EVALS)
         return ct_error_set(CT_ENOCONV,
                             "%s quadrature with %zu nodes on %zu rods would need %.2g rod "
@@ -108,7 +110,7 @@ static int composite(const ct_bundle *b, double u_adv, double lo, double hi,
                             CT_MAX_QUAD_ROD_EVALS);
     force_ctx f = {b, u_adv};
     return ct_integrate_batch(force_batch, &f, lo, hi, opts->rule, opts->nodes, NULL, 0, result,
-                              &abserr);
+                              abserr);
 }
 
 /* The impact from the state that c's state reaches when loaded to U (U = -INFINITY: c's
@@ -143,10 +145,10 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
     res->elastic = W <= W_crit;
     if (shifted && res->elastic)
         return CT_ESKIPPED; /* below U: the caller evaluates the state itself */
-    if ((st = curve_umax(c, W + D_U, L->Hstar, &res->u_max)))
+    if ((st = curve_umax(c, W + D_U, L->Hstar, !res->elastic, &res->u_max)))
         return st;
     const double u = res->u_max;
-    if (shifted && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
+    if (shifted && !res->elastic && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
         return ct_error_set(CT_ENOCONV,
                             "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
                             "resolution of u near %.17g: this impact is too weak to resolve on "
@@ -204,6 +206,11 @@ int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result 
     res->e_rounding = 64.0 * DBL_EPSILON * (kappa > 1.0 ? kappa : 1.0);
     if (res->e > 1.0 && res->e <= 1.0 + res->e_rounding)
         res->e = 1.0;
+    if (res->e > 1.0)
+        return ct_error_set(CT_ENOCONV,
+                            "%s quadrature gave e = %.17g > 1 beyond its rounding bound %.3g: "
+                            "not a valid result",
+                            ct_quad_rule_name(opts->rule), res->e, res->e_rounding);
     if (checked) {
         if (!(res->W_load_closed > 0.0) || !(res->W_unload_closed >= 0.0))
             return ct_error_set(CT_ENOCONV, "closed forms gave W_load = %g, W_unload = %g",
@@ -239,13 +246,26 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
         res->W_load = res->W_load_closed;
         res->W_unload = res->W_unload_closed;
         break;
-    default:
-        if ((st = composite(b, -INFINITY, u0, u, opts, &res->W_load)))
+    default: {
+        double err_load, err_unload = 0.0;
+        if ((st = composite(b, -INFINITY, u0, u, opts, &res->W_load, &err_load)))
             return st;
         res->W_unload = res->W_load;
-        if (!res->elastic && (st = composite(b, u, res->u_release, u, opts, &res->W_unload)))
+        if (!res->elastic &&
+            (st = composite(b, u, res->u_release, u, opts, &res->W_unload, &err_unload)))
             return st;
+        /* a rule that ignores P's kinks can return more energy than went in: e > 1 is a
+         * failed quadrature, never a result */
+        if (res->W_unload > res->W_load)
+            return ct_error_set(CT_ENOCONV,
+                                "%s quadrature with %zu nodes gave W_unload = %.6g > W_load = "
+                                "%.6g (e = %.6g > 1; error estimates %.2g and %.2g): a failed "
+                                "quadrature; use more nodes or the breakpoints rule",
+                                ct_quad_rule_name(opts->rule), opts->nodes, res->W_unload,
+                                res->W_load, sqrt(res->W_unload / res->W_load), err_unload,
+                                err_load);
         break;
+    }
     }
     return ct_impact_finish(ct_curve_force(c, u), opts, res);
 }

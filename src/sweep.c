@@ -258,7 +258,7 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
                 res->W_unload = res->W_unload_closed = res->elastic ? Wl[k] : Wu[k];
                 res->e_closed = res->quad_error = NAN;
                 r[j]->status = CT_OK;
-                if (!(u[j] - u0[j] > 16.0 * DBL_EPSILON * fabs(u0[j])))
+                if (!res->elastic && !(u[j] - u0[j] > 16.0 * DBL_EPSILON * fabs(u0[j])))
                     r[j]->status = ct_error_set(
                         CT_ENOCONV,
                         "u_max solve: the penetration u_max - u_contact (%.3g) is below the "

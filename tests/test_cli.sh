@@ -144,6 +144,120 @@ if [ -c /dev/null ]; then
 fi
 expect 2 "output to a directory" -- "$ct" run -q "$tmp/s.ini" -o "$tmp"
 
+# --- physics that must not break on valid input ---
+# scale: e depends on the dimensionless groups alone, so a scene at l0 = 1e200, h0 = 1e-200
+# or sigma_y = 1e250 (E scaled alike) gives the very bytes of the unit scene
+"$ct" run -q "$tmp/s.ini" -o "$tmp/unit.csv"
+for set in "surface.l0=1e200" "surface.l0=1e-200" "surface.h0=1e-200" \
+    "material.sigma_y=1e250 --set material.E=5e252" "material.sigma_y=1e-250 --set material.E=5e-248"; do
+    # shellcheck disable=SC2086
+    "$ct" run -q "$tmp/s.ini" --set $set -o "$tmp/scaled.csv" 2>"$tmp/err" &&
+        cmp -s "$tmp/unit.csv" "$tmp/scaled.csv" && ok || bad "scaled scene ($set) differs: $(cat "$tmp/err")"
+done
+# energies that overflow are refused up front, not reported as a crushed layer
+expect 2 "E l0 H* overflows" -- "$ct" run -q "$tmp/s.ini" --set surface.H=1e300 --set material.E=1e10
+grep -q "overflows" "$tmp/err" && ok || bad "overflow message: $(cat "$tmp/err")"
+# one tiny speed is an elastic impact (e = 1), not the end of the run
+expect 0 "V* = 1e-17 among others" -- "$ct" run -q "$tmp/s.ini" --set impact.V_star=1e-17:1e-2:4:log
+awk -F, 'NR == 2 && $4 != 1 { exit 1 } END { exit NR != 5 }' "$tmp/out" && ok || bad "tiny V* rows: $(cat "$tmp/out")"
+# a composite rule that returns more energy than went in is a failed quadrature, not e > 1
+expect 1 "gauss with 3 nodes on fx = 1e6" -- "$ct" run -q "$tmp/s.ini" --set surface.fx=1e6 \
+    --set solver.quadrature=gauss --set solver.nodes=3 --set impact.V_star=1e-2
+grep -q "failed quadrature" "$tmp/err" && ok || bad "e > 1 message: $(cat "$tmp/err")"
+expect 0 "... and a row of its own with on_error = skip" -- "$ct" run -q "$tmp/s.ini" --set surface.fx=1e6 \
+    --set solver.quadrature=gauss --set solver.nodes=3 --set impact.V_star=1e-2 --set solver.on_error=skip
+awk -F, 'NR == 2 && ($4 != "" || $0 !~ /failed quadrature/) { exit 1 }' "$tmp/out" && ok || bad "skip row: $(cat "$tmp/out")"
+
+# limits that are the answer are refused up front with the figure
+expect 1 "1e6 speeds x 1e6 impacts" -- "$ct" run -q "$tmp/s.ini" --set impact.V_star=1e-4:1e-2:1000000 \
+    --set impact.impacts=1000000
+grep -q "GiB" "$tmp/err" && ok || bad "rows limit message: $(cat "$tmp/err")"
+
+# --- outputs: nothing clobbered, nothing left behind ---
+# a symbolic link: its target gets the rows, the link stays a link
+echo old >"$tmp/target.csv"
+ln -s target.csv "$tmp/link.csv"
+expect 0 "output through a symbolic link" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/link.csv"
+[ -L "$tmp/link.csv" ] && [ "$(wc -l <"$tmp/target.csv")" -eq 4 ] && ok ||
+    bad "symbolic link replaced, or its target not written"
+ln -s nowhere/x.csv "$tmp/dangling.csv"
+expect 2 "output through a dangling link" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/dangling.csv"
+grep -q "symbolic link" "$tmp/err" && ok || bad "dangling link message: $(cat "$tmp/err")"
+# the scene file itself (also through a link) is refused, and left as it was
+cp "$tmp/s.ini" "$tmp/self.ini"
+ln -s self.ini "$tmp/self_link.ini"
+for o in "$tmp/self.ini" "$tmp/self_link.ini"; do
+    expect 2 "output onto the scene file" -- "$ct" run -q "$tmp/self.ini" -o "$o"
+    cmp -s "$tmp/s.ini" "$tmp/self.ini" && ok || bad "the scene file was overwritten"
+done
+# modes: a new file gets 0666 less the umask, an existing file keeps its mode
+(umask 027 && "$ct" run -q "$tmp/s.ini" -o "$tmp/mode_new.csv") &&
+    [ "$(stat -c %a "$tmp/mode_new.csv")" = 640 ] && ok || bad "new file mode $(stat -c %a "$tmp/mode_new.csv")"
+cp "$tmp/s.ini" "$tmp/mode_old.csv" && chmod 604 "$tmp/mode_old.csv"
+"$ct" run -q "$tmp/s.ini" -o "$tmp/mode_old.csv" && [ "$(stat -c %a "$tmp/mode_old.csv")" = 604 ] &&
+    ok || bad "existing file mode not kept: $(stat -c %a "$tmp/mode_old.csv")"
+# several outputs land together or not at all: the curve goes to a device that refuses it
+if [ -e /dev/full ]; then
+    ln -s /dev/full "$tmp/both_curve.csv"
+    expect 2 "one of two outputs fails at commit" -- "$ct" run -q "$tmp/s.ini" \
+        --set output.what=e,curve -o "$tmp/both.csv"
+    [ ! -e "$tmp/both.csv" ] && ok || bad "the e output landed although the curve failed"
+fi
+# paths longer than PATH_MAX fail with the system's reason, nothing is written elsewhere
+long=$tmp/$(printf 'd%.0s' $(seq 1 250))
+for i in $(seq 1 18); do long=$long/$(printf 'd%.0s' $(seq 1 250)); done
+expect 2 "output path longer than PATH_MAX" -- "$ct" run -q "$tmp/s.ini" -o "$long/out.csv"
+grep -q "too long" "$tmp/err" && ok || bad "long path message: $(cat "$tmp/err")"
+# an unwritable output fails before any work: the plan is never printed
+expect 2 "output to a directory fails first" -- "$ct" run "$tmp/s.ini" -o "$tmp"
+grep -q "rods" "$tmp/err" && bad "the computation ran before the output was checked" || ok
+# write errors of the informational commands are errors
+if [ -e /dev/full ]; then
+    for c in "--help" "--version" "geometry $tmp/s.ini" "run -q $tmp/s.ini"; do
+        # shellcheck disable=SC2086
+        "$ct" $c >/dev/full 2>/dev/null && bad "cantact $c into /dev/full exits 0" || ok
+    done
+fi
+# SIGTERM during a run: its temporary file is removed
+cat >"$tmp/long.ini" <<INI
+[surface]
+fx = 1.5
+fz = 1.3
+H = 10
+depth = fractal
+[material]
+E = 500
+[impact]
+V_star = 1e-4:1e-2:1000000:log
+impacts = 4
+INI
+"$ct" run -q "$tmp/long.ini" -o "$tmp/killed.csv" &
+pid=$!
+for i in $(seq 1 200); do
+    ls "$tmp" | grep -q 'killed.csv.tmp' && break
+    sleep 0.05
+done
+if ls "$tmp" | grep -q 'killed.csv.tmp'; then
+    kill -TERM $pid
+    wait $pid
+    rc=$?
+    [ $rc -eq 143 ] && ! ls "$tmp" | grep -q 'killed.csv' && ok ||
+        bad "after SIGTERM (exit $rc): $(ls "$tmp" | grep killed)"
+else
+    wait $pid
+    bad "the long run did not show its temporary file"
+fi
+# standard output is spooled to disk, not memory: 1500 load curves (about 60 MB) to stdout
+# in a resident size under half of that
+if [ -x /usr/bin/time ]; then
+    /usr/bin/time -f %M -o "$tmp/rss" "$ct" run -q "$tmp/s.ini" \
+        --set impact.V_star=1e-4:1e-2:1500:log --set output.what=curve |
+        wc -c >"$tmp/bytes"
+    awk -v kb="$(cat "$tmp/rss")" -v b="$(cat "$tmp/bytes")" \
+        'BEGIN { exit !(b > 5e7 && kb * 1024 < b / 2) }' && ok ||
+        bad "stdout output of $(cat "$tmp/bytes") bytes took $(cat "$tmp/rss") kB resident"
+fi
+
 # the shipped scenes run
 for scene in "$src"/scripts/scenes/*.ini; do
     expect 0 "scene $(basename "$scene")" -- "$ct" run -q "$scene" -o "$tmp/scene.csv"

@@ -360,6 +360,47 @@ static void two_rods_five_impacts_on_paper(void **state)
     ct_bundle_free(b);
 }
 
+/* A speed far below V*_c (1e-17) is an elastic impact with e = 1 exactly: neither the depth
+ * search nor the u_max solve may refuse it because its penetration is below the resolution of
+ * u at shallow depths. Its u_max against the paper's series (Eq. 15: stage sums with
+ * h_i << H*, exact here to about u/H*), on both sweep paths. */
+static void tiny_speed_is_elastic_not_an_error(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    const double V[] = {1e-17, 1e-12, 1e-3};
+    for (int depth = CT_DEPTH_FRACTAL; depth <= CT_DEPTH_AUTO; depth++)
+        for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++) {
+            ct_cantor_plan plan = {.params = p,
+                                   .depth = depth,
+                                   .representation = CT_REP_STAGES,
+                                   .depth_tolerance = 1e-12,
+                                   .V_star = V,
+                                   .nvel = 3,
+                                   .impacts = 1};
+            ct_impact_opts_default(&plan.opts);
+            ct_bundle *b;
+            ct_plan_info info;
+            if (ct_cantor_plan_build(&plan, &b, &info))
+                fail_msg("plan: %s", ct_error_message());
+            ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 1, .opts = plan.opts};
+            spec.path = (ct_sweep_path)path;
+            ct_sweep_row rows[3];
+            assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+            for (int k = 0; k < 2; k++) {
+                if (rows[k].status)
+                    fail_msg("V* = %g: %s", V[k], rows[k].message);
+                assert_true(rows[k].r.elastic && rows[k].r.e == 1.0);
+                double W = V[k] * V[k] * ct_energy_scale(&p), um, e;
+                assert_int_equal(ct_law_impact(&p, CT_LAW_SERIES, W, &um, &e), CT_OK);
+                assert_rel(rows[k].r.u_max, um, 1e-8);
+            }
+            assert_int_equal(rows[2].status, CT_OK);
+            assert_false(rows[2].r.elastic);
+            ct_bundle_free(b);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -370,6 +411,7 @@ int main(void)
         cmocka_unit_test(crushing_speed_is_one_row),
         cmocka_unit_test(rod_path_equals_curve_path),
         cmocka_unit_test(two_rods_five_impacts_on_paper),
+        cmocka_unit_test(tiny_speed_is_elastic_not_an_error),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }

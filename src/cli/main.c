@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #ifndef CT_VERSION
 #define CT_VERSION "unknown"
@@ -86,13 +87,14 @@ typedef struct {
     size_t nsets;
     int quiet;
     int help;
+    const char *output; /* -o FILE */
+    char *output_set;   /* "output.file=FILE", allocated */
 } cli_args;
 
 static int parse_args(int argc, char **argv, cli_args *a)
 {
     memset(a, 0, sizeof *a);
     a->sets = calloc((size_t)argc + 1, sizeof(char *));
-    static char obuf[4096];
     if (!a->sets) {
         fail_line("out of memory");
         return EXIT_FAILED;
@@ -109,8 +111,7 @@ static int parse_args(int argc, char **argv, cli_args *a)
                 return EXIT_USAGE;
             }
             if (!strcmp(s, "-o")) {
-                snprintf(obuf, sizeof obuf, "output.file=%s", argv[++k]);
-                a->sets[a->nsets++] = obuf;
+                a->output = argv[++k]; /* applied last, as a --set output.file */
             } else {
                 a->sets[a->nsets++] = argv[++k];
             }
@@ -125,6 +126,15 @@ static int parse_args(int argc, char **argv, cli_args *a)
             fprintf(stderr, "cantact: only one scene file, got %s and %s\n", a->scene, s);
             return EXIT_USAGE;
         }
+    }
+    if (a->output) {
+        size_t n = strlen(a->output) + sizeof "output.file=";
+        if (!(a->output_set = malloc(n))) {
+            fail_line("out of memory");
+            return EXIT_FAILED;
+        }
+        snprintf(a->output_set, n, "output.file=%s", a->output);
+        a->sets[a->nsets++] = a->output_set;
     }
     return EXIT_DONE;
 }
@@ -271,6 +281,21 @@ static int write_profile(FILE *f, const ct_bundle *b, const ct_params *p)
     return CT_OK;
 }
 
+/* The model depends on its dimensionless groups alone (MODEL.md §1): a Cantor scene is
+ * computed with l0 = h0 = sigma_y = 1, H* = H* / h0 and E = E/sigma_y, whatever its scale (an l0
+ * of 1e200 or a sigma_y of 1e-250 would otherwise leave the range of doubles). Its outputs are
+ * dimensionless already (u/h0, P/P_Y, V*); the scene's own values stay in sc->physical. */
+static void make_dimensionless(ct_scene *sc)
+{
+    ct_params *p = &sc->params;
+    sc->physical = *p;
+    if (sc->surface_type != CT_SURFACE_CANTOR)
+        return;
+    p->Hstar = p->Hstar / p->h0;
+    p->E = p->E / p->sigma_y;
+    p->l0 = p->h0 = p->sigma_y = 1.0;
+}
+
 /* Parses a subcommand's arguments and loads its scene. Returns -1 when the scene is loaded
  * into *sc (the caller goes on), else the exit status to return (help shown, or an error). */
 static int load_scene_args(int argc, char **argv, const char *cmd, const char *help, ct_scene *sc,
@@ -282,17 +307,33 @@ static int load_scene_args(int argc, char **argv, const char *cmd, const char *h
         if (a.help)
             fputs(help, stdout);
         free(a.sets);
+        free(a.output_set);
         return rc;
     }
     if (!a.scene) {
         fprintf(stderr, "cantact: %s: missing SCENE.ini (see cantact %s --help)\n", cmd, cmd);
         free(a.sets);
+        free(a.output_set);
         return EXIT_USAGE;
     }
     int st = ct_scene_load(sc, a.scene, a.sets, a.nsets);
     free(a.sets);
     if (st) {
+        free(a.output_set);
         fail_line(ct_scene_message());
+        return EXIT_USAGE;
+    }
+    if (ct_out_same_file(a.scene, sc->output)) {
+        fprintf(stderr, "cantact: output.file = %s: is the scene file itself\n", sc->output);
+        free(a.output_set);
+        ct_scene_free(sc);
+        return EXIT_USAGE;
+    }
+    free(a.output_set);
+    make_dimensionless(sc);
+    if ((st = ct_params_validate(&sc->params))) { /* E/sigma_y times H* / h0 may overflow */
+        fprintf(stderr, "cantact: %s: %s\n", a.scene, ct_error_message());
+        ct_scene_free(sc);
         return EXIT_USAGE;
     }
     *quiet = a.quiet;
@@ -421,6 +462,23 @@ static int cmd_run(int argc, char **argv)
         return EXIT_USAGE;
     }
 
+    /* the result rows (speeds x impacts) are held in memory: refuse up front what would not
+     * fit, with the figure (1e6 speeds x 1e6 impacts are allowed by the scene's ranges) */
+    {
+        double bytes = (double)sc.nvel * (double)sc.impacts * (double)sizeof(ct_sweep_row);
+        long pages = sysconf(_SC_AVPHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+        double avail = pages > 0 && page > 0 ? (double)pages * (double)page : INFINITY;
+        if (bytes > 0.9 * avail) {
+            fprintf(stderr,
+                    "cantact: %zu speeds x %ld impacts = %.3g result rows need %.3g GiB, more "
+                    "than the %.3g GiB of memory available: split the scene\n",
+                    sc.nvel, sc.impacts, (double)sc.nvel * (double)sc.impacts,
+                    bytes / 1073741824.0, avail / 1073741824.0);
+            ct_scene_free(&sc);
+            return EXIT_FAILED;
+        }
+    }
+
     /* open every output first: an unwritable path fails before any work is done */
     ct_out out_e = {0}, out_curve = {0}, out_profile = {0};
     ct_bundle *b = NULL;
@@ -540,15 +598,20 @@ static int cmd_run(int argc, char **argv)
         fprintf(stderr,
                 "cantact: %zu of %zu impacts failed or not run (first: V* = %g, impact %ld: %s)\n",
                 failed, nrows, first_failed->V_star, first_failed->impact, first_failed->message);
-    if ((opened_e && ct_out_commit(&out_e, err, sizeof err)) ||
-        (opened_c && ct_out_commit(&out_curve, err, sizeof err)) ||
-        (opened_p && ct_out_commit(&out_profile, err, sizeof err))) {
-        opened_e = opened_c = opened_p = 0; /* commit aborted what it could not write */
+    /* all outputs land together or none does */
+    ct_out *outs[3];
+    size_t nouts = 0;
+    if (opened_e)
+        outs[nouts++] = &out_e;
+    if (opened_c)
+        outs[nouts++] = &out_curve;
+    if (opened_p)
+        outs[nouts++] = &out_profile;
+    opened_e = opened_c = opened_p = 0; /* commit publishes or drops every one */
+    if (ct_out_commit_all(outs, nouts, err, sizeof err)) {
         fail_line(err);
         rc = EXIT_USAGE;
-        goto cleanup;
     }
-    opened_e = opened_c = opened_p = 0;
     goto cleanup;
 
 lib_fail:
@@ -608,7 +671,7 @@ static int cmd_geometry(int argc, char **argv)
     return EXIT_DONE;
 }
 
-int main(int argc, char **argv)
+static int dispatch(int argc, char **argv)
 {
     if (argc < 2) {
         fputs("cantact: missing subcommand (try cantact --help)\n", stderr);
@@ -629,4 +692,15 @@ int main(int argc, char **argv)
         return cmd_geometry(argc - 2, argv + 2);
     fprintf(stderr, "cantact: unknown subcommand '%s' (try cantact --help)\n", cmd);
     return EXIT_USAGE;
+}
+
+int main(int argc, char **argv)
+{
+    int rc = dispatch(argc, argv);
+    /* what went to standard output through stdio (help, geometry) must have arrived */
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        fprintf(stderr, "cantact: standard output: write failed\n");
+        return rc ? rc : EXIT_USAGE;
+    }
+    return rc;
 }

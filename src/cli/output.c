@@ -1,118 +1,266 @@
+#define _XOPEN_SOURCE 700 /* realpath */
 #include "output.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+/* ---- temporary files still to remove when the process dies ---- */
+
+#define CT_MAX_LIVE 64
+static char *volatile live[CT_MAX_LIVE];
+
+static void remove_live(void)
+{
+    for (int k = 0; k < CT_MAX_LIVE; k++) {
+        char *p = live[k];
+        if (p)
+            unlink(p); /* async-signal-safe */
+    }
+}
+
+static void on_signal(int sig)
+{
+    remove_live();
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+/* The handlers, once: SIGINT, SIGTERM, SIGHUP unlink what is live, then die of the signal as
+ * before; exit() (also libgomp's, when it cannot create a thread) unlinks it too. Signals the
+ * caller ignores stay ignored. */
+static void install_cleanup(void)
+{
+    static int done;
+    if (done)
+        return;
+    done = 1;
+    atexit(remove_live);
+    const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+    for (int k = 0; k < 3; k++) {
+        struct sigaction old, sa;
+        if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
+            continue;
+        memset(&sa, 0, sizeof sa);
+        sa.sa_handler = on_signal;
+        sigemptyset(&sa.sa_mask);
+        sigaction(sigs[k], &sa, NULL);
+    }
+}
+
+static void live_add(char *path)
+{
+    install_cleanup();
+    for (int k = 0; k < CT_MAX_LIVE; k++)
+        if (!live[k]) {
+            live[k] = path;
+            return;
+        }
+}
+
+static void live_remove(const char *path)
+{
+    for (int k = 0; k < CT_MAX_LIVE; k++)
+        if (live[k] == path)
+            live[k] = NULL;
+}
+
+/* ---- opening ---- */
+
+/* A path for a one-line message: long ones keep their head and tail. */
+static void short_path(char *buf, size_t n, const char *path)
+{
+    size_t len = strlen(path);
+    if (len <= 120)
+        snprintf(buf, n, "%s", path);
+    else
+        snprintf(buf, n, "%.60s...%s (%zu characters)", path, path + len - 40, len);
+}
+
+static int fail(ct_out *o, char *err, size_t errlen, const char *what, int errnum)
+{
+    char shown[200];
+    short_path(shown, sizeof shown, o->shown ? o->shown : "output");
+    snprintf(err, errlen, "%s: cannot write: %s", shown, what ? what : strerror(errnum));
+    ct_out_abort(o);
+    return -1;
+}
+
+/* An unlinked spool file in $TMPDIR (or /tmp). */
+static FILE *spool(void)
+{
+    const char *dir = getenv("TMPDIR");
+    if (!dir || !*dir)
+        dir = "/tmp";
+    size_t n = strlen(dir) + 32;
+    char *name = malloc(n);
+    if (!name)
+        return NULL;
+    snprintf(name, n, "%s/cantact-spool-XXXXXX", dir);
+    int fd = mkstemp(name);
+    if (fd >= 0)
+        unlink(name);
+    free(name);
+    if (fd < 0)
+        return NULL;
+    FILE *f = fdopen(fd, "w+");
+    if (!f)
+        close(fd);
+    return f;
+}
+
 int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
-    /* stdout, and a path that exists but is no regular file (/dev/null, a FIFO, a
-     * terminal): rows are held in memory and written there at commit. Renaming a temporary
-     * file over such a path would replace the device itself. */
-    struct stat st;
-    int special = strcmp(path, "-") && stat(path, &st) == 0 && !S_ISREG(st.st_mode);
-    if (special && S_ISDIR(st.st_mode)) {
-        snprintf(err, errlen, "%s: cannot write: is a directory", path);
-        return -1;
-    }
-    if (!strcmp(path, "-") || special) {
-        if (special && access(path, W_OK) != 0) {
-            snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-            return -1;
-        }
-        if (special && !(o->special = strdup(path))) {
-            snprintf(err, errlen, "out of memory");
-            return -1;
-        }
-        o->f = open_memstream(&o->mem, &o->mem_size);
-        if (!o->f) {
-            snprintf(err, errlen, "cannot buffer output: %s", strerror(errno));
-            free(o->special);
-            o->special = NULL;
-            return -1;
-        }
+    if (!(o->shown = strdup(path)))
+        return fail(o, err, errlen, "out of memory", 0);
+    if (!strcmp(path, "-")) {
+        o->spooled = 1;
+        if (!(o->f = spool()))
+            return fail(o, err, errlen, NULL, errno);
         return 0;
     }
-    size_t n = strlen(path);
-    o->path = strdup(path);
-    o->tmp_path = malloc(n + 16);
-    if (!o->path || !o->tmp_path) {
-        snprintf(err, errlen, "out of memory");
-        ct_out_abort(o);
-        return -1;
+    if (!*path)
+        return fail(o, err, errlen, "empty path", 0);
+    /* a symbolic link: the rows go to its target, which is what gets replaced */
+    struct stat st;
+    if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
+        char *target = realpath(path, NULL);
+        if (!target)
+            return fail(o, err, errlen,
+                        errno == ENOENT ? "a symbolic link whose target does not exist" : NULL,
+                        errno);
+        o->path = target;
+    } else if (!(o->path = strdup(path))) {
+        return fail(o, err, errlen, "out of memory", 0);
     }
-    snprintf(o->tmp_path, n + 16, "%s.tmpXXXXXX", path);
+    if (stat(o->path, &st) == 0) {
+        if (S_ISDIR(st.st_mode))
+            return fail(o, err, errlen, "is a directory", 0);
+        if (access(o->path, W_OK) != 0)
+            return fail(o, err, errlen, NULL, errno);
+        if (!S_ISREG(st.st_mode)) {
+            /* a device or a FIFO: written in place at commit, never renamed over (as root,
+             * renaming over /dev/null would replace the device with a file) */
+            o->spooled = 1;
+            if (!(o->f = spool()))
+                return fail(o, err, errlen, NULL, errno);
+            return 0;
+        }
+        o->mode = st.st_mode & 07777;
+    } else if (errno != ENOENT) {
+        return fail(o, err, errlen, NULL, errno);
+    } else {
+        mode_t mask = umask(0); /* read the umask (the CLI is single-threaded here) */
+        umask(mask);
+        o->mode = 0666 & ~mask;
+    }
+    size_t n = strlen(o->path) + 16;
+    if (!(o->tmp_path = malloc(n)))
+        return fail(o, err, errlen, "out of memory", 0);
+    snprintf(o->tmp_path, n, "%s.tmpXXXXXX", o->path);
     int fd = mkstemp(o->tmp_path);
     if (fd < 0) {
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
+        int e = errno;
         free(o->tmp_path);
         o->tmp_path = NULL;
-        ct_out_abort(o);
-        return -1;
+        return fail(o, err, errlen, NULL, e);
     }
-    o->f = fdopen(fd, "w");
-    if (!o->f) {
+    live_add(o->tmp_path);
+    if (fchmod(fd, o->mode) != 0 || !(o->f = fdopen(fd, "w"))) {
+        int e = errno;
         close(fd);
-        snprintf(err, errlen, "%s: cannot write: %s", path, strerror(errno));
-        ct_out_abort(o);
-        return -1;
+        return fail(o, err, errlen, NULL, e);
     }
     return 0;
 }
 
-int ct_out_commit(ct_out *o, char *err, size_t errlen)
+/* ---- committing ---- */
+
+/* Phase 1: everything written and closed (regular files) or flushed (spools). */
+static int finish(ct_out *o, char *err, size_t errlen)
 {
-    int bad = ferror(o->f);
-    if (fclose(o->f) != 0)
-        bad = 1;
-    o->f = NULL;
-    if (o->special) { /* written in place: open(2) without O_CREAT or O_TRUNC */
-        int fd = bad ? -1 : open(o->special, O_WRONLY | O_NOCTTY);
+    int bad = fflush(o->f) != 0 || ferror(o->f);
+    if (!o->spooled) {
+        if (!bad && fsync(fileno(o->f)) != 0 && errno != EINVAL)
+            bad = 1;
+        if (fclose(o->f) != 0)
+            bad = 1;
+        o->f = NULL;
+    }
+    if (bad)
+        snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
+    return bad ? -1 : 0;
+}
+
+/* Copies a spool to standard output or to its special file, in place. */
+static int copy_spool(ct_out *o, char *err, size_t errlen)
+{
+    int fd = o->path ? open(o->path, O_WRONLY | O_NOCTTY) : STDOUT_FILENO;
+    int bad = fd < 0 || fseek(o->f, 0, SEEK_SET) != 0;
+    char buf[1 << 16];
+    size_t got;
+    if (!o->path)
+        fflush(stdout);
+    while (!bad && (got = fread(buf, 1, sizeof buf, o->f)) > 0) {
         size_t done = 0;
-        while (fd >= 0 && done < o->mem_size) {
-            ssize_t w = write(fd, o->mem + done, o->mem_size - done);
+        while (done < got) {
+            ssize_t w = write(fd, buf + done, got - done);
             if (w < 0 && errno == EINTR)
                 continue;
-            if (w <= 0)
+            if (w <= 0) {
+                bad = 1;
                 break;
+            }
             done += (size_t)w;
         }
-        if (fd < 0 || done < o->mem_size)
-            bad = 1;
-        if (fd >= 0 && close(fd) != 0)
-            bad = 1;
-        if (bad)
-            snprintf(err, errlen, "%s: cannot write: %s", o->special, strerror(errno));
-        free(o->mem);
-        free(o->special);
-        o->mem = o->special = NULL;
-        return bad ? -1 : 0;
     }
-    if (!o->path) {
-        if (!bad && o->mem_size && fwrite(o->mem, 1, o->mem_size, stdout) != o->mem_size)
+    if (ferror(o->f))
+        bad = 1;
+    if (o->path && fd >= 0 && close(fd) != 0)
+        bad = 1;
+    if (bad)
+        snprintf(err, errlen, "%s: cannot write: %s", o->path ? o->shown : "standard output",
+                 strerror(errno ? errno : EIO));
+    return bad ? -1 : 0;
+}
+
+int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen)
+{
+    int bad = 0;
+    for (size_t k = 0; k < n && !bad; k++)
+        bad = finish(outs[k], err, errlen) != 0;
+    /* special files first (what reaches a device cannot be taken back, so nothing is renamed
+     * into place unless they all took their rows), then the renames */
+    for (size_t k = 0; k < n && !bad; k++)
+        if (outs[k]->spooled)
+            bad = copy_spool(outs[k], err, errlen) != 0;
+    for (size_t k = 0; k < n && !bad; k++) {
+        ct_out *o = outs[k];
+        if (o->spooled)
+            continue;
+        if (rename(o->tmp_path, o->path) != 0) {
+            snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
             bad = 1;
-        if (fflush(stdout) != 0)
-            bad = 1;
-        free(o->mem);
-        o->mem = NULL;
-        if (bad)
-            snprintf(err, errlen, "standard output: write failed");
-        return bad ? -1 : 0;
+            break;
+        }
+        live_remove(o->tmp_path);
+        free(o->tmp_path);
+        o->tmp_path = NULL;
     }
-    if (bad || rename(o->tmp_path, o->path) != 0) {
-        snprintf(err, errlen, "%s: cannot write: %s", o->path,
-                 bad ? "write failed" : strerror(errno));
-        ct_out_abort(o);
-        return -1;
-    }
-    free(o->tmp_path);
-    free(o->path);
-    o->tmp_path = o->path = NULL;
-    return 0;
+    for (size_t k = 0; k < n; k++)
+        ct_out_abort(outs[k]); /* frees; what was published stays */
+    return bad ? -1 : 0;
+}
+
+int ct_out_commit(ct_out *o, char *err, size_t errlen)
+{
+    return ct_out_commit_all(&o, 1, err, errlen);
 }
 
 void ct_out_abort(ct_out *o)
@@ -120,13 +268,22 @@ void ct_out_abort(ct_out *o)
     if (o->f)
         fclose(o->f);
     o->f = NULL;
-    if (o->tmp_path)
+    if (o->tmp_path) {
         unlink(o->tmp_path);
+        live_remove(o->tmp_path);
+    }
     free(o->tmp_path);
     free(o->path);
-    free(o->mem);
-    free(o->special);
-    o->tmp_path = o->path = o->mem = o->special = NULL;
+    free(o->shown);
+    o->tmp_path = o->path = o->shown = NULL;
+}
+
+int ct_out_same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    if (!strcmp(a, "-") || !strcmp(b, "-") || stat(a, &sa) != 0 || stat(b, &sb) != 0)
+        return 0;
+    return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
 void ct_progress_start(ct_progress *p, size_t total)

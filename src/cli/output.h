@@ -1,25 +1,41 @@
-/* Output files written atomically (temporary file, then rename) and a progress bar. */
+/* Output files written atomically (temporary file, then rename), and a progress bar.
+ *
+ * A regular file (new, or existing: then its mode is kept; a symbolic link: then its target)
+ * is written to a temporary file beside it and renamed into place at commit; a new file gets
+ * 0666 less the umask. Standard output ("-") and paths that are no regular file (a device, a
+ * FIFO) are spooled to an unlinked temporary file and copied there at commit: memory does not
+ * grow with the output, and nothing reaches them from a failed run. Temporary files are
+ * removed on abort, on SIGINT, SIGTERM and SIGHUP, and at exit. */
 #ifndef CT_CLI_OUTPUT_H
 #define CT_CLI_OUTPUT_H
 
+#include <stddef.h>
 #include <stdio.h>
+#include <sys/types.h>
 
 typedef struct {
-    char *path;     /* final path, or NULL for stdout */
-    char *tmp_path; /* temporary file beside it */
+    char *shown;    /* the path as given, for messages ("-": standard output) */
+    char *path;     /* where the rows land: the path, or a symbolic link's target; NULL: stdout */
+    char *tmp_path; /* regular files: the temporary file beside the target */
     FILE *f;        /* where rows go */
-    char *special;  /* a path that is no regular file (a device, a FIFO), written in place */
-    char *mem;      /* stdout and special paths: rows are held here until commit */
-    size_t mem_size;
+    int spooled;    /* stdout or a special file: f is an unlinked spool, copied at commit */
+    mode_t mode;    /* the mode the committed file gets */
 } ct_out;
 
-/* Opens an output: "-" buffers in memory for stdout, anything else a temporary file in the
- * target's directory. Returns 0, or -1 with a message in err. */
+/* Opens an output: "-" for standard output, else a path (checked now: a directory, an
+ * unwritable place or a dangling symbolic link fail before any work is done). Returns 0, or
+ * -1 with a message in err. */
 int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen);
-/* Publishes the rows: rename into place, or write to stdout. Returns 0 or -1. */
+/* Publishes one output: ct_out_commit_all of one. */
 int ct_out_commit(ct_out *o, char *err, size_t errlen);
+/* Publishes several outputs together: every one is written and checked first, and only if
+ * all succeeded are they renamed into place (or copied to their special file); otherwise all
+ * are dropped. Returns 0 or -1 with a message in err. */
+int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen);
 /* Drops everything written: no file is left behind. */
 void ct_out_abort(ct_out *o);
+/* 1 when both paths name one existing file (hard links and symbolic links included). */
+int ct_out_same_file(const char *a, const char *b);
 
 typedef struct {
     int enabled;

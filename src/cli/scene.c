@@ -709,14 +709,18 @@ static int apply_overrides(parse_state *s, const char *const *overrides, size_t 
         const char *dot = strchr(o, '.'), *eq = strchr(o, '=');
         if (!dot || !eq || dot > eq || dot == o || eq == dot + 1)
             return scene_error(CT_EINVAL, "--set %s: expected section.key=value", o);
-        char section[64], key[64], value[4096];
-        if ((size_t)(dot - o) >= sizeof section || (size_t)(eq - dot - 1) >= sizeof key ||
-            strlen(eq + 1) >= sizeof value)
-            return scene_error(CT_EINVAL, "--set %s: section, key or value too long", o);
+        char section[64], key[64];
+        if ((size_t)(dot - o) >= sizeof section || (size_t)(eq - dot - 1) >= sizeof key)
+            return scene_error(CT_EINVAL, "--set %.80s: section or key too long", o);
+        size_t vlen = strlen(eq + 1) + 1;
+        char *value = malloc(vlen);
+        if (!value)
+            return scene_error(CT_ENOMEM, "--set: out of memory");
         trim_copy(section, sizeof section, o, dot);
         trim_copy(key, sizeof key, dot + 1, eq);
-        trim_copy(value, sizeof value, eq + 1, eq + 1 + strlen(eq + 1));
+        trim_copy(value, vlen, eq + 1, eq + 1 + strlen(eq + 1));
         int st = store(s, section, key, value, "--set");
+        free(value);
         if (st)
             return st;
     }

@@ -13,7 +13,8 @@ typedef enum { CT_SURFACE_CANTOR = 0 } ct_surface_type;
 
 typedef struct {
     ct_surface_type surface_type;
-    ct_params params;
+    ct_params params;   /* as given; the CLI computes a Cantor scene in dimensionless form */
+    ct_params physical; /* the parameters as given, once the CLI made params dimensionless */
     long depth; /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
     ct_representation representation;
     double *V_star; /* velocities, dimensionless, in input order */

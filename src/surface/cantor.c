@@ -38,6 +38,13 @@ int ct_params_validate(const ct_params *p)
     if (!isfinite(p->l0 * p->E * p->h0) || !(p->l0 * p->E * p->h0 > 0.0))
         return ct_error_set(CT_EINVAL, "l0 E h0 = %g: must be a finite positive number",
                             p->l0 * p->E * p->h0);
+    /* E s L (a rod's stiffness times its length) bounds every work term: it must be finite,
+     * else energies overflow (E l0 H* in units of sigma_y l0 h0 is E/sigma_y times H* / h0) */
+    if (!isfinite(p->E * p->l0 * p->Hstar))
+        return ct_error_set(CT_EINVAL,
+                            "E l0 H* = %g * %g * %g overflows double precision: energies of this "
+                            "layer cannot be represented (lower E/sigma_y or H*/h0)",
+                            p->E, p->l0, p->Hstar);
     return CT_OK;
 }
 
@@ -305,7 +312,10 @@ typedef struct {
     double u_up; /* u_max at DEPTH_PROBE, < 0 until computed */
 } depth_ctx;
 
-static int solve_virgin(const ct_params *p, long N, double W, double *u, double *P)
+/* u_max and P there of the virgin depth-N prefractal under energy W. *resolved (when not
+ * NULL) says whether the penetration u_max - u_contact is above the resolution of u; where it
+ * is not, u is still an upper bound of u_max to rounding (the curve's inverse). */
+static int solve_virgin(const ct_params *p, long N, double W, double *u, double *P, int *resolved)
 {
     ct_bundle *b;
     ct_curve *c;
@@ -320,7 +330,10 @@ static int solve_virgin(const ct_params *p, long N, double W, double *u, double 
         *u = ct_curve_inverse_work(c, W);
         *P = ct_curve_force(c, *u);
         double u0 = ct_curve_first_contact(c);
-        if (!(*u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
+        int ok = *u - u0 > 16.0 * DBL_EPSILON * fabs(u0);
+        if (resolved)
+            *resolved = ok;
+        if (!ok && !resolved)
             st = ct_error_set(CT_ENOCONV,
                               "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
                               "resolution of u near %.17g: this impact is too weak to resolve on "
@@ -345,12 +358,17 @@ static int depth_bound(depth_ctx *c, long N, double *bound)
     double dP = force_bound(p, N), u, P;
     int st;
     if (N < DEPTH_PROBE) {
-        if ((st = solve_virgin(p, N, c->W_min, &u, &P)))
+        /* an impact too weak to resolve on this prefractal's tips (their top is far from the
+         * plane) needs a deeper one, whose tips lie closer: no bound here */
+        int resolved;
+        if ((st = solve_virgin(p, N, c->W_min, &u, &P, &resolved)))
             return st;
         double rel_W = dP * u / c->W_min, rel_P = P > 0.0 ? dP / P : INFINITY;
-        *bound = rel_W > rel_P ? rel_W : rel_P;
+        *bound = !resolved ? INFINITY : rel_W > rel_P ? rel_W : rel_P;
     } else {
-        if (c->u_up < 0.0 && (st = solve_virgin(p, DEPTH_PROBE, c->W_min, &c->u_up, &P)))
+        int resolved; /* u is an upper bound of u_max either way */
+        if (c->u_up < 0.0 &&
+            (st = solve_virgin(p, DEPTH_PROBE, c->W_min, &c->u_up, &P, &resolved)))
             return st;
         /* P(u_max) >= W / u_max as P rises with u: dP u_up / W bounds both ratios */
         *bound = dP * c->u_up / c->W_min;
