@@ -6,6 +6,13 @@
  * raised in the calling thread. Lengths are in the unit of l_0 and h_0, forces per unit
  * depth, energies per unit depth.
  *
+ * NULL: pointer arguments must not be NULL unless a function says otherwise. Functions that
+ * create, run, solve or integrate (the *_alloc and builders, ct_curve_build, ct_impact*,
+ * ct_sweep, ct_cantor_plan_build, ct_integrate*, the depth searches, the laws) check theirs
+ * and return CT_EINVAL naming the argument; the *_free functions accept NULL; accessors and
+ * evaluations on a handle (ct_bundle_size, ct_bundle_force, ct_curve_work, ...) do not check,
+ * as they sit in hot loops. A NaN displacement gives a NaN force or work, never a number.
+ *
  * Thread safety: the library keeps no global state and changes none (not the OpenMP thread
  * count, not GSL's error handler). A function that takes a const handle (const ct_bundle *,
  * const ct_curve *) only reads it: any number of threads may call such functions on one
@@ -135,8 +142,10 @@ typedef struct {
 } ct_rod_info;
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info);
 
-/* Threads of this bundle's sums over rods (0: the OpenMP default). Results do not depend
- * on it; nothing process-wide is changed. Returns the number that will be used. */
+/* Threads of this bundle's sums over rods (0: the OpenMP default; at most CT_MAX_THREADS,
+ * larger requests are clamped). Results do not depend on it; nothing process-wide is
+ * changed. Returns the number that will be used. */
+#define CT_MAX_THREADS 1024
 int ct_bundle_set_threads(ct_bundle *b, int threads);
 /* Returns the OpenMP default thread count (OMP_NUM_THREADS), 1 without OpenMP. */
 int ct_default_threads(void);

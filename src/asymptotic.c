@@ -125,6 +125,7 @@ static int check_u(const ct_params *p, const char *name, double u)
 
 int ct_asym_load(const ct_params *p, double u, double *P)
 {
+    CT_NEED(P);
     int st = check_u(p, "u", u);
     if (st)
         return st;
@@ -135,6 +136,7 @@ int ct_asym_load(const ct_params *p, double u, double *P)
 
 int ct_asym_work_load(const ct_params *p, double u, double *W)
 {
+    CT_NEED(W);
     int st = check_u(p, "u", u);
     if (st)
         return st;
@@ -145,6 +147,7 @@ int ct_asym_work_load(const ct_params *p, double u, double *W)
 
 int ct_asym_unload(const ct_params *p, double u_max, double u, int consistent, double *P)
 {
+    CT_NEED(P);
     int st;
     if ((st = check_u(p, "u_max", u_max)) || (st = check_u(p, "u", u)))
         return st;
@@ -155,6 +158,7 @@ int ct_asym_unload(const ct_params *p, double u_max, double u, int consistent, d
 
 int ct_asym_work_unload(const ct_params *p, double u_max, int consistent, double *W)
 {
+    CT_NEED(W);
     int st = check_u(p, "u_max", u_max);
     if (st)
         return st;

@@ -74,7 +74,8 @@ void ct_bundle_set_parallel_min(ct_bundle *b, size_t rods)
 
 int ct_bundle_set_threads(ct_bundle *b, int threads)
 {
-    b->threads = threads > 0 ? threads : 0;
+    /* a team larger than the OpenMP runtime can create ends the process (libgomp aborts) */
+    b->threads = threads > CT_MAX_THREADS ? CT_MAX_THREADS : threads > 0 ? threads : 0;
 #ifdef _OPENMP
     return b->threads ? b->threads : omp_get_max_threads();
 #else
@@ -234,6 +235,8 @@ const char *ct_bundle_surface(const ct_bundle *b)
 int ct_bundle_from_rods(ct_bundle **out, const ct_layer *layer, size_t n, const double *top,
                         const double *area)
 {
+    CT_NEED(out);
+    CT_NEED(layer);
     int st;
     *out = NULL;
     if ((st = ct_layer_validate(layer)))
@@ -263,6 +266,8 @@ int ct_bundle_from_rods(ct_bundle **out, const ct_layer *layer, size_t n, const 
 
 int ct_bundle_clone(ct_bundle **out, const ct_bundle *src)
 {
+    CT_NEED(out);
+    CT_NEED(src);
     int st;
     ct_bundle *b;
     *out = NULL;
@@ -312,6 +317,8 @@ const ct_layer *ct_bundle_layer(const ct_bundle *b)
 
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
 {
+    CT_NEED(b);
+    CT_NEED(info);
     if (k >= b->n)
         return ct_error_set(CT_EINVAL, "rod %zu: bundle holds %zu rods", k, b->n);
     info->top = b->top[k];
@@ -456,7 +463,7 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua, do
         if (kind == SUM_FORCE) {
             for (size_t i = 0; i < m; i++) {
                 double d = (ub[i] - tk) * rl - pk;
-                d = d > 0.0 ? d : 0.0;
+                d = d < 0.0 ? 0.0 : d; /* a NaN u stays NaN, as in ct_rod_force */
                 d = d > eps_y ? eps_y : d;
                 double x = Ea * d, t = s[i] + x;
                 double big_s = (s[i] - t) + x, big_x = (x - t) + s[i]; /* both: a select */
@@ -468,7 +475,7 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua, do
                 double d = (ub[i] - tk) * rl - pk;
                 double plateau = eps_y * (d - 0.5 * eps_y), elastic = 0.5 * d * d;
                 double w = d > eps_y ? plateau : elastic;
-                w = d > 0.0 ? w : 0.0;
+                w = d <= 0.0 ? 0.0 : w; /* NaN stays NaN, as in ct_rod_work_density */
                 double x = EaL * (w - wa), t = s[i] + x;
                 double big_s = (s[i] - t) + x, big_x = (x - t) + s[i];
                 c[i] += fabs(s[i]) >= fabs(x) ? big_s : big_x;
@@ -624,16 +631,31 @@ int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u
 
 int ct_bundle_force_many(const ct_bundle *b, const double *u, size_t m, double *P)
 {
+    CT_NEED(b);
+    if (m && !u)
+        return ct_error_set(CT_EINVAL, "%s: u is NULL", __func__);
+    if (m && !P)
+        return ct_error_set(CT_EINVAL, "%s: P is NULL", __func__);
     return blocked_many(b, SUM_FORCE, 0.0, -INFINITY, u, m, P);
 }
 
 int ct_bundle_force_after(const ct_bundle *b, double u_adv, const double *u, size_t m, double *P)
 {
+    CT_NEED(b);
+    if (m && !u)
+        return ct_error_set(CT_EINVAL, "%s: u is NULL", __func__);
+    if (m && !P)
+        return ct_error_set(CT_EINVAL, "%s: P is NULL", __func__);
     return blocked_many(b, SUM_FORCE, 0.0, u_adv, u, m, P);
 }
 
 int ct_bundle_work_many(const ct_bundle *b, double u_a, const double *u_b, size_t m, double *W)
 {
+    CT_NEED(b);
+    if (m && !u_b)
+        return ct_error_set(CT_EINVAL, "%s: u_b is NULL", __func__);
+    if (m && !W)
+        return ct_error_set(CT_EINVAL, "%s: W is NULL", __func__);
     return blocked_many(b, SUM_WORK, u_a, -INFINITY, u_b, m, W);
 }
 

@@ -54,6 +54,7 @@ struct ct_curve {
 
 int ct_curve_alloc(ct_curve **out)
 {
+    CT_NEED(out);
     *out = calloc(1, sizeof **out);
     if (!*out)
         return ct_error_set(CT_ENOMEM, "curve: out of memory");
@@ -251,6 +252,8 @@ size_t ct_curve_events(const ct_bundle *b)
 
 int ct_curve_build(ct_curve *c, const ct_bundle *b)
 {
+    CT_NEED(c);
+    CT_NEED(b);
     const size_t n = ct_bundle_size(b);
     const ct_layer *L = ct_bundle_layer(b);
     const double E = L->E, eps_y = L->sigma_y / L->E;

@@ -18,6 +18,9 @@ void ct_impact_opts_default(ct_impact_opts *opts)
 
 int ct_critical_energy(const ct_bundle *b, double *energy, double *u_yield)
 {
+    CT_NEED(b);
+    CT_NEED(energy);
+    CT_NEED(u_yield);
     double u0 = ct_bundle_first_contact(b), uy = ct_bundle_first_yield(b);
     if (!isfinite(u0) || !isfinite(uy))
         return ct_error_set(CT_EINVAL, "critical energy: the bundle holds no rod");
@@ -69,6 +72,8 @@ static int curve_umax(const ct_curve *c, double W, double Hstar, int resolve, do
 
 int ct_solve_umax(const ct_bundle *b, double W, double tolerance, double *u_max)
 {
+    CT_NEED(b);
+    CT_NEED(u_max);
     ct_curve *c;
     int st;
     if (!(tolerance > 0.0 && tolerance < 1.0))
@@ -226,6 +231,9 @@ int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result 
 int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_impact_opts *opts,
                    ct_impact_result *res)
 {
+    CT_NEED(b);
+    CT_NEED(c);
+    CT_NEED(res);
     ct_impact_opts defaults;
     if (!opts) {
         ct_impact_opts_default(&defaults);
@@ -272,6 +280,8 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
 
 int ct_impact(ct_bundle *b, double W, const ct_impact_opts *opts, ct_impact_result *res)
 {
+    CT_NEED(b);
+    CT_NEED(res);
     ct_curve *c;
     int st;
     if ((st = ct_curve_alloc(&c)))

@@ -15,6 +15,14 @@
  * a breakpoint on it catches them all. */
 int ct_error_set(int status, const char *fmt, ...) CT_PRINTF(2, 3);
 
+/* NULL policy (cantact.h): functions that create, run, solve or integrate check their pointer
+ * arguments with this and return CT_EINVAL naming the argument. */
+#define CT_NEED(ptr)                                                                               \
+    do {                                                                                           \
+        if (!(ptr))                                                                                \
+            return ct_error_set(CT_EINVAL, "%s: %s is NULL", __func__, #ptr);                      \
+    } while (0)
+
 /* Sorts v ascending and drops repeated values; returns the new count. */
 size_t ct_sort_unique(double *v, size_t n);
 

@@ -9,6 +9,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 
 const char *ct_quad_rule_name(ct_quad_rule rule)
@@ -111,10 +112,29 @@ int ct_integrate_batch(ct_batch_function f, void *ctx, double a, double b, ct_qu
                        size_t nodes, const double *points, size_t npoints, double *result,
                        double *abserr)
 {
+    CT_NEED(f);
+    CT_NEED(result);
     if (!isfinite(a) || !isfinite(b) || a > b)
         return ct_error_set(CT_EINVAL, "integral over [%g, %g]: need finite a <= b", a, b);
     if (!ct_quad_rule_name(rule) || rule == CT_QUAD_CLOSED)
         return ct_error_set(CT_EINVAL, "quadrature rule %d: unknown", (int)rule);
+    if (rule == CT_QUAD_BREAKPOINTS) {
+        if (npoints && !points)
+            return ct_error_set(CT_EINVAL, "breakpoints rule: points is NULL for %zu points",
+                                npoints);
+        /* the rule is exact only on sorted breakpoints: unsorted ones are an error, not a
+         * silently wrong integral */
+        for (size_t k = 0; k < npoints; k++)
+            if (!isfinite(points[k]) || (k && !(points[k] >= points[k - 1])))
+                return ct_error_set(CT_EINVAL,
+                                    "breakpoints rule: point %zu = %g is not finite or not "
+                                    "sorted ascending",
+                                    k, points[k]);
+    }
+    if ((rule == CT_QUAD_BREAKPOINTS ? npoints : nodes) > SIZE_MAX / (3 * sizeof(double)) - 2)
+        return ct_error_set(CT_ENOMEM, "%s with %zu nodes: cannot be addressed",
+                            ct_quad_rule_name(rule),
+                            rule == CT_QUAD_BREAKPOINTS ? npoints : nodes);
     size_t K = rule == CT_QUAD_BREAKPOINTS ? npoints + 2 : usable_nodes(rule, nodes);
     if (K == 0)
         return ct_error_set(CT_EINVAL, "%s with %zu nodes: needs at least %d nodes",
@@ -174,6 +194,8 @@ static int scalar_batch(const double *x, size_t m, double *y, void *ctx)
 int ct_integrate(ct_function f, void *ctx, double a, double b, ct_quad_rule rule, size_t nodes,
                  const double *points, size_t npoints, double *result, double *abserr)
 {
+    CT_NEED(f);
+    CT_NEED(result);
     scalar_ctx c = {f, ctx};
     return ct_integrate_batch(scalar_batch, &c, a, b, rule, nodes, points, npoints, result, abserr);
 }

@@ -107,6 +107,7 @@ static int check_u(const ct_params *p, const char *name, double u)
 
 int ct_series_load(const ct_params *p, double u, double *P)
 {
+    CT_NEED(P);
     int st = check_u(p, "u", u);
     if (st)
         return st;
@@ -116,6 +117,7 @@ int ct_series_load(const ct_params *p, double u, double *P)
 
 int ct_series_unload(const ct_params *p, double u_max, double u, double *P)
 {
+    CT_NEED(P);
     int st;
     if ((st = check_u(p, "u_max", u_max)) || (st = check_u(p, "u", u)))
         return st;
@@ -256,6 +258,8 @@ static int series_impact(const ct_params *p, double W, double *u_max, double *e)
 
 int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e)
 {
+    CT_NEED(u_max);
+    CT_NEED(e);
     int st;
     if ((st = ct_params_validate(p)))
         return st;

@@ -21,6 +21,8 @@ static int check_speeds(const double *V, size_t n)
 
 int ct_cantor_plan_build(const ct_cantor_plan *plan, ct_bundle **out, ct_plan_info *info)
 {
+    CT_NEED(plan);
+    CT_NEED(out);
     const ct_params *p = &plan->params;
     int st;
     *out = NULL;
@@ -98,7 +100,8 @@ int ct_cantor_plan_build(const ct_cantor_plan *plan, ct_bundle **out, ct_plan_in
 static void fail_row(ct_sweep_row *row, int status, const char *message)
 {
     row->status = status;
-    snprintf(row->message, sizeof row->message, "%s", message);
+    if (message != row->message) /* the row's own message may be passed: keep it */
+        snprintf(row->message, sizeof row->message, "%s", message);
 }
 
 static void copy_state(ct_bundle *dst, const ct_bundle *src)
@@ -241,6 +244,7 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
                                             "layer would be crushed, strains >= 1): outside the "
                                             "model; lower V* or raise H",
                                             W[j], Hstar);
+                fail_row(r[j], CT_ERANGE, ct_error_message());
                 continue;
             }
             double resid = Wl[k] - W[j];
@@ -258,7 +262,13 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
                 res->W_unload = res->W_unload_closed = res->elastic ? Wl[k] : Wu[k];
                 res->e_closed = res->quad_error = NAN;
                 r[j]->status = CT_OK;
-                if (!res->elastic && !(u[j] - u0[j] > 16.0 * DBL_EPSILON * fabs(u0[j])))
+                if (!(u[j] < Hstar)) /* the root rounds onto H*: strains of 1 */
+                    r[j]->status = ct_error_set(CT_ERANGE,
+                                                "impact energy %.6g reaches u_max >= H* = %g (the "
+                                                "layer would be crushed, strains >= 1): outside "
+                                                "the model; lower V* or raise H",
+                                                W[j], Hstar);
+                else if (!res->elastic && !(u[j] - u0[j] > 16.0 * DBL_EPSILON * fabs(u0[j])))
                     r[j]->status = ct_error_set(
                         CT_ENOCONV,
                         "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
@@ -362,6 +372,7 @@ static int first_failure(const ct_sweep_row *rows, size_t n)
 
 int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
 {
+    CT_NEED(b);
     int st;
     if (!s || (s->nvel && !rows))
         return ct_error_set(CT_EINVAL, "sweep: NULL spec or rows");

@@ -413,6 +413,60 @@ static void advance_follows_the_history(void **state)
     ct_bundle_free(b);
 }
 
+/* The API's edges: a thread count beyond what the runtime can create is clamped (libgomp
+ * would end the process), a NaN displacement gives NaN on every path (single and many
+ * nodes), NULL arguments are refused with CT_EINVAL (cantact.h's NULL policy). */
+static void api_edges(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 12, INFINITY), CT_OK);
+    assert_int_equal(ct_bundle_set_threads(b, 100000), CT_MAX_THREADS);
+    assert_int_equal(ct_bundle_set_threads(b, 2147483647), CT_MAX_THREADS);
+    ct_bundle_set_threads(b, 2);
+    double u[3] = {NAN, 0.5, NAN}, P[3], W[3];
+    assert_int_equal(ct_bundle_force_many(b, u, 3, P), CT_OK);
+    assert_int_equal(ct_bundle_work_many(b, 0.0, u, 3, W), CT_OK);
+    assert_true(isnan(P[0]) && isnan(P[2]) && isnan(ct_bundle_force(b, NAN)));
+    assert_true(isnan(W[0]) && isnan(ct_bundle_work(b, 0.0, NAN)));
+    assert_true(P[1] == ct_bundle_force(b, 0.5) && W[1] == ct_bundle_work(b, 0.0, 0.5));
+    /* NULL */
+    ct_layer L;
+    ct_cantor_layer(&p, &L);
+    double top = 0.1, area = 1.0, e, uy;
+    assert_int_equal(ct_bundle_from_rods(NULL, &L, 1, &top, &area), CT_EINVAL);
+    ct_bundle *o = (ct_bundle *)&p;
+    assert_int_equal(ct_bundle_from_rods(&o, NULL, 1, &top, &area), CT_EINVAL);
+    assert_int_equal(ct_bundle_from_rods(&o, &L, 1, NULL, &area), CT_EINVAL);
+    assert_int_equal(ct_bundle_force_many(b, NULL, 3, P), CT_EINVAL);
+    assert_int_equal(ct_bundle_force_many(b, u, 3, NULL), CT_EINVAL);
+    assert_int_equal(ct_critical_energy(NULL, &e, &uy), CT_EINVAL);
+    assert_int_equal(ct_critical_energy(b, NULL, &uy), CT_EINVAL);
+    ct_impact_result r;
+    assert_int_equal(ct_impact(NULL, 1e-3, NULL, &r), CT_EINVAL);
+    assert_int_equal(ct_impact(b, 1e-3, NULL, NULL), CT_EINVAL);
+    assert_int_equal(ct_curve_build(NULL, b), CT_EINVAL);
+    ct_sweep_row row;
+    ct_sweep_spec spec = {.V_star = &top, .nvel = 1, .impacts = 1};
+    ct_impact_opts_default(&spec.opts);
+    assert_int_equal(ct_sweep(NULL, &spec, &row), CT_EINVAL);
+    assert_int_equal(ct_sweep(b, NULL, &row), CT_EINVAL);
+    assert_int_equal(ct_cantor_bundle(NULL, &p, CT_REP_STAGES, 3, INFINITY), CT_EINVAL);
+    assert_int_equal(ct_cantor_bundle(&o, NULL, CT_REP_STAGES, 3, INFINITY), CT_EINVAL);
+    assert_int_equal(ct_cantor_plan_build(NULL, &o, NULL), CT_EINVAL);
+    long d;
+    assert_int_equal(ct_auto_depth(&p, 1e-3, 1e-12, NULL, &e), CT_EINVAL);
+    assert_int_equal(ct_fractal_depth(&p, 1e-3, &d, NULL), CT_EINVAL);
+    assert_int_equal(ct_series_load(&p, 0.1, NULL), CT_EINVAL);
+    assert_int_equal(ct_asym_unload(&p, 0.1, 0.05, 0, NULL), CT_EINVAL);
+    assert_int_equal(ct_law_impact(&p, CT_LAW_SERIES, 1e-3, NULL, &e), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "NULL"));
+    ct_bundle_free(NULL); /* no-ops */
+    ct_curve_free(NULL);
+    ct_bundle_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -423,6 +477,7 @@ int main(void)
         cmocka_unit_test(many_nodes_match_single_nodes),
         cmocka_unit_test(truncation_bound_holds),
         cmocka_unit_test(advance_follows_the_history),
+        cmocka_unit_test(api_edges),
         cmocka_unit_test(too_deep_is_refused_before_allocating),
         cmocka_unit_test(untouched_rods_are_left_out),
         cmocka_unit_test(breakpoints_and_profile),

@@ -82,6 +82,29 @@ static void bad_input(void **state)
                      CT_EINVAL);
     assert_int_equal(ct_integrate(smooth, NULL, 0.0, 1.0, (ct_quad_rule)9, 20, NULL, 0, &r, NULL),
                      CT_EINVAL);
+    /* node counts whose buffer size overflows size_t: refused, not a heap overflow */
+    const size_t huge[] = {((size_t)1 << 61) + 1, SIZE_MAX, SIZE_MAX / 24};
+    for (int k = 0; k < 3; k++) {
+        int st =
+            ct_integrate(smooth, NULL, 0.0, 1.0, CT_QUAD_TRAPEZOID, huge[k], NULL, 0, &r, NULL);
+        assert_int_equal(st, CT_ENOMEM);
+    }
+    /* unsorted or non-finite breakpoints: refused, not a silently wrong integral */
+    const double unsorted[] = {0.3, 1.1, 0.7}, nan_pt[] = {0.3, NAN};
+    assert_int_equal(
+        ct_integrate(kinked, NULL, 0.0, 2.0, CT_QUAD_BREAKPOINTS, 0, unsorted, 3, &r, NULL),
+        CT_EINVAL);
+    assert_int_equal(
+        ct_integrate(kinked, NULL, 0.0, 2.0, CT_QUAD_BREAKPOINTS, 0, nan_pt, 2, &r, NULL),
+        CT_EINVAL);
+    assert_int_equal(
+        ct_integrate(kinked, NULL, 0.0, 2.0, CT_QUAD_BREAKPOINTS, 0, NULL, 2, &r, NULL), CT_EINVAL);
+    /* NULL function or result */
+    assert_int_equal(ct_integrate(NULL, NULL, 0.0, 1.0, CT_QUAD_TRAPEZOID, 10, NULL, 0, &r, NULL),
+                     CT_EINVAL);
+    assert_int_equal(
+        ct_integrate(smooth, NULL, 0.0, 1.0, CT_QUAD_TRAPEZOID, 10, NULL, 0, NULL, NULL),
+        CT_EINVAL);
 }
 
 int main(void)

@@ -329,6 +329,8 @@ static void messages_say_what_happened(void **state)
     expect_error(buf, NULL, 0, "s.ini:5: surface.h0 = 1e-310", "underflows");
     with_line(buf, sizeof buf, "l0 = 1e999");
     expect_error(buf, NULL, 0, "s.ini:5: surface.l0 = 1e999", "overflows");
+    with_line(buf, sizeof buf, "depth = \x01" "0");
+    expect_error(buf, NULL, 0, "s.ini:5: control character 0x01", NULL);
     const char *tiny[] = {"impact.V_star=1e-200"};
     expect_error(good, tiny, 1, "impact.V_star = 1e-200", "impact energy");
 }

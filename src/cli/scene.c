@@ -146,8 +146,10 @@ static int handler(void *user, const char *section, const char *key, const char 
         return 0; /* inih goes on after an error; the first one is reported */
     s->error_line = s->line;
     snprintf(where, sizeof where, "%s:%d", s->name, s->line);
-    if (value[0] == LONG_VALUE_MARK) /* a value too long for inih's buffer, held aside */
-        value = s->long_values[strtoul(value + 1, NULL, 10)];
+    if (value[0] == LONG_VALUE_MARK) { /* a value too long for inih's buffer, held aside */
+        unsigned long k = strtoul(value + 1, NULL, 10);
+        value = k < s->nlong ? s->long_values[k] : "";
+    }
     if (!section[0])
         s->status = scene_error(CT_EINVAL, "%s: %s: key outside any section", where, key);
     else
@@ -197,6 +199,14 @@ static char *read_string_line(char *buf, int size, void *stream)
         p += 3;
         n -= 3;
     }
+    /* a text scene holds no control characters but tab (and the line ends above); the
+     * mark of a held-aside value is one, so it cannot be forged */
+    for (size_t k = 0; k < n; k++)
+        if ((unsigned char)p[k] < 0x20 && p[k] != '\t') {
+            char code[8];
+            snprintf(code, sizeof code, "0x%02x", (unsigned char)p[k]);
+            return reader_error(s, "%s:%d: control character %s: not a scene file", code);
+        }
     while (n && isspace((unsigned char)*p))
         p++, n--;
     while (n && isspace((unsigned char)p[n - 1]))

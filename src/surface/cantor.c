@@ -133,6 +133,9 @@ double ct_energy_scale(const ct_params *p)
 int ct_piece_extent(const ct_params *p, long depth, long stage, size_t j, double *x_left,
                     double *x_right)
 {
+    CT_NEED(p);
+    CT_NEED(x_left);
+    CT_NEED(x_right);
     if (stage < 0 || stage > depth || stage > 62 || j >> stage)
         return ct_error_set(CT_EINVAL, "piece %zu of stage %ld: outside a depth-%ld prefractal", j,
                             stage, depth);
@@ -221,6 +224,7 @@ int ct_cantor_representation(const ct_bundle *b)
 int ct_cantor_bundle(ct_bundle **out, const ct_params *p, ct_representation rep, long depth,
                      double u_reach)
 {
+    CT_NEED(out);
     int st;
     *out = NULL;
     if ((st = ct_params_validate(p)))
@@ -429,10 +433,14 @@ static int search_depth(const ct_params *p, double W_min, double tol, int tips, 
 
 int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound)
 {
+    CT_NEED(depth);
+    CT_NEED(bound);
     return search_depth(p, W_min, tol, 0, depth, bound);
 }
 
 int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound)
 {
+    CT_NEED(depth);
+    CT_NEED(bound);
     return search_depth(p, W_min, 1e-15, 1, depth, bound);
 }
