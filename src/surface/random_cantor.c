@@ -348,6 +348,15 @@ int ct_random_cantor_bundle(ct_bundle **out, const ct_random_cantor *rc, uint64_
         return st;
     const ct_params *p = &rc->params;
     const size_t total = ((size_t)2 << rc->depth) - 1;
+    /* the rods (32 bytes), each rod's piece (4) and the sort's keys and permutation (24,
+     * while building): refused up front, with the figure, when it would not fit */
+    const double need = (double)total * (CT_BYTES_PER_ROD + 4 + 24);
+    const double avail = (double)ct_available_memory();
+    if (need > 0.9 * avail)
+        return ct_error_set(CT_ENOMEM,
+                            "random cantor depth %ld: %zu rods need %.3g GiB while built, more "
+                            "than the %.3g GiB of memory available",
+                            rc->depth, total, need / 1073741824.0, avail / 1073741824.0);
     random_meta *meta = malloc(sizeof *meta);
     uint32_t *piece = malloc(total * sizeof *piece);
     /* per chunk clip counts of the widest stage, summed after each stage (integers: exact) */
