@@ -379,6 +379,9 @@ typedef struct {
     void *observe_ctx;
     ct_sweep_path path; /* CT_PATH_AUTO (0) by default; observers and composite rules always
                            use the curve */
+    ct_curve *curve;    /* optional workspace (NULL: a curve per call): the curve of b's state
+                           is built here, its arrays reused from one sweep to the next (an
+                           ensemble's realisations: no page faults for each new curve) */
 } ct_sweep_spec;
 
 /* Runs every speed from b's state (b itself is not changed): rows[speed * impacts + i - 1]

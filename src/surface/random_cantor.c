@@ -124,6 +124,8 @@ typedef struct {
     uint64_t fx_clipped, fz_clipped;
     size_t n;
     uint32_t *piece; /* rod k is piece piece[k] (heap index g) */
+    uint64_t *key;   /* the sort's scratch, kept by bundles that are refilled (NULL: none) */
+    uint32_t *tmp;
 } random_meta;
 
 /* Stage of rod g = 2^i - 1 + j. */
@@ -176,8 +178,11 @@ static void random_rod_info(const void *meta, size_t rod, ct_rod_info *info)
 static void random_free(void *meta)
 {
     random_meta *m = meta;
-    if (m)
+    if (m) {
         free(m->piece);
+        free(m->key);
+        free(m->tmp);
+    }
     free(m);
 }
 
@@ -194,6 +199,8 @@ static void *random_clone(const void *meta)
     *m = *src;
     memcpy(piece, src->piece, src->n * sizeof *piece);
     m->piece = piece;
+    m->key = NULL;
+    m->tmp = NULL;
     return m;
 }
 
@@ -295,14 +302,16 @@ static void finish_chunk(void *ctx, size_t c, size_t i0, size_t i1)
  * then two monotone runs, merged in O(n) (src/curve.c), where pieces in tree order would
  * cost a full merge sort per realisation. LSD radix sort, stable, on the tops' bit patterns
  * (positive doubles order as their bits); digits that all keys share are skipped. */
-static int sort_by_top(size_t n, const double *top, uint32_t *perm)
+static int sort_by_top(random_meta *m, const double *top, int keep)
 {
-    uint64_t *key = malloc(2 * (n ? n : 1) * sizeof *key);
-    uint32_t *tmp = malloc((n ? n : 1) * sizeof *tmp);
+    const size_t n = m->n;
+    uint32_t *perm = m->piece;
+    uint64_t *key = m->key ? m->key : malloc(2 * (n ? n : 1) * sizeof *key);
+    uint32_t *tmp = m->tmp ? m->tmp : malloc((n ? n : 1) * sizeof *tmp);
     size_t(*count)[256] = calloc(8, sizeof *count);
+    m->key = key;
+    m->tmp = tmp;
     if (!key || !tmp || !count) {
-        free(key);
-        free(tmp);
         free(count);
         return ct_error_set(CT_ENOMEM, "random cantor surface: sorting %zu rods: out of memory", n);
     }
@@ -333,55 +342,30 @@ static int sort_by_top(size_t n, const double *top, uint32_t *perm)
         memcpy(key, key2, n * sizeof *key);
         memcpy(perm, tmp, n * sizeof *perm);
     }
-    free(key);
-    free(tmp);
+    if (!keep) {
+        free(key);
+        free(tmp);
+        m->key = NULL;
+        m->tmp = NULL;
+    }
     free(count);
     return CT_OK;
 }
 
-int ct_random_cantor_bundle(ct_bundle **out, const ct_random_cantor *rc, uint64_t realisation,
-                            int threads)
+/* Draws and lays out realisation `realisation` in b's arrays (b made for meta's depth). */
+static int fill(ct_bundle *b, random_meta *meta, uint64_t realisation, int keep_scratch)
 {
-    int st;
-    *out = NULL;
-    if ((st = ct_random_cantor_validate(rc)))
-        return st;
+    const ct_random_cantor *rc = &meta->rc;
     const ct_params *p = &rc->params;
-    const size_t total = ((size_t)2 << rc->depth) - 1;
-    /* the rods (32 bytes), each rod's piece (4) and the sort's keys and permutation (24,
-     * while building): refused up front, with the figure, when it would not fit */
-    const double need = (double)total * (CT_BYTES_PER_ROD + 4 + 24);
-    const double avail = (double)ct_available_memory();
-    if (need > 0.9 * avail)
-        return ct_error_set(CT_ENOMEM,
-                            "random cantor depth %ld: %zu rods need %.3g GiB while built, more "
-                            "than the %.3g GiB of memory available",
-                            rc->depth, total, need / 1073741824.0, avail / 1073741824.0);
-    random_meta *meta = malloc(sizeof *meta);
-    uint32_t *piece = malloc(total * sizeof *piece);
+    const size_t total = meta->n;
     /* per chunk clip counts of the widest stage, summed after each stage (integers: exact) */
     const size_t widest = (size_t)1 << (rc->depth ? rc->depth - 1 : 0);
     const size_t nchunks = (widest + SPLIT_CHUNK - 1) / SPLIT_CHUNK;
     uint64_t *clipped = malloc(2 * nchunks * sizeof *clipped);
-    if (!meta || !clipped || !piece) {
-        free(meta);
-        free(clipped);
-        free(piece);
+    if (!clipped)
         return ct_error_set(CT_ENOMEM, "random cantor surface: out of memory");
-    }
-    *meta = (random_meta){*rc, realisation, 0, 0, total, piece};
-    char what[96];
-    snprintf(what, sizeof what, "random cantor depth %ld", rc->depth);
-    ct_layer layer;
-    ct_cantor_layer(p, &layer);
-    ct_bundle *b;
-    if ((st = ct_bundle_create(&b, &layer, total, what))) {
-        random_free(meta);
-        free(clipped);
-        return st;
-    }
-    ct_bundle_set_surface(b, &random_kind, meta, 0);
-    ct_bundle_set_threads(b, threads);
+    meta->realisation = realisation;
+    meta->fx_clipped = meta->fz_clipped = 0;
     /* the pieces in tree order go to the arrays that hold length and plastic strain at the
      * end: they are the sort's source */
     double *top, *length, *area, *eps_p;
@@ -400,13 +384,72 @@ int ct_random_cantor_bundle(ct_bundle **out, const ct_random_cantor *rc, uint64_
         }
     }
     free(clipped);
-    if ((st = sort_by_top(total, tree_top, piece))) {
+    int st = sort_by_top(meta, tree_top, keep_scratch);
+    if (st)
+        return st;
+    finish_ctx f = {top, area, tree_top, tree_area, meta->piece, p->Hstar};
+    ct_bundle_parallel(b, total, SPLIT_CHUNK, gather_chunk, &f);
+    ct_bundle_parallel(b, total, SPLIT_CHUNK, finish_chunk, &f);
+    return CT_OK;
+}
+
+int ct_random_cantor_bundle(ct_bundle **out, const ct_random_cantor *rc, uint64_t realisation,
+                            int threads)
+{
+    int st;
+    *out = NULL;
+    if ((st = ct_random_cantor_validate(rc)))
+        return st;
+    const size_t total = ((size_t)2 << rc->depth) - 1;
+    /* the rods (32 bytes), each rod's piece (4) and the sort's keys and permutation (20,
+     * while building): refused up front, with the figure, when it would not fit */
+    const double need = (double)total * (CT_BYTES_PER_ROD + 4 + 20);
+    const double avail = (double)ct_available_memory();
+    if (need > 0.9 * avail)
+        return ct_error_set(CT_ENOMEM,
+                            "random cantor depth %ld: %zu rods need %.3g GiB while built, more "
+                            "than the %.3g GiB of memory available",
+                            rc->depth, total, need / 1073741824.0, avail / 1073741824.0);
+    random_meta *meta = calloc(1, sizeof *meta);
+    uint32_t *piece = malloc(total * sizeof *piece);
+    if (!meta || !piece) {
+        free(meta);
+        free(piece);
+        return ct_error_set(CT_ENOMEM, "random cantor surface: out of memory");
+    }
+    *meta = (random_meta){*rc, realisation, 0, 0, total, piece, NULL, NULL};
+    char what[96];
+    snprintf(what, sizeof what, "random cantor depth %ld", rc->depth);
+    ct_layer layer;
+    ct_cantor_layer(&rc->params, &layer);
+    ct_bundle *b;
+    if ((st = ct_bundle_create(&b, &layer, total, what))) {
+        random_free(meta);
+        return st;
+    }
+    ct_bundle_set_surface(b, &random_kind, meta, 0);
+    ct_bundle_set_threads(b, threads);
+    if ((st = fill(b, meta, realisation, 0))) {
         ct_bundle_free(b);
         return st;
     }
-    finish_ctx f = {top, area, tree_top, tree_area, piece, p->Hstar};
-    ct_bundle_parallel(b, total, SPLIT_CHUNK, gather_chunk, &f);
-    ct_bundle_parallel(b, total, SPLIT_CHUNK, finish_chunk, &f);
     *out = b;
     return CT_OK;
+}
+
+int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t realisation)
+{
+    int st;
+    random_meta *meta = b ? (random_meta *)ct_bundle_surface_meta(b, &random_kind) : NULL;
+    if ((st = ct_random_cantor_validate(rc)))
+        return st;
+    if (!meta || meta->rc.depth != rc->depth)
+        return ct_error_set(CT_EINVAL, "refill: not a random cantor bundle of depth %ld",
+                            rc->depth);
+    ct_layer layer;
+    ct_cantor_layer(&rc->params, &layer);
+    if (memcmp(ct_bundle_layer(b), &layer, sizeof layer))
+        return ct_error_set(CT_EINVAL, "refill: the layer differs from the bundle's");
+    meta->rc = *rc;
+    return fill(b, meta, realisation, 1);
 }
