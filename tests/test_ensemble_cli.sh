@@ -145,6 +145,9 @@ if [ -n "$mpirun" ]; then
             bad "mpirun -n $n: $(cat "$tmp/mpi.out")"
         cmp -s "$tmp/mpi$n.csv" "$tmp/ens.csv" && ok || bad "mpirun -n $n differs from one process"
     done
+    OMP_NUM_THREADS=1 "$mpirun" "${mpiopts[@]}" -n 3 "$ct" run -q "$tmp/r.ini" --set output.what=ensemble,realisations -o "$tmp/mpib.csv" >"$tmp/mpi.out" 2>&1 ||
+        bad "mpirun -n 3, both outputs: $(cat "$tmp/mpi.out")"
+    cmp -s "$tmp/mpib_realisations.csv" "$tmp/both_realisations.csv" && ok || bad "mpirun -n 3: the samples are not in realisation order"
     OMP_NUM_THREADS=1 "$mpirun" "${mpiopts[@]}" -n 2 "$ct" run -q "$tmp/r.ini" --realisations 5:17 -o "$tmp/mpip1.csv" >"$tmp/mpi.out" 2>&1 ||
         bad "mpirun -n 2 --realisations: $(cat "$tmp/mpi.out")"
     cmp -s "$tmp/mpip1.csv" "$tmp/p1.csv" && ok || bad "mpirun -n 2 --realisations 5:17 differs"
