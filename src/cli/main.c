@@ -89,7 +89,8 @@ static const char *geometry_help =
 
 static void fail_line(const char *msg)
 {
-    fprintf(stderr, "cantact: %s\n", msg);
+    if (ct_mpi_rank() == 0) /* under mpirun every rank reads the scene: one line, not K */
+        fprintf(stderr, "cantact: %s\n", msg);
 }
 
 static int status_exit(int st)
