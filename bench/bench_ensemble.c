@@ -20,19 +20,23 @@ int main(int argc, char **argv)
     static double V[NV];
     for (int k = 0; k < NV; k++)
         V[k] = 1e-4 * pow(100.0, (double)k / (NV - 1));
-    ct_ensemble_spec sp = {
-        .surface = {.params = {.fx = 1.5, .fz = 1.3, .l0 = 1.0, .h0 = 1.0, .Hstar = 10.0,
-                               .E = 500.0, .sigma_y = 1.0},
-                    .dist = CT_RATIO_LOGNORMAL,
-                    .fx_spread = 0.1,
-                    .fz_spread = 0.05,
-                    .depth = 16,
-                    .seed = 1},
-        .first = 0,
-        .count = R,
-        .V_star = V,
-        .nvel = NV,
-        .impacts = 1};
+    ct_ensemble_spec sp = {.surface = {.params = {.fx = 1.5,
+                                                  .fz = 1.3,
+                                                  .l0 = 1.0,
+                                                  .h0 = 1.0,
+                                                  .Hstar = 10.0,
+                                                  .E = 500.0,
+                                                  .sigma_y = 1.0},
+                                       .dist = CT_RATIO_LOGNORMAL,
+                                       .fx_spread = 0.1,
+                                       .fz_spread = 0.05,
+                                       .depth = 16,
+                                       .seed = 1},
+                           .first = 0,
+                           .count = R,
+                           .V_star = V,
+                           .nvel = NV,
+                           .impacts = 1};
     ct_impact_opts_default(&sp.opts);
     bench_machine(stdout);
     printf("realisations,depth,speeds,threads,split,check,seconds,ms_per_realisation\n");

@@ -76,20 +76,24 @@ static const double V[NV] = {1e-4, 4e-4, 1.5e-3, 5e-3, 1.5e-2};
 
 static ct_ensemble_spec spec_of(long depth, double spread, uint64_t first, uint64_t count)
 {
-    ct_ensemble_spec sp = {
-        .surface = {.params = {.fx = 1.5, .fz = 1.3, .l0 = 1.0, .h0 = 1.0, .Hstar = 10.0,
-                               .E = 500.0, .sigma_y = 1.0},
-                    .dist = CT_RATIO_LOGNORMAL,
-                    .fx_spread = spread,
-                    .fz_spread = spread / 2,
-                    .depth = depth,
-                    .seed = 2024},
-        .first = first,
-        .count = count,
-        .V_star = V,
-        .nvel = NV,
-        .impacts = IMP,
-        .threads = 1};
+    ct_ensemble_spec sp = {.surface = {.params = {.fx = 1.5,
+                                                  .fz = 1.3,
+                                                  .l0 = 1.0,
+                                                  .h0 = 1.0,
+                                                  .Hstar = 10.0,
+                                                  .E = 500.0,
+                                                  .sigma_y = 1.0},
+                                       .dist = CT_RATIO_LOGNORMAL,
+                                       .fx_spread = spread,
+                                       .fz_spread = spread / 2,
+                                       .depth = depth,
+                                       .seed = 2024},
+                           .first = first,
+                           .count = count,
+                           .V_star = V,
+                           .nvel = NV,
+                           .impacts = IMP,
+                           .threads = 1};
     ct_impact_opts_default(&sp.opts);
     return sp;
 }

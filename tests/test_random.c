@@ -20,8 +20,8 @@
 static ct_random_cantor surface(ct_ratio_dist dist, double sx, double sz, long depth)
 {
     ct_random_cantor rc = {
-        .params = {.fx = 1.5, .fz = 1.3, .l0 = 2.0, .h0 = 0.5, .Hstar = 5.0, .E = 500.0,
-                   .sigma_y = 1.0},
+        .params =
+            {.fx = 1.5, .fz = 1.3, .l0 = 2.0, .h0 = 0.5, .Hstar = 5.0, .E = 500.0, .sigma_y = 1.0},
         .dist = dist,
         .fx_spread = sx,
         .fz_spread = sz,
