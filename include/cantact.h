@@ -388,6 +388,9 @@ typedef struct {
     void *observe_ctx;
     ct_sweep_path path; /* CT_PATH_AUTO (0) by default; observers and composite rules always
                            use the curve */
+    ct_curve *curve;    /* optional workspace (NULL: a curve per call): the curve of b's state
+                           is built here, its arrays reused from one sweep to the next (an
+                           ensemble's realisations: no page faults for each new curve) */
 } ct_sweep_spec;
 
 /* Runs every speed from b's state (b itself is not changed): rows[speed * impacts + i - 1]
@@ -427,6 +430,125 @@ typedef enum { CT_LAW_SERIES = 0, CT_LAW_ASYMPTOTIC = 1, CT_LAW_ASYMPTOTIC_CONSI
  * does not apply (u_max beyond h0 or H*, W_unload > W_load). Thread-safe: no global state. */
 int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e);
 const char *ct_law_name(ct_law law);
+
+/* ---- random Cantor surfaces (MODEL.md §10, src/surface/random_cantor.c) ---------- */
+/* Every split draws its own ratios: child k of a piece of width w whose middle stays at
+ * depth h has width w / (2 fx_k) and depth h / fz_k, with fx_k and fz_k drawn independently
+ * around the centres fx and fz. Each piece is its own rod (the segments layout: piece j of
+ * stage i is rod 2^i - 1 + j, its children are rods 2g + 1 and 2g + 2). A realisation is a
+ * pure function of (seed, realisation): the ratios of piece g come from Philox4x64-10 with
+ * key (seed, realisation) and counter (g, 0, 0, 0), so any thread or process count gives the
+ * same bits. */
+
+typedef enum {
+    CT_RATIO_UNIFORM = 0,   /* f_k = f (1 + spread (2U - 1)), U uniform on (0, 1) */
+    CT_RATIO_LOGNORMAL = 1, /* f_k = f exp(spread Z), Z standard normal (Box-Muller): median f */
+} ct_ratio_dist;
+
+/* Largest depth of a random Cantor surface: 2^(N+1) - 1 rods. */
+#define CT_MAX_RANDOM_DEPTH 30
+
+typedef struct {
+    ct_params params;   /* fx, fz: the centres of the ratio distributions; the rest as for Cantor */
+    ct_ratio_dist dist; /* the kind of both ratio distributions */
+    double fx_spread;   /* >= 0, dimensionless: uniform < 1, log-normal <= 10 */
+    double fz_spread;   /* >= 0, dimensionless: as fx_spread */
+    long depth;         /* stages 0..depth; 0 <= depth <= CT_MAX_RANDOM_DEPTH */
+    uint64_t seed;
+} ct_random_cantor;
+
+/* Returns CT_OK when the surface is valid, else CT_EINVAL with a message. */
+int ct_random_cantor_validate(const ct_random_cantor *rc);
+/* Ratios of the split that made piece g >= 1 (rod g) in a realisation: fx_k, fz_k after
+ * clipping into the valid ranges (fx_k > 1, 1 < fz_k < 2: a draw outside is moved to the
+ * nearest double inside); *clipped gets bit 0 when fx_k was clipped, bit 1 when fz_k was. */
+int ct_random_cantor_ratios(const ct_random_cantor *rc, uint64_t realisation, uint64_t g,
+                            double *fx_k, double *fz_k, int *clipped);
+/* Builds realisation `realisation` as a virgin bundle of 2^(depth+1) - 1 rods (no rod is
+ * left out), sorted by top (shallowest first, ties in piece order), filled by `threads`
+ * threads (0: the OpenMP default; the rods do not depend on it). 36 bytes per rod (the rods
+ * and each rod's piece), 24 more while it is built. Rod info gives each piece's stage and
+ * x-extent. */
+int ct_random_cantor_bundle(ct_bundle **out, const ct_random_cantor *rc, uint64_t realisation,
+                            int threads);
+/* The piece g (rod index in tree order: 2^stage - 1 + j) that rod k of such a bundle is. */
+int ct_random_cantor_piece(const ct_bundle *b, size_t k, uint64_t *g);
+/* Draws of a bundle ct_random_cantor_bundle made: clipped fx and fz ratios, and ratios drawn
+ * of each kind (2^(depth+1) - 2). CT_EINVAL for another bundle. */
+int ct_random_cantor_clipped(const ct_bundle *b, uint64_t *fx_clipped, uint64_t *fz_clipped,
+                             uint64_t *draws);
+
+/* ---- ensembles of realisations (src/ensemble.c) ---------------------------------- */
+
+/* How an ensemble uses its threads: whole realisations per thread (each bundle summed by
+ * one thread; memory: one realisation per thread), or one realisation at a time with its
+ * rods shared by the threads. Auto: per realisation when a realisation has at most
+ * CT_ENSEMBLE_SPLIT_RODS rods and there are at least two realisations. */
+typedef enum {
+    CT_SPLIT_AUTO = 0,
+    CT_SPLIT_REALISATIONS = 1,
+    CT_SPLIT_RODS = 2,
+} ct_ensemble_split;
+#define CT_ENSEMBLE_SPLIT_RODS ((size_t)1 << 21)
+
+typedef struct {
+    ct_random_cantor surface;
+    uint64_t first;       /* realisations first .. first + count - 1 */
+    uint64_t count;       /* >= 1 */
+    const double *V_star; /* speeds, dimensionless */
+    size_t nvel;
+    long impacts; /* impacts per speed, >= 1 */
+    ct_impact_opts opts;
+    ct_sweep_path path;
+    int stop_on_error; /* 1: stop at the first failed impact (lowest realisation, then row) */
+    int threads;       /* 0: the OpenMP default */
+    ct_ensemble_split split;
+    ct_progress_fn progress; /* optional: realisations done (called by one thread at a time) */
+    void *progress_ctx;
+} ct_ensemble_spec;
+
+/* The samples of an ensemble: realisation first + r, row q = speed * impacts + impact - 1
+ * at index r * nrows + q. Values in library units (u_max [length]); NaN where status != 0. */
+typedef struct {
+    uint64_t first, count;
+    size_t nrows;
+    double *e, *u_max, *V_star_crit;
+    int *status;                       /* CT_OK, or why the impact failed / was not run */
+    uint64_t *fx_clipped, *fz_clipped; /* per realisation */
+    uint64_t draws;                    /* ratios drawn of each kind per realisation */
+    double quad_error_max;             /* largest |e - e_closed| of all samples (NaN: no
+                                          closed-form check) */
+    uint64_t failed_realisation;       /* the first failure in (realisation, row) order */
+    size_t failed_row;
+    char message[240]; /* its message ("" when none failed) */
+} ct_ensemble_samples;
+
+/* Allocates the arrays for count realisations of nrows rows (all NaN, status CT_ESKIPPED). */
+int ct_ensemble_samples_alloc(ct_ensemble_samples **out, uint64_t first, uint64_t count,
+                              size_t nrows);
+void ct_ensemble_samples_free(ct_ensemble_samples *s);
+/* Runs every realisation of spec: build, sweep, drop. Samples do not depend on the thread
+ * count, the split or on how realisations are shared among processes. Returns CT_OK (samples
+ * carry their statuses), the first failure under stop_on_error, or CT_ENOMEM. */
+int ct_ensemble(const ct_ensemble_spec *spec, ct_ensemble_samples *samples);
+
+/* Statistics of one quantity over an ensemble. */
+typedef struct {
+    size_t n;             /* samples used (the NaN ones are left out) */
+    double mean;          /* compensated sum in sample order, / n */
+    double sd;            /* sample standard deviation (n - 1 in the denominator; NaN for n < 2) */
+    double sem;           /* standard error of the mean, sd / sqrt(n) (NaN for n < 2) */
+    double q05, q50, q95; /* quantiles: linear interpolation between order statistics,
+                             x_(floor h) + (h - floor h)(x_(floor h + 1) - x_(floor h)),
+                             h = (n - 1) p (Hyndman-Fan type 7, as R and NumPy) */
+} ct_stats;
+
+/* Statistics of x[0], x[stride], ..., x[(n - 1) stride], in that order (NaN left out):
+ * the same input gives the same bits. work holds n doubles (the sort). CT_EINVAL when no
+ * sample is finite. */
+int ct_sample_stats(const double *x, size_t n, size_t stride, double *work, ct_stats *out);
+/* Returns the p-quantile (0 <= p <= 1) of n >= 1 sorted values, type 7 as in ct_stats. */
+double ct_quantile_sorted(const double *sorted, size_t n, double p);
 
 #if defined(__GNUC__)
 #pragma GCC visibility pop

@@ -3,7 +3,8 @@
 set -euo pipefail
 
 CT_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-CT_PACKAGES=(gcc meson ninja-build pkg-config libcmocka-dev libinih-dev libgsl-dev gnuplot-nox locales)
+CT_PACKAGES=(gcc meson ninja-build pkg-config libcmocka-dev libinih-dev libgsl-dev gnuplot-nox
+    locales librandom123-dev libopenmpi-dev openmpi-bin)
 
 ct_need_packages() {
     local missing=() p

@@ -213,6 +213,18 @@ void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double le
     }
 }
 
+void ct_bundle_parallel(const ct_bundle *b, size_t count, size_t chunk, ct_chunk_fn fn, void *ctx)
+{
+    const size_t nc = chunk ? (count + chunk - 1) / chunk : 0;
+    const int team = count >= b->parallel_min ? ct_bundle_team(b) : 1;
+    (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
+    for (ptrdiff_t c = 0; c < (ptrdiff_t)nc; c++) {
+        size_t i0 = (size_t)c * chunk, i1 = i0 + chunk < count ? i0 + chunk : count;
+        fn(ctx, (size_t)c, i0, i1);
+    }
+}
+
 void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted)
 {
     if (b->kind && b->kind->free)
@@ -613,8 +625,8 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
             out[(size_t)o * CT_NODE_CHUNK + i] = s[o][i] + c[o][i];
 }
 
-int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0,
-                          const double *u1, size_t m, double *W_load, double *W_unload, double *P)
+int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
+                          size_t m, double *W_load, double *W_unload, double *P)
 {
     closed_args a = {adv, u0, u1};
     double *out = malloc(3 * (m ? m : 1) * sizeof(double));

@@ -58,6 +58,18 @@ size_t ct_available_memory(void);
 /* The thread count a sum over b's rods uses (1 below the parallel threshold). */
 int ct_bundle_team(const ct_bundle *b);
 
+/* Runs fn(ctx, c, i0, i1) on the chunks c = 0, 1, ... of [0, count) (chunk indices each, the
+ * last one shorter), by b's thread team when count reaches b's parallel threshold. For
+ * surface builders: fn must make what it writes for index i depend on i alone, so that the
+ * rods do not depend on the thread count. */
+typedef void (*ct_chunk_fn)(void *ctx, size_t c, size_t i0, size_t i1);
+void ct_bundle_parallel(const ct_bundle *b, size_t count, size_t chunk, ct_chunk_fn fn, void *ctx);
+
+/* Makes b (from ct_random_cantor_bundle, same depth and layer) realisation `realisation` of
+ * rc in place: the same rods as a new bundle, bit for bit, without new arrays (the sort's
+ * scratch is kept in b for the next refill). For ensembles. */
+int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t realisation);
+
 /* ---- impacts on a curve (src/impact.c), for the sweep ---- */
 
 /* The impact of energy W from the state c's state reaches when loaded to U (-INFINITY: c's

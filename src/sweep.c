@@ -404,7 +404,11 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
     double *adv = NULL, *u0 = NULL, *u1 = NULL, *Wl = NULL, *Wu = NULL;
     size_t *slot = NULL; /* row -> its place in the batched closed forms */
     unsigned char *by_state = NULL;
-    if ((st = ct_curve_alloc(&first)) || (st = ct_curve_build(first, b)))
+    if (s->curve) /* the caller's workspace: its arrays are reused */
+        first = s->curve;
+    else if ((st = ct_curve_alloc(&first)))
+        goto done;
+    if ((st = ct_curve_build(first, b)))
         goto done;
     by_state = calloc(s->nvel ? s->nvel : 1, 1);
     if (!by_state) {
@@ -505,7 +509,8 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
     if (s->stop_on_error)
         st = first_failure(rows, nrows);
 done:
-    ct_curve_free(first);
+    if (first != s->curve)
+        ct_curve_free(first);
     ct_curve_free(later);
     ct_bundle_free(work);
     free(adv);

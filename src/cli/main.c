@@ -1,5 +1,7 @@
-/* cantact: the command-line program. Subcommands: run, geometry. */
+/* cantact: the command-line program. Subcommands: run, geometry, merge. */
 #include "cantact.h"
+#include "ensemble.h"
+#include "ranks.h"
 #include "number.h"
 #include "output.h"
 #include "scene.h"
@@ -26,6 +28,7 @@ static const char *main_help =
     "  run SCENE        compute what the scene's [output] what asks for (e, curve, profile,\n"
     "                   compare)\n"
     "  geometry SCENE   print the Cantor geometry of the scene's surface\n"
+    "  merge SCENE PART.csv...  combine the realisations of runs with --realisations a:b\n"
     "\n"
     "Options:\n"
     "  -h, --help       this help (also: cantact <subcommand> --help)\n"
@@ -35,6 +38,7 @@ static const char *main_help =
 
 static const char *run_help =
     "Usage: cantact run SCENE.ini [--set section.key=value]... [-o FILE]\n"
+    "                             [--realisations a:b]\n"
     "\n"
     "Reads the scene, builds the surface as rods and, for each V* in input order, runs\n"
     "[impact] impacts impacts from the virgin surface (the rods' state carried from one\n"
@@ -48,6 +52,15 @@ static const char *run_help =
     "With several items in [output] what, FILE holds e and the others go to FILE with\n"
     "_curve / _profile before its extension. Outputs appear only when complete.\n"
     "\n"
+    "With surface.type = random_cantor and [ensemble] realisations = R, every realisation is\n"
+    "built, swept and dropped, and what lists:\n"
+    "  ensemble:     impact,V_star,realisations, then mean, sd, sem (standard error of the\n"
+    "                mean), q05, q50, q95 of e, u_max_over_h0 and V_star_crit, then\n"
+    "                e_deterministic (the surface with spread 0)\n"
+    "  realisations: realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,\n"
+    "                fz_clipped (every sample, for cantact merge)\n"
+    "Under mpirun the ranks share the realisations; the output is the same bytes.\n"
+    "\n"
     "An impact that cannot be computed (a crushed layer, an unresolvable penetration) ends the\n"
     "run with its V* and impact (solver.on_error = stop), or, with solver.on_error = skip,\n"
     "is a row of its own: its numbers empty and the reason in a last column, error.\n"
@@ -56,9 +69,13 @@ static const char *run_help =
     "  --set section.key=value   override a scene key (repeatable)\n"
     "  -o FILE                   same as --set output.file=FILE ('-' for stdout)\n"
     "  -q                        no summary on stderr\n"
+    "  --realisations a:b        ensembles: only realisations a .. b-1, written as the\n"
+    "                            realisations CSV (job arrays; then cantact merge)\n"
     "  -h, --help                this help\n"
     "\n"
-    "Scene keys: [surface] type (cantor) fx fz H h0 l0 depth representation;\n"
+    "Scene keys: [surface] type (cantor|random_cantor) fx fz H h0 l0 depth representation;\n"
+    "random_cantor: distribution (uniform|lognormal) fx_spread fz_spread seed realisation;\n"
+    "[ensemble] realisations split (auto|realisations|rods);\n"
     "[material] E sigma_y;\n"
     "[impact] V_star | mass velocity, impacts; [solver] quadrature nodes tolerance\n"
     "depth_tolerance threads on_error (stop|skip) check (closed|none) path (auto|curve|rods);\n"
@@ -73,7 +90,8 @@ static const char *geometry_help =
 
 static void fail_line(const char *msg)
 {
-    fprintf(stderr, "cantact: %s\n", msg);
+    if (ct_mpi_rank() == 0) /* under mpirun every rank reads the scene: one line, not K */
+        fprintf(stderr, "cantact: %s\n", msg);
 }
 
 static int status_exit(int st)
@@ -87,8 +105,9 @@ typedef struct {
     size_t nsets;
     int quiet;
     int help;
-    const char *output; /* -o FILE */
-    char *output_set;   /* "output.file=FILE", allocated */
+    const char *output;       /* -o FILE */
+    char *output_set;         /* "output.file=FILE", allocated */
+    const char *realisations; /* --realisations a:b */
 } cli_args;
 
 static int parse_args(int argc, char **argv, cli_args *a)
@@ -117,6 +136,12 @@ static int parse_args(int argc, char **argv, cli_args *a)
             }
         } else if (!strncmp(s, "--set=", 6)) {
             a->sets[a->nsets++] = s + 6;
+        } else if (!strcmp(s, "--realisations")) {
+            if (k + 1 >= argc) {
+                fprintf(stderr, "cantact: %s needs a value\n", s);
+                return EXIT_USAGE;
+            }
+            a->realisations = argv[++k];
         } else if (s[0] == '-' && s[1]) {
             fprintf(stderr, "cantact: unknown option %s (see --help)\n", s);
             return EXIT_USAGE;
@@ -289,7 +314,7 @@ static void make_dimensionless(ct_scene *sc)
 {
     ct_params *p = &sc->params;
     sc->physical = *p;
-    if (sc->surface_type != CT_SURFACE_CANTOR)
+    if (sc->surface_type != CT_SURFACE_CANTOR && sc->surface_type != CT_SURFACE_RANDOM_CANTOR)
         return;
     p->Hstar = p->Hstar / p->h0;
     p->E = p->E / p->sigma_y;
@@ -299,10 +324,14 @@ static void make_dimensionless(ct_scene *sc)
 /* Parses a subcommand's arguments and loads its scene. Returns -1 when the scene is loaded
  * into *sc (the caller goes on), else the exit status to return (help shown, or an error). */
 static int load_scene_args(int argc, char **argv, const char *cmd, const char *help, ct_scene *sc,
-                           int *quiet)
+                           int *quiet, const char **realisations)
 {
     cli_args a;
     int rc = parse_args(argc, argv, &a);
+    if (!rc && !a.help && a.realisations && !realisations) {
+        fprintf(stderr, "cantact: %s: --realisations is an option of run\n", cmd);
+        rc = EXIT_USAGE;
+    }
     if (rc || a.help) {
         if (a.help)
             fputs(help, stdout);
@@ -331,12 +360,16 @@ static int load_scene_args(int argc, char **argv, const char *cmd, const char *h
     }
     free(a.output_set);
     make_dimensionless(sc);
-    if ((st = ct_params_validate(&sc->params))) { /* E/sigma_y times H* / h0 may overflow */
+    if ((sc->surface_type == CT_SURFACE_CANTOR || sc->surface_type == CT_SURFACE_RANDOM_CANTOR) &&
+        (st = ct_params_validate(&sc->params))) {
+        /* E/sigma_y times H* / h0 may overflow */
         fprintf(stderr, "cantact: %s: %s\n", a.scene, ct_error_message());
         ct_scene_free(sc);
         return EXIT_USAGE;
     }
     *quiet = a.quiet;
+    if (realisations)
+        *realisations = a.realisations;
     return -1;
 }
 
@@ -346,6 +379,8 @@ static int load_scene_args(int argc, char **argv, const char *cmd, const char *h
 static int build_surface(const ct_scene *sc, int keep_all, ct_bundle **b, ct_plan_info *info)
 {
     switch (sc->surface_type) {
+    case CT_SURFACE_RANDOM_CANTOR: /* one realisation (src/cli/ensemble.c): nothing left out */
+        return ct_cli_random_surface(sc, b, info);
     case CT_SURFACE_CANTOR:
     default: {
         ct_cantor_plan plan = {
@@ -389,7 +424,8 @@ static int observe(const ct_sweep_row *row, int phase, const ct_bundle *b, const
         st = write_branch(o->curve, o->post, p, row->V_star, row->impact, row->r.u_release,
                           row->r.u_max, "unload", o->compare);
     if (phase == 1 && o->profile && row->speed + 1 == sc->nvel && row->impact == sc->impacts)
-        st = write_profile(o->profile, b, p);
+        st = sc->surface_type == CT_SURFACE_RANDOM_CANTOR ? ct_cli_write_rod_profile(o->profile, b)
+                                                          : write_profile(o->profile, b, p);
     return st;
 }
 
@@ -452,9 +488,23 @@ static int cmd_run(int argc, char **argv)
 {
     ct_scene sc;
     int quiet, st = CT_OK;
-    int rc = load_scene_args(argc, argv, "run", run_help, &sc, &quiet);
+    const char *range = NULL;
+    int rc = load_scene_args(argc, argv, "run", run_help, &sc, &quiet, &range);
     if (rc >= 0)
         return rc;
+    if (sc.realisations) { /* an ensemble of random realisations (src/cli/ensemble.c) */
+        rc = ct_cli_ensemble_run(&sc, quiet, range);
+        ct_scene_free(&sc);
+        return rc;
+    }
+    if (range || ct_mpi_size() > 1) {
+        if (ct_mpi_rank() == 0)
+            fail_line(range ? "--realisations: the scene has no [ensemble] realisations"
+                            : "under MPI only ensembles ([ensemble] realisations) are shared "
+                              "among processes");
+        ct_scene_free(&sc);
+        return EXIT_USAGE;
+    }
     int nitems = !!(sc.what & CT_OUT_E) + !!(sc.what & CT_OUT_CURVE) + !!(sc.what & CT_OUT_PROFILE);
     if (nitems > 1 && !strcmp(sc.output, "-")) {
         fail_line("output.what names several outputs: set output.file (or -o FILE) to a path");
@@ -472,8 +522,8 @@ static int cmd_run(int argc, char **argv)
             fprintf(stderr,
                     "cantact: %zu speeds x %ld impacts = %.3g result rows need %.3g GiB, more "
                     "than the %.3g GiB of memory available: split the scene\n",
-                    sc.nvel, sc.impacts, (double)sc.nvel * (double)sc.impacts,
-                    bytes / 1073741824.0, avail / 1073741824.0);
+                    sc.nvel, sc.impacts, (double)sc.nvel * (double)sc.impacts, bytes / 1073741824.0,
+                    avail / 1073741824.0);
             ct_scene_free(&sc);
             return EXIT_FAILED;
         }
@@ -528,8 +578,10 @@ static int cmd_run(int argc, char **argv)
         fprintf(stderr,
                 "cantact: %s, depth %ld (%s), %zu rods, %zu left out as never touched, "
                 "%d thread(s)\n",
-                sc.representation == CT_REP_STAGES ? "stage rods" : "segment rods", info.depth, how,
-                info.rods, info.omitted, ct_bundle_set_threads(b, sc.threads));
+                sc.surface_type == CT_SURFACE_RANDOM_CANTOR ? "random cantor rods"
+                : sc.representation == CT_REP_STAGES        ? "stage rods"
+                                                            : "segment rods",
+                info.depth, how, info.rods, info.omitted, ct_bundle_set_threads(b, sc.threads));
     }
 
     int compare = !!(sc.what & CT_OUT_COMPARE);
@@ -641,7 +693,7 @@ static int cmd_geometry(int argc, char **argv)
 {
     ct_scene sc;
     int quiet, st;
-    int rc = load_scene_args(argc, argv, "geometry", geometry_help, &sc, &quiet);
+    int rc = load_scene_args(argc, argv, "geometry", geometry_help, &sc, &quiet, NULL);
     if (rc >= 0)
         return rc;
     (void)quiet;
@@ -686,8 +738,14 @@ static int dispatch(int argc, char **argv)
         printf("cantact %s\n", CT_VERSION);
         return EXIT_DONE;
     }
-    if (!strcmp(cmd, "run"))
-        return cmd_run(argc - 2, argv + 2);
+    if (!strcmp(cmd, "run")) {
+        ct_mpi_init(&argc, &argv); /* only under an MPI launcher */
+        int rc = cmd_run(argc - 2, argv + 2);
+        ct_mpi_finalize();
+        return rc;
+    }
+    if (!strcmp(cmd, "merge"))
+        return ct_cli_merge(argc - 2, argv + 2);
     if (!strcmp(cmd, "geometry"))
         return cmd_geometry(argc - 2, argv + 2);
     fprintf(stderr, "cantact: unknown subcommand '%s' (try cantact --help)\n", cmd);

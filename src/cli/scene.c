@@ -70,6 +70,14 @@ static const key_spec known_keys[] = {
     {"solver", "path", 0},
     {"output", "file", 0},
     {"output", "what", 0},
+    /* type = random_cantor */
+    {"surface", "distribution", 0},
+    {"surface", "fx_spread", 0},
+    {"surface", "fz_spread", 0},
+    {"surface", "seed", 0},
+    {"surface", "realisation", 0},
+    {"ensemble", "realisations", 0},
+    {"ensemble", "split", 0},
 };
 #define NKEYS (sizeof known_keys / sizeof known_keys[0])
 
@@ -114,11 +122,11 @@ static int store(parse_state *s, const char *section, const char *key, const cha
         if (strcmp(where, "--set"))
             return scene_error(CT_EINVAL,
                                "%s:%d: [%s]: unknown section (known: surface, material, "
-                               "impact, solver, output)",
+                               "impact, solver, output, ensemble)",
                                s->name, s->section_line, section);
         return scene_error(CT_EINVAL,
                            "--set: [%s]: unknown section (known: surface, material, impact, "
-                           "solver, output)",
+                           "solver, output, ensemble)",
                            section);
     }
     int k = find_key(section, key);
@@ -485,6 +493,109 @@ static int velocity_list(const entry *e, const char *key, double **out, size_t *
     return CT_OK;
 }
 
+/* Keys of type = random_cantor and [ensemble]: given with another type they are errors that
+ * name them; representation (a cantor key) is one with this type. */
+static int random_cantor_keys(parse_state *s, ct_scene *sc)
+{
+    static const char *const random_only[] = {"distribution", "fx_spread", "fz_spread", "seed",
+                                              "realisation"};
+    entry *e;
+    int st;
+    const int random = sc->surface_type == CT_SURFACE_RANDOM_CANTOR;
+    for (size_t k = 0; k < sizeof random_only / sizeof random_only[0]; k++)
+        if (!random && (e = get(s, "surface", random_only[k])))
+            return bad(e, "surface", random_only[k], "only for surface.type = random_cantor");
+    static const char *const ensemble_keys[] = {"realisations", "split"};
+    for (size_t k = 0; k < 2; k++)
+        if (!random && (e = get(s, "ensemble", ensemble_keys[k])))
+            return bad(e, "ensemble", ensemble_keys[k], "only for surface.type = random_cantor");
+    if (!random)
+        return CT_OK;
+    if ((e = get(s, "surface", "representation")))
+        return bad(e, "surface", "representation",
+                   "not for surface.type = random_cantor (every piece is its own rod)");
+    if (!get(s, "surface", "depth"))
+        return scene_error(CT_EINVAL,
+                           "%s: surface.depth: required key missing (type = "
+                           "random_cantor needs an integer depth 0..%d)",
+                           s->name, CT_MAX_RANDOM_DEPTH);
+    sc->ratio_dist = CT_RATIO_LOGNORMAL;
+    if ((e = get(s, "surface", "distribution"))) {
+        if (!strcmp(e->value, "uniform"))
+            sc->ratio_dist = CT_RATIO_UNIFORM;
+        else if (!strcmp(e->value, "lognormal"))
+            sc->ratio_dist = CT_RATIO_LOGNORMAL;
+        else
+            return bad(e, "surface", "distribution", "must be uniform or lognormal");
+    }
+    const int uniform = sc->ratio_dist == CT_RATIO_UNIFORM;
+    const char *range = uniform ? "must satisfy 0 <= spread < 1 (distribution = uniform)"
+                                : "must satisfy 0 <= spread <= 10 (distribution = lognormal)";
+    sc->fx_spread = sc->fz_spread = 0.0;
+    if ((st = number_key(s, "surface", "fx_spread", -INFINITY, INFINITY, range, &sc->fx_spread)) ||
+        (st = number_key(s, "surface", "fz_spread", -INFINITY, INFINITY, range, &sc->fz_spread)))
+        return st;
+    const char *keys[2] = {"fx_spread", "fz_spread"};
+    const double v[2] = {sc->fx_spread, sc->fz_spread};
+    for (int k = 0; k < 2; k++)
+        if (!(v[k] >= 0.0) || (uniform ? !(v[k] < 1.0) : !(v[k] <= 10.0)))
+            return bad(get(s, "surface", keys[k]), "surface", keys[k], range);
+    static const char *const counts[] = {"seed", "realisation"};
+    uint64_t *dst[] = {&sc->seed, &sc->realisation};
+    for (int k = 0; k < 2; k++) {
+        *dst[k] = 0;
+        if (!(e = get(s, "surface", counts[k])))
+            continue;
+        const char *t = e->value;
+        char *end;
+        while (isspace((unsigned char)*t))
+            t++;
+        errno = 0;
+        unsigned long long x = strtoull(t, &end, 10);
+        while (isspace((unsigned char)*end))
+            end++;
+        if (!isdigit((unsigned char)*t) || *end || errno == ERANGE)
+            return bad(e, "surface", counts[k], "must be an integer 0 <= n < 2^64");
+        *dst[k] = (uint64_t)x;
+    }
+    sc->realisations = 0;
+    if ((e = get(s, "ensemble", "realisations"))) {
+        long r;
+        if (!parse_integer(e->value, &r))
+            return bad(e, "ensemble", "realisations", "not an integer");
+        if (r < 1 || r > 1000000000L)
+            return bad(e, "ensemble", "realisations", "must satisfy 1 <= realisations <= 1e9");
+        sc->realisations = (uint64_t)r;
+        if ((e = get(s, "surface", "realisation")))
+            return bad(e, "surface", "realisation",
+                       "names the one realisation of a run without [ensemble]");
+    }
+    sc->split = CT_SPLIT_AUTO;
+    if ((e = get(s, "ensemble", "split"))) {
+        if (!sc->realisations)
+            return bad(e, "ensemble", "split", "needs ensemble.realisations");
+        if (!strcmp(e->value, "auto"))
+            sc->split = CT_SPLIT_AUTO;
+        else if (!strcmp(e->value, "realisations"))
+            sc->split = CT_SPLIT_REALISATIONS;
+        else if (!strcmp(e->value, "rods"))
+            sc->split = CT_SPLIT_RODS;
+        else
+            return bad(e, "ensemble", "split", "must be auto, realisations or rods");
+    }
+    return CT_OK;
+}
+
+void ct_scene_random_cantor(const ct_scene *sc, ct_random_cantor *rc)
+{
+    rc->params = sc->params;
+    rc->dist = sc->ratio_dist;
+    rc->fx_spread = sc->fx_spread;
+    rc->fz_spread = sc->fz_spread;
+    rc->depth = sc->depth;
+    rc->seed = sc->seed;
+}
+
 static int interpret(parse_state *s, ct_scene *sc)
 {
     int st;
@@ -493,15 +604,19 @@ static int interpret(parse_state *s, ct_scene *sc)
     if ((e = get(s, "surface", "type"))) {
         if (!strcmp(e->value, "cantor"))
             sc->surface_type = CT_SURFACE_CANTOR;
+        else if (!strcmp(e->value, "random_cantor"))
+            sc->surface_type = CT_SURFACE_RANDOM_CANTOR;
         else
-            return bad(e, "surface", "type", "must be cantor");
+            return bad(e, "surface", "type", "must be cantor or random_cantor");
     }
+    if ((st = random_cantor_keys(s, sc)))
+        return st;
     for (size_t k = 0; k < NKEYS; k++)
         if (known_keys[k].required && !s->entries[k].set)
             return scene_error(CT_EINVAL, "%s: %s.%s: required key missing", s->name,
                                known_keys[k].section, known_keys[k].key);
 
-    if (sc->surface_type == CT_SURFACE_CANTOR) {
+    if (sc->surface_type == CT_SURFACE_CANTOR || sc->surface_type == CT_SURFACE_RANDOM_CANTOR) {
         static const char *const cantor_required[] = {"fx", "fz", "H"};
         for (size_t k = 0; k < 3; k++)
             if (!get(s, "surface", cantor_required[k]))
@@ -544,6 +659,10 @@ static int interpret(parse_state *s, ct_scene *sc)
         else
             sc->depth = d;
     }
+    if (sc->surface_type == CT_SURFACE_RANDOM_CANTOR &&
+        (sc->depth < 0 || sc->depth > CT_MAX_RANDOM_DEPTH))
+        return bad(get(s, "surface", "depth"), "surface", "depth",
+                   "type = random_cantor needs an integer 0 <= depth <= 30");
     sc->representation = CT_REP_STAGES;
     if ((e = get(s, "surface", "representation"))) {
         if (!strcmp(e->value, "stages"))
@@ -686,9 +805,15 @@ static int interpret(parse_state *s, ct_scene *sc)
                 sc->what |= CT_OUT_PROFILE;
             else if (!strcmp(tok, "compare"))
                 sc->what |= CT_OUT_COMPARE;
+            else if (!strcmp(tok, "ensemble"))
+                sc->what |= CT_OUT_ENSEMBLE;
+            else if (!strcmp(tok, "realisations"))
+                sc->what |= CT_OUT_REALISATIONS;
             else {
                 free(buf);
-                return bad(e, "output", "what", "each item must be e, curve, profile or compare");
+                return bad(e, "output", "what",
+                           "each item must be e, curve, profile, compare, ensemble or "
+                           "realisations");
             }
         }
         free(buf);
@@ -698,6 +823,18 @@ static int interpret(parse_state *s, ct_scene *sc)
         if (sc->what == CT_OUT_COMPARE)
             sc->what |= CT_OUT_E;
     }
+    /* an ensemble writes its statistics and samples, a single surface the rest */
+    const unsigned ens = CT_OUT_ENSEMBLE | CT_OUT_REALISATIONS;
+    if (sc->realisations && !e)
+        sc->what = CT_OUT_ENSEMBLE;
+    else if (sc->realisations && (sc->what & ~ens))
+        return bad(e, "output", "what",
+                   "with [ensemble] each item must be ensemble or realisations");
+    else if (!sc->realisations && (sc->what & ens))
+        return bad(e, "output", "what", "ensemble and realisations need [ensemble] realisations");
+    if (sc->surface_type == CT_SURFACE_RANDOM_CANTOR && (sc->what & CT_OUT_COMPARE))
+        return bad(e, "output", "what",
+                   "compare: the paper's laws model the deterministic surface (type = cantor)");
     return CT_OK;
 }
 

@@ -7,9 +7,11 @@
 #define CT_MAX_VELOCITIES 1000000
 
 enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
+/* [ensemble] outputs (src/cli/ensemble.c) */
+enum { CT_OUT_ENSEMBLE = 16, CT_OUT_REALISATIONS = 32 };
 
 /* [surface] type: which kind of surface makes the rods (src/surface/). */
-typedef enum { CT_SURFACE_CANTOR = 0 } ct_surface_type;
+typedef enum { CT_SURFACE_CANTOR = 0, CT_SURFACE_RANDOM_CANTOR = 1 } ct_surface_type;
 
 typedef struct {
     ct_surface_type surface_type;
@@ -27,7 +29,17 @@ typedef struct {
     ct_sweep_path path;     /* solver.path: auto, curve or rods */
     char *output;           /* CSV path, "-" for stdout */
     unsigned what;          /* CT_OUT_* bits */
+    /* type = random_cantor (params.fx, fz are the centres) and [ensemble] */
+    ct_ratio_dist ratio_dist;
+    double fx_spread, fz_spread;
+    uint64_t seed;
+    uint64_t realisation;    /* the one realisation of a run without [ensemble] */
+    uint64_t realisations;   /* [ensemble] realisations; 0: no ensemble */
+    ct_ensemble_split split; /* [ensemble] split */
 } ct_scene;
+
+/* The scene's random Cantor surface (type = random_cantor). */
+void ct_scene_random_cantor(const ct_scene *scene, ct_random_cantor *rc);
 
 /* Reads a scene file, then applies overrides "section.key=value"; on error returns
  * CT_EINVAL (or CT_EIO) with "file:line: section.key = value: reason" in ct_scene_message(). */

@@ -1,0 +1,21 @@
+# An ensemble's e against V* from a `cantact run` ensemble CSV: the mean with the 5-95 % band
+# of the realisations, the median, and e of the deterministic surface (spread 0).
+# Usage: gnuplot -e "csv='a.csv'; png='a.png'" plot_ensemble.gp
+set datafile separator ','
+set terminal pngcairo size 900,600 noenhanced
+set output png
+set logscale x
+set format x '%.0e'
+set autoscale xfix
+set xlabel 'V* = sqrt(m v1^2 / (2 l0 E h0))'
+set ylabel 'coefficient of restitution e'
+stats csv using 3 every ::1::1 nooutput
+R = STATS_max
+set yrange [0:1.05]
+set grid
+set key bottom left
+set title sprintf('cantact: random Cantor surface, %d realisations per V* (%s)', R, csv)
+plot csv using 2:7:9 skip 1 with filledcurves fc rgb '#9ecae1' fs transparent solid 0.6 title '5-95 % of the realisations', \
+     '' using 2:8 skip 1 with lines dashtype 3 lw 1.5 lc rgb '#08519c' title 'median', \
+     '' using 2:4:6 skip 1 with yerrorlines pt 7 ps 0.5 lw 1.5 lc rgb '#08519c' title 'mean +- standard error', \
+     '' using 2:22 skip 1 with lines lw 2 dashtype 2 lc rgb '#d62728' title 'deterministic surface (spread 0)'

@@ -1,0 +1,794 @@
+/* Ensembles in the CLI. A run computes the samples of its realisations (all of [ensemble]
+ * realisations, or the range --realisations a:b), on one process or shared among MPI ranks
+ * and gathered on rank 0; the statistics are computed from the samples in realisation order,
+ * after they are converted to the output's units. A run's realisations CSV prints every
+ * sample round-trip exact (%.17g), so `cantact merge` reads partial outputs back into the very
+ * same numbers and writes the same bytes as one run over all realisations. */
+#include "ensemble.h"
+#include "ranks.h"
+#include "number.h"
+#include "output.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { EXIT_DONE = 0, EXIT_FAILED = 1, EXIT_USAGE = 2 };
+
+static int status_exit(int st)
+{
+    return (st == CT_EINVAL || st == CT_ERANGE || st == CT_EIO) ? EXIT_USAGE : EXIT_FAILED;
+}
+
+static void fail_line(const char *msg)
+{
+    fprintf(stderr, "cantact: %s\n", msg);
+}
+
+/* ---- a single realisation as a run's surface ---- */
+
+int ct_cli_random_surface(const ct_scene *sc, ct_bundle **b, ct_plan_info *info)
+{
+    ct_random_cantor rc;
+    ct_scene_random_cantor(sc, &rc);
+    int st = ct_random_cantor_bundle(b, &rc, sc->realisation, sc->threads);
+    if (st)
+        return st;
+    ct_bundle_set_threads(*b, sc->threads);
+    if (info) {
+        info->depth = sc->depth;
+        info->bound = 0.0;
+        info->rods = ct_bundle_size(*b);
+        info->omitted = 0;
+        info->u_reach = INFINITY;
+    }
+    return CT_OK;
+}
+
+int ct_cli_write_rod_profile(FILE *f, const ct_bundle *b)
+{
+    const size_t n = ct_bundle_size(b);
+    const ct_layer *L = ct_bundle_layer(b);
+    size_t *rod_of = malloc((n ? n : 1) * sizeof *rod_of);
+    if (!rod_of) {
+        fail_line("profile: out of memory");
+        return CT_ENOMEM;
+    }
+    for (size_t k = 0; k < n; k++) {
+        uint64_t g;
+        if (ct_random_cantor_piece(b, k, &g) || g >= n) {
+            free(rod_of);
+            fail_line("profile: a rod without its piece (not a random cantor surface)");
+            return CT_EINVAL;
+        }
+        rod_of[g] = k;
+    }
+    for (size_t g = 0; g < n; g++) {
+        ct_rod_info info;
+        ct_bundle_rod(b, rod_of[g], &info);
+        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g\n", info.stage, info.x_left / L->l0,
+                info.x_right / L->l0, info.top / L->h0,
+                (info.top + info.plastic_strain * info.length) / L->h0);
+    }
+    free(rod_of);
+    return CT_OK;
+}
+
+/* ---- samples in the output's units ---- */
+
+typedef struct {
+    uint64_t first, count;
+    size_t nrows;
+    double *e, *u, *vc; /* e, u_max / h0, V*_c: [r * nrows + q], NaN where failed */
+    char **err;         /* a failed row's error text (NULL: computed) */
+    int owns_err;       /* merge: the texts were read and are freed */
+    uint64_t *cx, *cz;  /* clipped ratios per realisation */
+} table;
+
+static void table_free(table *t)
+{
+    if (t->err && t->owns_err)
+        for (size_t k = 0; k < t->count * t->nrows; k++)
+            free(t->err[k]);
+    free(t->e);
+    free(t->u);
+    free(t->vc);
+    free(t->err);
+    free(t->cx);
+    free(t->cz);
+    memset(t, 0, sizeof *t);
+}
+
+static int table_alloc(table *t, uint64_t first, uint64_t count, size_t nrows)
+{
+    memset(t, 0, sizeof *t);
+    t->first = first;
+    t->count = count;
+    t->nrows = nrows;
+    const size_t n = (size_t)count * nrows;
+    t->e = malloc(n * sizeof(double));
+    t->u = malloc(n * sizeof(double));
+    t->vc = malloc(n * sizeof(double));
+    t->err = calloc(n, sizeof(char *));
+    t->cx = calloc((size_t)count, sizeof(uint64_t));
+    t->cz = calloc((size_t)count, sizeof(uint64_t));
+    if (!t->e || !t->u || !t->vc || !t->err || !t->cx || !t->cz) {
+        table_free(t);
+        return -1;
+    }
+    return 0;
+}
+
+/* The library's samples in output units: u_max / h0; a failed row's text is its status's. */
+static int table_from_samples(table *t, const ct_ensemble_samples *s, double h0)
+{
+    if (table_alloc(t, s->first, s->count, s->nrows))
+        return -1;
+    for (size_t k = 0; k < (size_t)s->count * s->nrows; k++) {
+        t->e[k] = s->e[k];
+        t->u[k] = s->u_max[k] / h0;
+        t->vc[k] = s->V_star_crit[k];
+        t->err[k] = s->status[k] ? (char *)ct_strerror(s->status[k]) : NULL;
+    }
+    memcpy(t->cx, s->fx_clipped, (size_t)s->count * sizeof(uint64_t));
+    memcpy(t->cz, s->fz_clipped, (size_t)s->count * sizeof(uint64_t));
+    return 0;
+}
+
+/* ---- writers ---- */
+
+static void put_field(FILE *f, double x)
+{
+    fputc(',', f);
+    if (isfinite(x))
+        ct_put_double(f, x);
+}
+
+static const char *realisations_header(int skip)
+{
+    return skip ? "realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,fz_clipped,"
+                  "error"
+                : "realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,fz_clipped";
+}
+
+static void write_realisations(FILE *f, const ct_scene *sc, const table *t)
+{
+    const size_t impacts = (size_t)sc->impacts;
+    for (uint64_t r = 0; r < t->count; r++)
+        for (size_t q = 0; q < t->nrows; q++) {
+            const size_t k = (size_t)r * t->nrows + q;
+            fprintf(f, "%llu,%zu,", (unsigned long long)(t->first + r), q % impacts + 1);
+            ct_put_double(f, sc->V_star[q / impacts]);
+            put_field(f, t->u[k]);
+            put_field(f, t->e[k]);
+            put_field(f, t->vc[k]);
+            fprintf(f, ",%llu,%llu", (unsigned long long)t->cx[r], (unsigned long long)t->cz[r]);
+            if (sc->skip_failed) {
+                fputc(',', f);
+                if (t->err[k]) {
+                    fputc('"', f);
+                    for (const char *m = t->err[k]; *m; m++)
+                        fputc(*m == '"' ? '\'' : *m, f);
+                    fputc('"', f);
+                }
+            }
+            fputc('\n', f);
+        }
+}
+
+static const char *const stat_names[] = {"mean", "sd", "sem", "q05", "q50", "q95"};
+
+static void write_ensemble_header(FILE *f)
+{
+    static const char *const quantities[] = {"e", "u_max_over_h0", "V_star_crit"};
+    fputs("impact,V_star,realisations", f);
+    for (int q = 0; q < 3; q++)
+        for (int s = 0; s < 6; s++)
+            fprintf(f, ",%s_%s", quantities[q], stat_names[s]);
+    fputs(",e_deterministic\n", f);
+}
+
+/* One row per speed and impact: the statistics over the realisations in realisation order,
+ * and e of the deterministic surface (NaN: it failed). *sem_max gets the largest standard
+ * error of mean e, *at its row. */
+static int write_ensemble(FILE *f, const ct_scene *sc, const table *t, const double *e_det,
+                          double *sem_max, size_t *at)
+{
+    const size_t impacts = (size_t)sc->impacts;
+    double *work = malloc((size_t)t->count * sizeof(double));
+    if (!work)
+        return CT_ENOMEM;
+    *sem_max = NAN;
+    *at = 0;
+    for (size_t q = 0; q < t->nrows; q++) {
+        const double *cols[3] = {t->e + q, t->u + q, t->vc + q};
+        ct_stats st[3];
+        int ok[3];
+        for (int c = 0; c < 3; c++)
+            ok[c] = ct_sample_stats(cols[c], (size_t)t->count, t->nrows, work, &st[c]) == CT_OK;
+        fprintf(f, "%zu,", q % impacts + 1);
+        ct_put_double(f, sc->V_star[q / impacts]);
+        fprintf(f, ",%zu", ok[0] ? st[0].n : (size_t)0);
+        for (int c = 0; c < 3; c++) {
+            const double v[6] = {st[c].mean, st[c].sd, st[c].sem, st[c].q05, st[c].q50, st[c].q95};
+            for (int s = 0; s < 6; s++)
+                put_field(f, ok[c] ? v[s] : NAN);
+        }
+        put_field(f, e_det[q]);
+        fputc('\n', f);
+        if (ok[0] && (st[0].sem > *sem_max || (isnan(*sem_max) && !isnan(st[0].sem)))) {
+            *sem_max = st[0].sem;
+            *at = q;
+        }
+    }
+    free(work);
+    return CT_OK;
+}
+
+/* e of the deterministic surface at the same centres and depth (stage rods: the same rods
+ * as spread 0, merged), for every speed and impact; NaN where an impact fails. */
+static int deterministic_e(const ct_scene *sc, double *e_det)
+{
+    const size_t nrows = sc->nvel * (size_t)sc->impacts;
+    ct_bundle *b;
+    int st = ct_cantor_bundle(&b, &sc->params, CT_REP_STAGES, sc->depth, INFINITY);
+    if (st)
+        return st;
+    ct_sweep_row *rows = malloc(nrows * sizeof *rows);
+    if (!rows) {
+        ct_bundle_free(b);
+        return CT_ENOMEM;
+    }
+    ct_bundle_set_threads(b, sc->threads);
+    ct_sweep_spec spec = {.V_star = sc->V_star,
+                          .nvel = sc->nvel,
+                          .impacts = sc->impacts,
+                          .opts = sc->opts,
+                          .path = sc->path};
+    st = ct_sweep(b, &spec, rows);
+    for (size_t q = 0; q < nrows; q++)
+        e_det[q] = !st && rows[q].status == CT_OK ? rows[q].r.e : NAN;
+    free(rows);
+    ct_bundle_free(b);
+    return st;
+}
+
+static char *derived_path(const char *path, const char *tag)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    size_t n = strlen(path);
+    char *out = malloc(n + strlen(tag) + 2);
+    if (!out)
+        return NULL;
+    if (dot && (!slash || dot > slash) && dot != path)
+        sprintf(out, "%.*s_%s%s", (int)(dot - path), path, tag, dot);
+    else
+        sprintf(out, "%s_%s", path, tag);
+    return out;
+}
+
+/* The outputs of an ensemble: the statistics (FILE) and the samples (FILE, or
+ * FILE_realisations when both are written). */
+typedef struct {
+    ct_out ens, real;
+    int opened_ens, opened_real;
+    char *real_path;
+} outputs;
+
+static int open_outputs(outputs *o, const ct_scene *sc, unsigned what, char *err, size_t errlen)
+{
+    memset(o, 0, sizeof *o);
+    const int both = (what & CT_OUT_ENSEMBLE) && (what & CT_OUT_REALISATIONS);
+    if (both && !strcmp(sc->output, "-")) {
+        snprintf(err, errlen,
+                 "output.what names several outputs: set output.file (or -o FILE) to a path");
+        return -1;
+    }
+    if (what & CT_OUT_ENSEMBLE) {
+        if (ct_out_open(&o->ens, sc->output, err, errlen))
+            return -1;
+        o->opened_ens = 1;
+    }
+    if (what & CT_OUT_REALISATIONS) {
+        o->real_path = both ? derived_path(sc->output, "realisations") : strdup(sc->output);
+        if (!o->real_path) {
+            snprintf(err, errlen, "out of memory");
+            return -1;
+        }
+        if (ct_out_open(&o->real, o->real_path, err, errlen))
+            return -1;
+        o->opened_real = 1;
+    }
+    return 0;
+}
+
+static void close_outputs(outputs *o)
+{
+    if (o->opened_ens)
+        ct_out_abort(&o->ens);
+    if (o->opened_real)
+        ct_out_abort(&o->real);
+    free(o->real_path);
+    memset(o, 0, sizeof *o);
+}
+
+/* Writes what was asked from the samples and commits. Returns an exit status. */
+static int write_outputs(outputs *o, const ct_scene *sc, const table *t, int quiet)
+{
+    char err[512];
+    if (o->opened_real) {
+        fprintf(o->real.f, "%s\n", realisations_header(sc->skip_failed));
+        write_realisations(o->real.f, sc, t);
+    }
+    double sem_max = NAN;
+    size_t at = 0;
+    if (o->opened_ens) {
+        double *e_det = malloc(t->nrows * sizeof(double));
+        int st = e_det ? deterministic_e(sc, e_det) : CT_ENOMEM;
+        if (e_det && st) /* the reference failed as a whole: its column stays empty */
+            for (size_t q = 0; q < t->nrows; q++)
+                e_det[q] = NAN;
+        write_ensemble_header(o->ens.f);
+        st = e_det ? write_ensemble(o->ens.f, sc, t, e_det, &sem_max, &at) : CT_ENOMEM;
+        free(e_det);
+        if (st) {
+            fail_line("ensemble statistics: out of memory");
+            return EXIT_FAILED;
+        }
+    }
+    ct_out *outs[2];
+    size_t nouts = 0;
+    if (o->opened_ens)
+        outs[nouts++] = &o->ens;
+    if (o->opened_real)
+        outs[nouts++] = &o->real;
+    o->opened_ens = o->opened_real = 0; /* published together or dropped together */
+    if (ct_out_commit_all(outs, nouts, err, sizeof err)) {
+        fail_line(err);
+        return EXIT_USAGE;
+    }
+    if (!quiet) {
+        uint64_t cx = 0, cz = 0;
+        size_t failed = 0;
+        for (uint64_t r = 0; r < t->count; r++) {
+            cx += t->cx[r];
+            cz += t->cz[r];
+        }
+        for (size_t k = 0; k < (size_t)t->count * t->nrows; k++)
+            failed += t->err[k] != NULL;
+        const double draws = (double)t->count * (double)(((uint64_t)2 << sc->depth) - 2);
+        fprintf(stderr,
+                "cantact: ratios clipped into the valid ranges: fx %llu of %.0f draws (%.3g %%), "
+                "fz %llu (%.3g %%)\n",
+                (unsigned long long)cx, draws, draws > 0 ? 100.0 * (double)cx / draws : 0.0,
+                (unsigned long long)cz, draws > 0 ? 100.0 * (double)cz / draws : 0.0);
+        if (isfinite(sem_max))
+            fprintf(stderr,
+                    "cantact: standard error of mean e over %llu realisations: at most %.3g "
+                    "(V* = %g, impact %zu); it falls as 1/sqrt(realisations)\n",
+                    (unsigned long long)t->count, sem_max, sc->V_star[at / (size_t)sc->impacts],
+                    at % (size_t)sc->impacts + 1);
+        if (failed)
+            fprintf(stderr,
+                    "cantact: %zu of %zu impacts failed or not run (left out of the "
+                    "statistics)\n",
+                    failed, (size_t)t->count * t->nrows);
+    }
+    return EXIT_DONE;
+}
+
+/* ---- run ---- */
+
+static int parse_range(const char *text, uint64_t R, uint64_t *a, uint64_t *b, char *err,
+                       size_t errlen)
+{
+    const char *colon = strchr(text, ':');
+    char *end;
+    unsigned long long x, y;
+    errno = 0;
+    if (!colon || !(text[0] >= '0' && text[0] <= '9') || !(colon[1] >= '0' && colon[1] <= '9'))
+        goto bad;
+    x = strtoull(text, &end, 10);
+    if (end != colon || errno)
+        goto bad;
+    y = strtoull(colon + 1, &end, 10);
+    if (*end || errno)
+        goto bad;
+    if (!(x < y && y <= R)) {
+        snprintf(err, errlen,
+                 "--realisations %s: must satisfy 0 <= a < b <= ensemble.realisations = %llu", text,
+                 (unsigned long long)R);
+        return -1;
+    }
+    *a = x;
+    *b = y;
+    return 0;
+bad:
+    snprintf(err, errlen, "--realisations %s: expected a:b (realisations a .. b - 1)", text);
+    return -1;
+}
+
+typedef struct {
+    ct_progress *prog;
+} progress_ctx;
+
+static void show_progress(size_t done, size_t total, void *ctx)
+{
+    (void)total;
+    ct_progress *prog = ctx;
+    while (prog->done < done)
+        ct_progress_step(prog);
+}
+
+int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
+{
+    const int rank = ct_mpi_rank(), size = ct_mpi_size();
+    char err[512] = "";
+    uint64_t a = 0, b = sc->realisations;
+    int rc = EXIT_DONE;
+    if (range && parse_range(range, sc->realisations, &a, &b, err, sizeof err)) {
+        if (rank == 0)
+            fail_line(err);
+        return EXIT_USAGE;
+    }
+    /* a range writes its samples, for cantact merge */
+    const unsigned what = range ? CT_OUT_REALISATIONS : sc->what;
+    const size_t nrows = sc->nvel * (size_t)sc->impacts;
+    outputs o;
+    memset(&o, 0, sizeof o);
+    int ok = 1;
+    if (rank == 0 && open_outputs(&o, sc, what, err, sizeof err)) {
+        fail_line(err);
+        ok = 0;
+    }
+    if (!ct_mpi_bcast_int(ok)) {
+        close_outputs(&o);
+        return EXIT_USAGE;
+    }
+    ct_random_cantor rc_surface;
+    ct_scene_random_cantor(sc, &rc_surface);
+    /* this rank's block of realisations */
+    const uint64_t n = b - a;
+    const uint64_t my_a = a + n * (uint64_t)rank / (uint64_t)size;
+    const uint64_t my_b = a + n * (uint64_t)(rank + 1) / (uint64_t)size;
+    if (rank == 0 && !quiet)
+        fprintf(stderr,
+                "cantact: random cantor surface, depth %ld (%zu rods per realisation), "
+                "realisations %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
+                sc->depth, ((size_t)2 << sc->depth) - 1, (unsigned long long)a,
+                (unsigned long long)(b - 1), (unsigned long long)sc->realisations, size,
+                sc->threads > 0 ? sc->threads : ct_default_threads());
+    ct_ensemble_samples *mine = NULL, *all = NULL;
+    int st = CT_OK;
+    char msg[300] = "";
+    ct_progress prog;
+    ct_progress_start(&prog, rank == 0 ? (size_t)(my_b - my_a) : 0);
+    if (my_b > my_a) {
+        st = ct_ensemble_samples_alloc(&mine, my_a, my_b - my_a, nrows);
+        if (!st) {
+            ct_ensemble_spec spec = {.surface = rc_surface,
+                                     .first = my_a,
+                                     .count = my_b - my_a,
+                                     .V_star = sc->V_star,
+                                     .nvel = sc->nvel,
+                                     .impacts = sc->impacts,
+                                     .opts = sc->opts,
+                                     .path = sc->path,
+                                     .stop_on_error = !sc->skip_failed,
+                                     .threads = sc->threads,
+                                     .split = sc->split,
+                                     .progress = rank == 0 ? show_progress : NULL,
+                                     .progress_ctx = &prog};
+            st = ct_ensemble(&spec, mine);
+            /* a failed impact is a sample: rank 0 reports the lowest of all ranks */
+            if (st && mine->failed_realisation != UINT64_MAX)
+                st = CT_OK;
+        }
+        if (st)
+            snprintf(msg, sizeof msg, "%s", ct_error_message());
+    }
+    ct_progress_end(&prog);
+    if (size > 1) {
+        st = ct_mpi_gather(mine, st, msg, a, n, nrows, &all, err, sizeof err);
+        if (rank == 0 && all)
+            all->draws = ((uint64_t)2 << sc->depth) - 2;
+    } else {
+        all = mine;
+        mine = NULL;
+        snprintf(err, sizeof err, "%s", msg);
+    }
+    if (rank == 0) {
+        table t;
+        if (st) {
+            fail_line(err);
+            rc = status_exit(st);
+        } else if (!sc->skip_failed && all->failed_realisation != UINT64_MAX) {
+            /* solver.on_error = stop: the lowest failing realisation, then row */
+            const size_t k =
+                (size_t)(all->failed_realisation - all->first) * nrows + all->failed_row;
+            fail_line(all->message);
+            rc = status_exit(all->status[k]);
+        } else if (table_from_samples(&t, all, sc->params.h0)) {
+            fail_line("ensemble: out of memory");
+            rc = EXIT_FAILED;
+        } else {
+            rc = write_outputs(&o, sc, &t, quiet);
+            if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max))
+                fprintf(stderr, "cantact: closed-form check: max |e - e_closed_form| = %.3g\n",
+                        all->quad_error_max);
+            table_free(&t);
+        }
+    }
+    close_outputs(&o);
+    ct_ensemble_samples_free(mine);
+    ct_ensemble_samples_free(all);
+    return ct_mpi_bcast_int(rc);
+}
+
+/* ---- merge ---- */
+
+const char *const ct_cli_merge_help =
+    "Usage: cantact merge SCENE.ini PART.csv... [--set section.key=value]... [-o FILE] [-q]\n"
+    "\n"
+    "Combines the realisations CSVs that runs of SCENE.ini with --realisations a:b wrote (e.g.\n"
+    "the tasks of a job array) into what the scene's [output] what asks for (ensemble and/or\n"
+    "realisations): the same bytes as one run over all realisations. Every realisation\n"
+    "0 .. ensemble.realisations - 1 must be in exactly one part; the parts' speeds and impacts\n"
+    "must be the scene's.\n"
+    "\n"
+    "Options:\n"
+    "  --set section.key=value   override a scene key (repeatable; as for the runs)\n"
+    "  -o FILE                   same as --set output.file=FILE ('-' for stdout)\n"
+    "  -q                        no summary on stderr\n"
+    "  -h, --help                this help\n";
+
+/* Splits a line at commas into at most max fields, the error field (quoted, last) whole. */
+static int split_fields(char *line, char **fields, int max)
+{
+    int n = 0;
+    char *p = line;
+    while (n < max) {
+        fields[n++] = p;
+        if (*p == '"') { /* a quoted error: to the closing quote at the end */
+            char *q = strrchr(p + 1, '"');
+            if (!q)
+                return -1;
+            *q = '\0';
+            fields[n - 1] = p + 1;
+            return q[1] ? -1 : n;
+        }
+        char *c = strchr(p, ',');
+        if (!c)
+            return n;
+        *c = '\0';
+        p = c + 1;
+    }
+    return -1;
+}
+
+static int read_double(const char *s, double *x)
+{
+    char *end;
+    if (!*s) {
+        *x = NAN;
+        return 0;
+    }
+    errno = 0;
+    *x = strtod(s, &end);
+    return *end || errno ? -1 : 0;
+}
+
+static int read_u64(const char *s, uint64_t *x)
+{
+    char *end;
+    if (!(*s >= '0' && *s <= '9'))
+        return -1;
+    errno = 0;
+    unsigned long long v = strtoull(s, &end, 10);
+    *x = (uint64_t)v;
+    return *end || errno ? -1 : 0;
+}
+
+/* Reads one part into t; seen[r] marks the realisations read. Returns 0 or -1 (err set). */
+static int read_part(const char *path, const ct_scene *sc, table *t, unsigned char *seen, char *err,
+                     size_t errlen)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    const size_t impacts = (size_t)sc->impacts, nrows = t->nrows;
+    const int nf = sc->skip_failed ? 9 : 8;
+    char *line = NULL;
+    size_t cap = 0;
+    long lineno = 0;
+    ssize_t len;
+    int rc = -1;
+    uint64_t r_cur = UINT64_MAX;
+    size_t q_next = 0;
+    while ((len = getline(&line, &cap, f)) >= 0) {
+        lineno++;
+        if (len && line[len - 1] == '\n')
+            line[--len] = '\0';
+        if (lineno == 1) {
+            if (strcmp(line, realisations_header(sc->skip_failed))) {
+                snprintf(err, errlen,
+                         "%s:1: not a realisations CSV of this scene (header %.80s; expected %s)",
+                         path, line, realisations_header(sc->skip_failed));
+                goto done;
+            }
+            continue;
+        }
+        char *fields[9];
+        uint64_t r, impact, cx, cz;
+        double V, u, e, vc;
+        if (split_fields(line, fields, nf) != nf || read_u64(fields[0], &r) ||
+            read_u64(fields[1], &impact) || read_double(fields[2], &V) ||
+            read_double(fields[3], &u) || read_double(fields[4], &e) ||
+            read_double(fields[5], &vc) || read_u64(fields[6], &cx) || read_u64(fields[7], &cz)) {
+            snprintf(err, errlen, "%s:%ld: malformed row (expected %s)", path, lineno,
+                     realisations_header(sc->skip_failed));
+            goto done;
+        }
+        if (r >= t->count) {
+            snprintf(err, errlen,
+                     "%s:%ld: realisation %llu: the scene has ensemble.realisations = %llu", path,
+                     lineno, (unsigned long long)r, (unsigned long long)t->count);
+            goto done;
+        }
+        if (r != r_cur) {
+            if (r_cur != UINT64_MAX && q_next != nrows) {
+                snprintf(err, errlen, "%s:%ld: realisation %llu has %zu rows, the scene %zu", path,
+                         lineno, (unsigned long long)r_cur, q_next, nrows);
+                goto done;
+            }
+            if (seen[r]) {
+                snprintf(err, errlen, "%s:%ld: realisation %llu appears twice", path, lineno,
+                         (unsigned long long)r);
+                goto done;
+            }
+            seen[r] = 1;
+            r_cur = r;
+            q_next = 0;
+        }
+        const size_t q = q_next++;
+        if (q >= nrows || impact != q % impacts + 1 || V != sc->V_star[q / impacts]) {
+            snprintf(err, errlen,
+                     "%s:%ld: V* = %s, impact %s: not the scene's row %zu of realisation %llu "
+                     "(the parts must come from runs of this scene)",
+                     path, lineno, fields[2], fields[1], q + 1, (unsigned long long)r);
+            goto done;
+        }
+        const size_t k = (size_t)r * nrows + q;
+        t->e[k] = e;
+        t->u[k] = u;
+        t->vc[k] = vc;
+        t->cx[r] = cx;
+        t->cz[r] = cz;
+        if (nf == 9 && fields[8][0] && !(t->err[k] = strdup(fields[8]))) {
+            snprintf(err, errlen, "out of memory");
+            goto done;
+        }
+    }
+    if (r_cur != UINT64_MAX && q_next != nrows) {
+        snprintf(err, errlen, "%s: realisation %llu has %zu rows, the scene %zu", path,
+                 (unsigned long long)r_cur, q_next, nrows);
+        goto done;
+    }
+    if (ferror(f)) {
+        snprintf(err, errlen, "%s: read error", path);
+        goto done;
+    }
+    rc = 0;
+done:
+    free(line);
+    fclose(f);
+    return rc;
+}
+
+int ct_cli_merge(int argc, char **argv)
+{
+    const char **sets = calloc((size_t)argc + 1, sizeof(char *));
+    const char **parts = calloc((size_t)argc + 1, sizeof(char *));
+    char obuf[4096], err[600];
+    const char *scene = NULL;
+    size_t nsets = 0, nparts = 0;
+    int quiet = 0, rc = EXIT_USAGE;
+    ct_scene sc;
+    int loaded = 0;
+    table t;
+    memset(&t, 0, sizeof t);
+    unsigned char *seen = NULL;
+    outputs o;
+    memset(&o, 0, sizeof o);
+    if (!sets || !parts) {
+        fail_line("out of memory");
+        rc = EXIT_FAILED;
+        goto done;
+    }
+    for (int k = 0; k < argc; k++) {
+        const char *s = argv[k];
+        if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
+            fputs(ct_cli_merge_help, stdout);
+            rc = EXIT_DONE;
+            goto done;
+        } else if (!strcmp(s, "-q")) {
+            quiet = 1;
+        } else if (!strcmp(s, "--set") || !strcmp(s, "-o")) {
+            if (k + 1 >= argc) {
+                fprintf(stderr, "cantact: %s needs a value\n", s);
+                goto done;
+            }
+            if (!strcmp(s, "-o")) {
+                snprintf(obuf, sizeof obuf, "output.file=%s", argv[++k]);
+                sets[nsets++] = obuf;
+            } else {
+                sets[nsets++] = argv[++k];
+            }
+        } else if (!strncmp(s, "--set=", 6)) {
+            sets[nsets++] = s + 6;
+        } else if (s[0] == '-' && s[1]) {
+            fprintf(stderr, "cantact: unknown option %s (see cantact merge --help)\n", s);
+            goto done;
+        } else if (!scene) {
+            scene = s;
+        } else {
+            parts[nparts++] = s;
+        }
+    }
+    if (!scene || !nparts) {
+        fail_line("merge: needs SCENE.ini and at least one PART.csv (see cantact merge --help)");
+        goto done;
+    }
+    if (ct_scene_load(&sc, scene, sets, nsets)) {
+        fail_line(ct_scene_message());
+        goto done;
+    }
+    loaded = 1;
+    if (!sc.realisations) {
+        snprintf(err, sizeof err, "merge: %s has no [ensemble] realisations", scene);
+        fail_line(err);
+        goto done;
+    }
+    const size_t nrows = sc.nvel * (size_t)sc.impacts;
+    if (table_alloc(&t, 0, sc.realisations, nrows) ||
+        !(seen = calloc((size_t)sc.realisations, 1))) {
+        fail_line("merge: out of memory");
+        rc = EXIT_FAILED;
+        goto done;
+    }
+    t.owns_err = 1;
+    for (size_t k = 0; k < (size_t)sc.realisations * nrows; k++)
+        t.e[k] = t.u[k] = t.vc[k] = NAN;
+    /* open the outputs first: an unwritable path fails before any reading */
+    if (open_outputs(&o, &sc, sc.what, err, sizeof err)) {
+        fail_line(err);
+        goto done;
+    }
+    for (size_t p = 0; p < nparts; p++)
+        if (read_part(parts[p], &sc, &t, seen, err, sizeof err)) {
+            fail_line(err);
+            goto done;
+        }
+    for (uint64_t r = 0; r < sc.realisations; r++)
+        if (!seen[r]) {
+            snprintf(err, sizeof err,
+                     "merge: realisation %llu of %llu is in none of the parts (every realisation "
+                     "must be in exactly one)",
+                     (unsigned long long)r, (unsigned long long)sc.realisations);
+            fail_line(err);
+            goto done;
+        }
+    rc = write_outputs(&o, &sc, &t, quiet);
+done:
+    close_outputs(&o);
+    table_free(&t);
+    free(seen);
+    free(sets);
+    free(parts);
+    if (loaded)
+        ct_scene_free(&sc);
+    return rc;
+}

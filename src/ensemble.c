@@ -1,0 +1,315 @@
+/* Ensembles of random Cantor realisations (MODEL.md §10): every realisation is built, swept
+ * and dropped, its samples stored at its own index; statistics are computed afterwards from
+ * the samples in realisation order. So the output depends neither on the thread count nor on
+ * the split (whole realisations per thread, or one realisation's rods shared by the threads),
+ * nor on how a caller shares realisations among processes and gathers them back.
+ *
+ * OpenMP here (besides bundle.c and the curve's event sort): the parallel axis of an ensemble
+ * is the realisation, which bundle.c knows nothing of. Each iteration owns its bundle and
+ * writes only its own realisation's slots; nothing is reduced across threads but integer
+ * counts and the lowest failing realisation (a minimum: exact in any order). */
+#include "internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+int ct_ensemble_samples_alloc(ct_ensemble_samples **out, uint64_t first, uint64_t count,
+                              size_t nrows)
+{
+    *out = NULL;
+    if (count == 0 || nrows == 0)
+        return ct_error_set(CT_EINVAL, "ensemble samples: %llu realisations of %zu rows: need >= 1",
+                            (unsigned long long)count, nrows);
+    if (count > SIZE_MAX / nrows / (3 * sizeof(double) + sizeof(int)))
+        return ct_error_set(CT_ENOMEM,
+                            "ensemble samples: %llu realisations x %zu rows cannot be "
+                            "addressed",
+                            (unsigned long long)count, nrows);
+    const size_t n = (size_t)count * nrows;
+    const double need = (double)n * (3 * sizeof(double) + sizeof(int));
+    if (need > 0.5 * (double)ct_available_memory())
+        return ct_error_set(CT_ENOMEM,
+                            "ensemble samples: %llu realisations x %zu rows need %.3g GiB, more "
+                            "than half the memory available",
+                            (unsigned long long)count, nrows, need / 1073741824.0);
+    ct_ensemble_samples *s = calloc(1, sizeof *s);
+    if (!s)
+        return ct_error_set(CT_ENOMEM, "ensemble samples: out of memory");
+    s->first = first;
+    s->count = count;
+    s->nrows = nrows;
+    s->e = malloc(n * sizeof(double));
+    s->u_max = malloc(n * sizeof(double));
+    s->V_star_crit = malloc(n * sizeof(double));
+    s->status = malloc(n * sizeof(int));
+    s->fx_clipped = calloc((size_t)count, sizeof(uint64_t));
+    s->fz_clipped = calloc((size_t)count, sizeof(uint64_t));
+    if (!s->e || !s->u_max || !s->V_star_crit || !s->status || !s->fx_clipped || !s->fz_clipped) {
+        ct_ensemble_samples_free(s);
+        return ct_error_set(CT_ENOMEM, "ensemble samples: out of memory");
+    }
+    for (size_t k = 0; k < n; k++) {
+        s->e[k] = s->u_max[k] = s->V_star_crit[k] = NAN;
+        s->status[k] = CT_ESKIPPED;
+    }
+    *out = s;
+    return CT_OK;
+}
+
+void ct_ensemble_samples_free(ct_ensemble_samples *s)
+{
+    if (!s)
+        return;
+    free(s->e);
+    free(s->u_max);
+    free(s->V_star_crit);
+    free(s->status);
+    free(s->fx_clipped);
+    free(s->fz_clipped);
+    free(s);
+}
+
+/* The lowest failure seen by one worker (realisations come to a worker in increasing order). */
+typedef struct {
+    uint64_t realisation; /* UINT64_MAX: none */
+    size_t row;
+    int status;
+    char message[240];
+} failure;
+
+/* Builds realisation first + slot with `threads` threads, sweeps it and stores its samples.
+ * Returns a status only for what ends the ensemble (memory); failed impacts are samples. */
+/* What a worker keeps from one realisation to the next: its bundle (refilled in place) and
+ * its curve (rebuilt in place), so that a realisation allocates nothing: on a VM, fresh pages
+ * for each realisation's ~340 bytes per rod cost twice the computation. */
+typedef struct {
+    ct_bundle *b;
+    ct_curve *curve;
+} workspace;
+
+static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_t slot, int threads,
+                   ct_sweep_row *rows, failure *fail, double *quad_error, workspace *ws)
+{
+    const uint64_t r = out->first + slot;
+    const size_t nrows = out->nrows;
+    int st;
+    if (!ws->curve && (st = ct_curve_alloc(&ws->curve)))
+        return st;
+    if (ws->b)
+        st = ct_random_cantor_refill(ws->b, &sp->surface, r);
+    else
+        st = ct_random_cantor_bundle(&ws->b, &sp->surface, r, threads);
+    if (st)
+        return st;
+    ct_sweep_spec sw = {.V_star = sp->V_star,
+                        .nvel = sp->nvel,
+                        .impacts = sp->impacts,
+                        .opts = sp->opts,
+                        .path = sp->path,
+                        .curve = ws->curve};
+    st = ct_sweep(ws->b, &sw, rows);
+    uint64_t draws;
+    ct_random_cantor_clipped(ws->b, &out->fx_clipped[slot], &out->fz_clipped[slot], &draws);
+    if (st)
+        return st;
+    for (size_t q = 0; q < nrows; q++) {
+        const size_t k = (size_t)slot * nrows + q;
+        const ct_sweep_row *row = &rows[q];
+        out->status[k] = row->status;
+        if (row->status == CT_OK) {
+            if (row->r.quad_error > *quad_error ||
+                (isnan(*quad_error) && !isnan(row->r.quad_error)))
+                *quad_error = row->r.quad_error;
+            out->e[k] = row->r.e;
+            out->u_max[k] = row->r.u_max;
+            out->V_star_crit[k] = row->r.V_star_crit;
+        } else if (row->status != CT_ESKIPPED && fail->realisation == UINT64_MAX) {
+            fail->realisation = r;
+            fail->row = q;
+            fail->status = row->status;
+            snprintf(fail->message, sizeof fail->message,
+                     "realisation %llu, V* = %.17g, impact %ld: %s", (unsigned long long)r,
+                     row->V_star, row->impact, row->message);
+        }
+    }
+    return CT_OK;
+}
+
+static int check_spec(const ct_ensemble_spec *sp, const ct_ensemble_samples *out)
+{
+    int st;
+    if (!sp || !out)
+        return ct_error_set(CT_EINVAL, "ensemble: NULL spec or samples");
+    if ((st = ct_random_cantor_validate(&sp->surface)))
+        return st;
+    if (sp->count == 0 || sp->first > UINT64_MAX - sp->count)
+        return ct_error_set(CT_EINVAL, "ensemble: realisations %llu + %llu: need count >= 1",
+                            (unsigned long long)sp->first, (unsigned long long)sp->count);
+    if (sp->nvel == 0 || !sp->V_star)
+        return ct_error_set(CT_EINVAL, "ensemble: no speeds");
+    if (sp->impacts < 1)
+        return ct_error_set(CT_EINVAL, "impacts = %ld: must be >= 1", sp->impacts);
+    if (out->first != sp->first || out->count != sp->count ||
+        out->nrows != sp->nvel * (size_t)sp->impacts)
+        return ct_error_set(CT_EINVAL,
+                            "ensemble: samples allocated for realisations %llu + %llu "
+                            "of %zu rows, spec asks %llu + %llu of %zu",
+                            (unsigned long long)out->first, (unsigned long long)out->count,
+                            out->nrows, (unsigned long long)sp->first,
+                            (unsigned long long)sp->count, sp->nvel * (size_t)sp->impacts);
+    return CT_OK;
+}
+
+int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
+{
+    int st;
+    if ((st = check_spec(sp, out)))
+        return st;
+    const size_t nrows = out->nrows;
+    const size_t rods = ((size_t)2 << sp->surface.depth) - 1;
+    const int team = sp->threads > 0 ? sp->threads : ct_default_threads();
+    const int by_realisation =
+        sp->split == CT_SPLIT_REALISATIONS || (sp->split == CT_SPLIT_AUTO && team > 1 &&
+                                               sp->count >= 2 && rods <= CT_ENSEMBLE_SPLIT_RODS);
+    const int workers = by_realisation ? team : 1;
+    out->draws = rods - 1;
+    out->message[0] = '\0';
+    out->failed_realisation = UINT64_MAX;
+    out->failed_row = 0;
+    out->quad_error_max = NAN;
+
+    failure *fails = malloc((size_t)workers * sizeof *fails);
+    ct_sweep_row *rows = malloc((size_t)workers * nrows * sizeof *rows);
+    workspace *ws = calloc((size_t)workers, sizeof *ws);
+    if (!fails || !rows || !ws) {
+        free(fails);
+        free(rows);
+        free(ws);
+        return ct_error_set(CT_ENOMEM, "ensemble: out of memory");
+    }
+    for (int w = 0; w < workers; w++)
+        fails[w].realisation = UINT64_MAX;
+    /* under stop_on_error, realisations above the lowest failure seen are not started: every
+     * realisation below it still is, so the failure reported is the lowest of all */
+    uint64_t stop_at = UINT64_MAX, done = 0;
+    int fatal = CT_OK;
+    char fatal_msg[256] = "";
+    const ptrdiff_t count = (ptrdiff_t)sp->count;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(workers) if (workers > 1)
+    for (ptrdiff_t slot = 0; slot < count; slot++) {
+        int w = 0;
+#ifdef _OPENMP
+        w = omp_get_thread_num();
+#endif
+        uint64_t limit, r = out->first + (uint64_t)slot;
+        int stop;
+#pragma omp atomic read
+        limit = stop_at;
+#pragma omp atomic read
+        stop = fatal;
+        if (stop || r > limit)
+            continue;
+        double qe = NAN;
+        int s = run_one(sp, out, (uint64_t)slot, by_realisation ? 1 : sp->threads,
+                        rows + (size_t)w * nrows, &fails[w], &qe, &ws[w]);
+#pragma omp critical(ct_ensemble_state)
+        {
+            if (s && !fatal) {
+#pragma omp atomic write
+                fatal = s;
+                snprintf(fatal_msg, sizeof fatal_msg, "realisation %llu: %s", (unsigned long long)r,
+                         ct_error_message());
+            }
+            if (sp->stop_on_error && fails[w].realisation < stop_at) {
+#pragma omp atomic write
+                stop_at = fails[w].realisation;
+            }
+            if (qe > out->quad_error_max || (isnan(out->quad_error_max) && !isnan(qe)))
+                out->quad_error_max = qe; /* a maximum: exact in any order */
+            done++;
+            if (sp->progress)
+                sp->progress((size_t)done, (size_t)sp->count, sp->progress_ctx);
+        }
+    }
+    free(rows);
+    for (int k = 0; k < workers; k++) {
+        ct_bundle_free(ws[k].b);
+        ct_curve_free(ws[k].curve);
+    }
+    free(ws);
+    if (fatal) {
+        free(fails);
+        return ct_error_set(fatal, "%s", fatal_msg);
+    }
+    const failure *lowest = NULL;
+    for (int w = 0; w < workers; w++)
+        if (fails[w].realisation != UINT64_MAX &&
+            (!lowest || fails[w].realisation < lowest->realisation))
+            lowest = &fails[w];
+    if (lowest) {
+        out->failed_realisation = lowest->realisation;
+        out->failed_row = lowest->row;
+        snprintf(out->message, sizeof out->message, "%s", lowest->message);
+        st = sp->stop_on_error ? ct_error_set(lowest->status, "%s", lowest->message) : CT_OK;
+    }
+    free(fails);
+    return st;
+}
+
+/* ---- statistics ---- */
+
+static int cmp_double(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+double ct_quantile_sorted(const double *sorted, size_t n, double p)
+{
+    const double h = (double)(n - 1) * p;
+    const double fl = floor(h);
+    const size_t i = (size_t)fl;
+    if (i + 1 >= n)
+        return sorted[n - 1];
+    return sorted[i] + (h - fl) * (sorted[i + 1] - sorted[i]);
+}
+
+/* Neumaier: the compensated sum in the order given. */
+static void add_comp(double *s, double *c, double x)
+{
+    double t = *s + x;
+    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
+    *s = t;
+}
+
+int ct_sample_stats(const double *x, size_t n, size_t stride, double *work, ct_stats *out)
+{
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (!isnan(x[k * stride]))
+            work[m++] = x[k * stride];
+    if (m == 0)
+        return ct_error_set(CT_EINVAL, "statistics: none of %zu samples is a number", n);
+    double s = 0.0, c = 0.0;
+    for (size_t k = 0; k < m; k++)
+        add_comp(&s, &c, work[k]);
+    const double mean = (s + c) / (double)m;
+    s = c = 0.0;
+    for (size_t k = 0; k < m; k++) /* two passes: no cancellation of sum x^2 - n mean^2 */
+        add_comp(&s, &c, (work[k] - mean) * (work[k] - mean));
+    out->n = m;
+    out->mean = mean;
+    out->sd = m > 1 ? sqrt((s + c) / (double)(m - 1)) : NAN;
+    out->sem = m > 1 ? out->sd / sqrt((double)m) : NAN;
+    qsort(work, m, sizeof(double), cmp_double);
+    out->q05 = ct_quantile_sorted(work, m, 0.05);
+    out->q50 = ct_quantile_sorted(work, m, 0.5);
+    out->q95 = ct_quantile_sorted(work, m, 0.95);
+    return CT_OK;
+}

@@ -1,0 +1,455 @@
+/* Random Cantor surfaces (MODEL.md §10): every split draws its own width and depth ratios
+ * around f_x and f_z, so the pieces of one stage sit at different depths and every piece is
+ * its own rod. A realisation is a pure function of (seed, realisation index): the ratios of
+ * piece g are one Philox4x64-10 block (Random123, counter-based) with key (seed, realisation)
+ * and counter (g, 0, 0, 0). No stream is ever advanced, so nothing depends on which thread or
+ * process builds which piece, or in which order.
+ *
+ * Layout: the segments layout of the deterministic surface (src/surface/cantor.c): piece j of
+ * stage i is rod g = 2^i - 1 + j, and its children (pieces 2j and 2j + 1 of stage i + 1) are
+ * rods 2g + 1 (left) and 2g + 2 (right). A stage-i piece of width w and depth h keeps its
+ * children at its two ends, child k of width w / (2 f_x,k) at depth h / f_z,k; its middle, of
+ * width w - w/(2 f_x,1) - w/(2 f_x,2), stays at h. The 2^N tips of stage N carry their whole
+ * width (the prefractal of depth N, MODEL.md §2).
+ *
+ * Spread 0 gives the deterministic surface's rods in the same order, each top and area equal
+ * to a few ulps per stage (not bitwise: cantor.c computes h0 f^-i in one exp/log so that deep
+ * stages do not drift, a random piece's depth is the product of its own i ratios). */
+#include "internal.h"
+
+#include <Random123/philox.h>
+
+#include <float.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- the ratios ---- */
+
+/* (0, 1) from the top 53 bits: never 0, so log() below is finite. */
+static double unit_open(uint64_t r)
+{
+    return ((double)(r >> 11) + 0.5) * 0x1p-53;
+}
+
+/* The nearest doubles inside the open valid ranges (MODEL.md §1): f_x > 1, 1 < f_z < 2. */
+#define RATIO_LOW (1.0 + DBL_EPSILON)
+#define FZ_HIGH (2.0 - DBL_EPSILON)
+
+static int draw(const ct_random_cantor *rc, uint64_t realisation, uint64_t g, double *fx_k,
+                double *fz_k)
+{
+    const philox4x64_ctr_t ctr = {{g, 0, 0, 0}};
+    const philox4x64_key_t key = {{rc->seed, realisation}};
+    const philox4x64_ctr_t r = philox4x64(ctr, key);
+    const double u0 = unit_open(r.v[0]), u1 = unit_open(r.v[1]);
+    double x, z;
+    if (rc->dist == CT_RATIO_UNIFORM) {
+        /* spread 0: 1 + 0 (2u - 1) is exactly 1, so the centre itself */
+        x = rc->params.fx * (1.0 + rc->fx_spread * (2.0 * u0 - 1.0));
+        z = rc->params.fz * (1.0 + rc->fz_spread * (2.0 * u1 - 1.0));
+    } else {
+        /* Box-Muller: the pair (rad cos, rad sin) is two independent standard normals;
+         * spread 0: exp(0) is exactly 1 */
+        const double rad = sqrt(-2.0 * log(u0)), ang = 6.283185307179586 * u1;
+        x = rc->params.fx * exp(rc->fx_spread * (rad * cos(ang)));
+        z = rc->params.fz * exp(rc->fz_spread * (rad * sin(ang)));
+    }
+    int clipped = 0;
+    if (!(x >= RATIO_LOW)) {
+        x = RATIO_LOW;
+        clipped |= 1;
+    }
+    if (!(z >= RATIO_LOW)) {
+        z = RATIO_LOW;
+        clipped |= 2;
+    } else if (!(z <= FZ_HIGH)) {
+        z = FZ_HIGH;
+        clipped |= 2;
+    }
+    *fx_k = x;
+    *fz_k = z;
+    return clipped;
+}
+
+int ct_random_cantor_validate(const ct_random_cantor *rc)
+{
+    int st;
+    if (!rc)
+        return ct_error_set(CT_EINVAL, "random cantor surface: NULL");
+    if ((st = ct_params_validate(&rc->params)))
+        return st;
+    if (rc->dist != CT_RATIO_UNIFORM && rc->dist != CT_RATIO_LOGNORMAL)
+        return ct_error_set(CT_EINVAL, "ratio distribution %d: must be uniform or lognormal",
+                            (int)rc->dist);
+    /* uniform: f (1 - spread) must stay positive; log-normal: exp(spread z) stays finite for
+     * every z the generator can give (|z| < 8.6) */
+    const double max_spread = rc->dist == CT_RATIO_UNIFORM ? 1.0 : 10.0;
+    const char *range = rc->dist == CT_RATIO_UNIFORM ? "0 <= spread < 1 (uniform)"
+                                                     : "0 <= spread <= 10 (lognormal)";
+    const double sp[2] = {rc->fx_spread, rc->fz_spread};
+    for (int k = 0; k < 2; k++)
+        if (!isfinite(sp[k]) || !(sp[k] >= 0.0) ||
+            (rc->dist == CT_RATIO_UNIFORM ? !(sp[k] < max_spread) : !(sp[k] <= max_spread)))
+            return ct_error_set(CT_EINVAL, "%s_spread = %g: must satisfy %s", k ? "fz" : "fx",
+                                sp[k], range);
+    if (rc->depth < 0 || rc->depth > CT_MAX_RANDOM_DEPTH)
+        return ct_error_set(CT_EINVAL, "depth = %ld: must satisfy 0 <= depth <= %d", rc->depth,
+                            CT_MAX_RANDOM_DEPTH);
+    return CT_OK;
+}
+
+int ct_random_cantor_ratios(const ct_random_cantor *rc, uint64_t realisation, uint64_t g,
+                            double *fx_k, double *fz_k, int *clipped)
+{
+    int st;
+    if ((st = ct_random_cantor_validate(rc)))
+        return st;
+    if (g == 0 || g >= ((uint64_t)2 << rc->depth) - 1)
+        return ct_error_set(CT_EINVAL, "piece %llu: must satisfy 1 <= g < 2^(depth + 1) - 1 = %llu",
+                            (unsigned long long)g,
+                            (unsigned long long)(((uint64_t)2 << rc->depth) - 1));
+    int c = draw(rc, realisation, g, fx_k, fz_k);
+    if (clipped)
+        *clipped = c;
+    return CT_OK;
+}
+
+/* ---- metadata: stage and x-extent, derived again from the draws ---- */
+
+typedef struct {
+    ct_random_cantor rc;
+    uint64_t realisation;
+    uint64_t fx_clipped, fz_clipped;
+    size_t n;
+    uint32_t *piece; /* rod k is piece piece[k] (heap index g) */
+    uint64_t *key;   /* the sort's scratch, kept by bundles that are refilled (NULL: none) */
+    uint32_t *tmp;
+} random_meta;
+
+/* Stage of rod g = 2^i - 1 + j. */
+static long rod_stage(uint64_t g)
+{
+    long i = 0;
+    while ((((uint64_t)1 << (i + 1)) - 1) <= g)
+        i++;
+    return i;
+}
+
+/* The child of a piece of width w at left: its width and left end, by the very operations
+ * of the builder (so a rod's extent matches its area bit for bit). */
+static void child_extent(double w, double left, double fx_k, int right, double *w_child,
+                         double *left_child)
+{
+    *w_child = w / (2.0 * fx_k);
+    *left_child = right ? left + (w - *w_child) : left;
+}
+
+static void random_rod_info(const void *meta, size_t rod, ct_rod_info *info)
+{
+    const random_meta *m = meta;
+    const uint64_t k = m->piece[rod];
+    const long stage = rod_stage(k);
+    /* walk from the root down the path to rod k, redrawing each split */
+    double w = m->rc.params.l0, left = 0.0, fx_k, fz_k;
+    uint64_t g = 0;
+    for (long s = stage - 1; s >= 0; s--) {
+        int right = (int)(((k + 1) >> s) & 1u);
+        g = 2 * g + 1 + (uint64_t)right;
+        draw(&m->rc, m->realisation, g, &fx_k, &fz_k);
+        child_extent(w, left, fx_k, right, &w, &left);
+    }
+    info->stage = stage;
+    if (stage < m->rc.depth) { /* the middle, between its two children */
+        double fl, fr, wl, wr, ll, lr;
+        draw(&m->rc, m->realisation, 2 * k + 1, &fl, &fz_k);
+        draw(&m->rc, m->realisation, 2 * k + 2, &fr, &fz_k);
+        child_extent(w, left, fl, 0, &wl, &ll);
+        child_extent(w, left, fr, 1, &wr, &lr);
+        info->x_left = ll + wl;
+        info->x_right = lr;
+    } else {
+        info->x_left = left;
+        info->x_right = left + w;
+    }
+}
+
+static void random_free(void *meta)
+{
+    random_meta *m = meta;
+    if (m) {
+        free(m->piece);
+        free(m->key);
+        free(m->tmp);
+    }
+    free(m);
+}
+
+static void *random_clone(const void *meta)
+{
+    const random_meta *src = meta;
+    random_meta *m = malloc(sizeof *m);
+    uint32_t *piece = malloc((src->n ? src->n : 1) * sizeof *piece);
+    if (!m || !piece) {
+        free(m);
+        free(piece);
+        return NULL;
+    }
+    *m = *src;
+    memcpy(piece, src->piece, src->n * sizeof *piece);
+    m->piece = piece;
+    m->key = NULL;
+    m->tmp = NULL;
+    return m;
+}
+
+static const ct_surface_kind random_kind = {"random_cantor", random_rod_info, random_clone,
+                                            random_free};
+
+int ct_random_cantor_piece(const ct_bundle *b, size_t k, uint64_t *g)
+{
+    const random_meta *m = b ? ct_bundle_surface_meta(b, &random_kind) : NULL;
+    if (!m)
+        return ct_error_set(CT_EINVAL, "bundle: not made by ct_random_cantor_bundle");
+    if (k >= m->n)
+        return ct_error_set(CT_EINVAL, "rod %zu: bundle holds %zu rods", k, m->n);
+    *g = m->piece[k];
+    return CT_OK;
+}
+
+int ct_random_cantor_clipped(const ct_bundle *b, uint64_t *fx_clipped, uint64_t *fz_clipped,
+                             uint64_t *draws)
+{
+    const random_meta *m = b ? ct_bundle_surface_meta(b, &random_kind) : NULL;
+    if (!m)
+        return ct_error_set(CT_EINVAL, "bundle: not made by ct_random_cantor_bundle");
+    *fx_clipped = m->fx_clipped;
+    *fz_clipped = m->fz_clipped;
+    *draws = ((uint64_t)2 << m->rc.depth) - 2;
+    return CT_OK;
+}
+
+/* ---- the builder ---- */
+
+#define SPLIT_CHUNK 4096 /* pieces per chunk of one stage's splits */
+
+typedef struct {
+    const ct_random_cantor *rc;
+    uint64_t realisation;
+    size_t stage_first; /* rod of piece 0 of the stage being split */
+    double *top, *area; /* area holds a piece's width until the piece is split */
+    uint64_t *clipped;  /* per chunk: fx clipped in [2c], fz clipped in [2c + 1] */
+} split_ctx;
+
+/* Splits pieces [i0, i1) of a stage: the children's widths and depths, then the middle's
+ * area. Everything written for piece g depends on g alone. */
+static void split_chunk(void *ctx, size_t c, size_t i0, size_t i1)
+{
+    split_ctx *s = ctx;
+    uint64_t nx = 0, nz = 0;
+    for (size_t j = i0; j < i1; j++) {
+        const size_t g = s->stage_first + j, gl = 2 * g + 1, gr = 2 * g + 2;
+        const double w = s->area[g], h = s->top[g];
+        double fl, zl, fr, zr, wl, wr, ll, lr;
+        int cl = draw(s->rc, s->realisation, gl, &fl, &zl);
+        int cr = draw(s->rc, s->realisation, gr, &fr, &zr);
+        nx += (uint64_t)(cl & 1) + (uint64_t)(cr & 1);
+        nz += (uint64_t)(cl >> 1) + (uint64_t)(cr >> 1);
+        child_extent(w, 0.0, fl, 0, &wl, &ll);
+        child_extent(w, 0.0, fr, 1, &wr, &lr);
+        s->area[gl] = wl;
+        s->area[gr] = wr;
+        s->top[gl] = h / zl;
+        s->top[gr] = h / zr;
+        /* the middle: w (1 - 1/(2 f_l) - 1/(2 f_r)) as w ((f_l - 1)/f_l + (f_r - 1)/f_r) / 2,
+         * which does not cancel as the ratios approach 1 (f - 1 is exact for f in [1, 2]) */
+        s->area[g] = w * (0.5 * ((fl - 1.0) / fl + (fr - 1.0) / fr));
+    }
+    s->clipped[2 * c] = nx;
+    s->clipped[2 * c + 1] = nz;
+}
+
+typedef struct {
+    double *top, *area;
+    double *tree_top, *tree_area; /* become length and plastic strain */
+    const uint32_t *piece;
+    double Hstar;
+} finish_ctx;
+
+/* rods in sorted order from the pieces in tree order */
+static void gather_chunk(void *ctx, size_t c, size_t i0, size_t i1)
+{
+    finish_ctx *f = ctx;
+    (void)c;
+    for (size_t k = i0; k < i1; k++) {
+        f->top[k] = f->tree_top[f->piece[k]];
+        f->area[k] = f->tree_area[f->piece[k]];
+    }
+}
+
+static void finish_chunk(void *ctx, size_t c, size_t i0, size_t i1)
+{
+    finish_ctx *f = ctx;
+    (void)c;
+    for (size_t k = i0; k < i1; k++) {
+        f->tree_top[k] = f->Hstar - f->top[k]; /* the length */
+        f->tree_area[k] = 0.0;                 /* virgin */
+    }
+}
+
+/* Rods sorted by top, shallowest first (ties in piece order): the load curve's events are
+ * then two monotone runs, merged in O(n) (src/curve.c), where pieces in tree order would
+ * cost a full merge sort per realisation. LSD radix sort, stable, on the tops' bit patterns
+ * (positive doubles order as their bits); digits that all keys share are skipped. */
+static int sort_by_top(random_meta *m, const double *top, int keep)
+{
+    const size_t n = m->n;
+    uint32_t *perm = m->piece;
+    uint64_t *key = m->key ? m->key : malloc(2 * (n ? n : 1) * sizeof *key);
+    uint32_t *tmp = m->tmp ? m->tmp : malloc((n ? n : 1) * sizeof *tmp);
+    size_t(*count)[256] = calloc(8, sizeof *count);
+    m->key = key;
+    m->tmp = tmp;
+    if (!key || !tmp || !count) {
+        free(count);
+        return ct_error_set(CT_ENOMEM, "random cantor surface: sorting %zu rods: out of memory", n);
+    }
+    uint64_t *key2 = key + n;
+    for (size_t k = 0; k < n; k++) {
+        memcpy(&key[k], &top[k], sizeof key[k]);
+        perm[k] = (uint32_t)k;
+        for (int d = 0; d < 8; d++)
+            count[d][(key[k] >> (8 * d)) & 0xff]++;
+    }
+    for (int d = 0; d < 8; d++) {
+        size_t sum = 0;
+        int shared = 0;
+        for (int v = 0; v < 256; v++)
+            shared |= count[d][v] == n;
+        if (shared)
+            continue;
+        for (int v = 0; v < 256; v++) {
+            size_t c = count[d][v];
+            count[d][v] = sum;
+            sum += c;
+        }
+        for (size_t k = 0; k < n; k++) {
+            size_t at = count[d][(key[k] >> (8 * d)) & 0xff]++;
+            key2[at] = key[k];
+            tmp[at] = perm[k];
+        }
+        memcpy(key, key2, n * sizeof *key);
+        memcpy(perm, tmp, n * sizeof *perm);
+    }
+    if (!keep) {
+        free(key);
+        free(tmp);
+        m->key = NULL;
+        m->tmp = NULL;
+    }
+    free(count);
+    return CT_OK;
+}
+
+/* Draws and lays out realisation `realisation` in b's arrays (b made for meta's depth). */
+static int fill(ct_bundle *b, random_meta *meta, uint64_t realisation, int keep_scratch)
+{
+    const ct_random_cantor *rc = &meta->rc;
+    const ct_params *p = &rc->params;
+    const size_t total = meta->n;
+    /* per chunk clip counts of the widest stage, summed after each stage (integers: exact) */
+    const size_t widest = (size_t)1 << (rc->depth ? rc->depth - 1 : 0);
+    const size_t nchunks = (widest + SPLIT_CHUNK - 1) / SPLIT_CHUNK;
+    uint64_t *clipped = malloc(2 * nchunks * sizeof *clipped);
+    if (!clipped)
+        return ct_error_set(CT_ENOMEM, "random cantor surface: out of memory");
+    meta->realisation = realisation;
+    meta->fx_clipped = meta->fz_clipped = 0;
+    /* the pieces in tree order go to the arrays that hold length and plastic strain at the
+     * end: they are the sort's source */
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays(b, &top, &length, &area, &eps_p);
+    double *tree_top = length, *tree_area = eps_p;
+    tree_top[0] = p->h0;
+    tree_area[0] = p->l0;
+    split_ctx s = {rc, realisation, 0, tree_top, tree_area, clipped};
+    for (long i = 0; i < rc->depth; i++) {
+        const size_t pieces = (size_t)1 << i;
+        s.stage_first = pieces - 1;
+        ct_bundle_parallel(b, pieces, SPLIT_CHUNK, split_chunk, &s);
+        for (size_t c = 0; c < (pieces + SPLIT_CHUNK - 1) / SPLIT_CHUNK; c++) {
+            meta->fx_clipped += clipped[2 * c];
+            meta->fz_clipped += clipped[2 * c + 1];
+        }
+    }
+    free(clipped);
+    int st = sort_by_top(meta, tree_top, keep_scratch);
+    if (st)
+        return st;
+    finish_ctx f = {top, area, tree_top, tree_area, meta->piece, p->Hstar};
+    ct_bundle_parallel(b, total, SPLIT_CHUNK, gather_chunk, &f);
+    ct_bundle_parallel(b, total, SPLIT_CHUNK, finish_chunk, &f);
+    return CT_OK;
+}
+
+int ct_random_cantor_bundle(ct_bundle **out, const ct_random_cantor *rc, uint64_t realisation,
+                            int threads)
+{
+    int st;
+    *out = NULL;
+    if ((st = ct_random_cantor_validate(rc)))
+        return st;
+    const size_t total = ((size_t)2 << rc->depth) - 1;
+    /* the rods (32 bytes), each rod's piece (4) and the sort's keys and permutation (20,
+     * while building): refused up front, with the figure, when it would not fit */
+    const double need = (double)total * (CT_BYTES_PER_ROD + 4 + 20);
+    const double avail = (double)ct_available_memory();
+    if (need > 0.9 * avail)
+        return ct_error_set(CT_ENOMEM,
+                            "random cantor depth %ld: %zu rods need %.3g GiB while built, more "
+                            "than the %.3g GiB of memory available",
+                            rc->depth, total, need / 1073741824.0, avail / 1073741824.0);
+    random_meta *meta = calloc(1, sizeof *meta);
+    uint32_t *piece = malloc(total * sizeof *piece);
+    if (!meta || !piece) {
+        free(meta);
+        free(piece);
+        return ct_error_set(CT_ENOMEM, "random cantor surface: out of memory");
+    }
+    *meta = (random_meta){*rc, realisation, 0, 0, total, piece, NULL, NULL};
+    char what[96];
+    snprintf(what, sizeof what, "random cantor depth %ld", rc->depth);
+    ct_layer layer;
+    ct_cantor_layer(&rc->params, &layer);
+    ct_bundle *b;
+    if ((st = ct_bundle_create(&b, &layer, total, what))) {
+        random_free(meta);
+        return st;
+    }
+    ct_bundle_set_surface(b, &random_kind, meta, 0);
+    ct_bundle_set_threads(b, threads);
+    if ((st = fill(b, meta, realisation, 0))) {
+        ct_bundle_free(b);
+        return st;
+    }
+    *out = b;
+    return CT_OK;
+}
+
+int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t realisation)
+{
+    int st;
+    random_meta *meta = b ? (random_meta *)ct_bundle_surface_meta(b, &random_kind) : NULL;
+    if ((st = ct_random_cantor_validate(rc)))
+        return st;
+    if (!meta || meta->rc.depth != rc->depth)
+        return ct_error_set(CT_EINVAL, "refill: not a random cantor bundle of depth %ld",
+                            rc->depth);
+    ct_layer layer;
+    ct_cantor_layer(&rc->params, &layer);
+    if (memcmp(ct_bundle_layer(b), &layer, sizeof layer))
+        return ct_error_set(CT_EINVAL, "refill: the layer differs from the bundle's");
+    meta->rc = *rc;
+    return fill(b, meta, realisation, 1);
+}
