@@ -180,6 +180,11 @@ ln -s target.csv "$tmp/link.csv"
 expect 0 "output through a symbolic link" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/link.csv"
 [ -L "$tmp/link.csv" ] && [ "$(wc -l <"$tmp/target.csv")" -eq 4 ] && ok ||
     bad "symbolic link replaced, or its target not written"
+# /dev/stdout and /dev/stderr (links to a pipe, a file, a terminal) are written in place
+"$ct" run -q "$tmp/s.ini" -o /dev/stdout | cat >"$tmp/devstdout.csv"
+[ "$(wc -l <"$tmp/devstdout.csv")" -eq 4 ] && ok || bad "-o /dev/stdout into a pipe"
+"$ct" run -q "$tmp/s.ini" -o /dev/stderr 2>"$tmp/devstderr.csv"
+[ "$(wc -l <"$tmp/devstderr.csv")" -eq 4 ] && ok || bad "-o /dev/stderr into a file"
 ln -s nowhere/x.csv "$tmp/dangling.csv"
 expect 2 "output through a dangling link" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/dangling.csv"
 grep -q "symbolic link" "$tmp/err" && ok || bad "dangling link message: $(cat "$tmp/err")"

@@ -130,11 +130,16 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
     /* a symbolic link: the rows go to its target, which is what gets replaced */
     struct stat st;
     if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
-        char *target = realpath(path, NULL);
-        if (!target)
+        struct stat target_st;
+        if (stat(path, &target_st) != 0)
             return fail(o, err, errlen,
                         errno == ENOENT ? "a symbolic link whose target does not exist" : NULL,
                         errno);
+        /* a link to a regular file: the file is replaced; to anything else (/dev/stdout to
+         * a pipe, whose target has no name to resolve): written in place through the link */
+        char *target = S_ISREG(target_st.st_mode) ? realpath(path, NULL) : strdup(path);
+        if (!target)
+            return fail(o, err, errlen, NULL, errno);
         o->path = target;
     } else if (!(o->path = strdup(path))) {
         return fail(o, err, errlen, "out of memory", 0);
