@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "cantact.h"
 #include "scene.h"
@@ -329,29 +330,48 @@ static void messages_say_what_happened(void **state)
     expect_error(buf, NULL, 0, "s.ini:5: surface.h0 = 1e-310", "underflows");
     with_line(buf, sizeof buf, "l0 = 1e999");
     expect_error(buf, NULL, 0, "s.ini:5: surface.l0 = 1e999", "overflows");
-    with_line(buf, sizeof buf, "depth = \x01" "0");
+    with_line(buf, sizeof buf,
+              "depth = \x01"
+              "0");
     expect_error(buf, NULL, 0, "s.ini:5: control character 0x01", NULL);
     const char *tiny[] = {"impact.V_star=1e-200"};
     expect_error(good, tiny, 1, "impact.V_star = 1e-200", "impact energy");
 }
 
-/* The C locale whatever the caller's: a German LC_NUMERIC (decimal comma) changes nothing.
- * The locale is compiled here with localedef into a scratch directory (LOCPATH). */
+/* A de_DE locale (decimal comma) for the test below: compiled once with localedef into a
+ * scratch directory that later runs reuse (made aside and renamed into place, so concurrent
+ * runs cannot see half of it). Returns the directory for LOCPATH, or NULL. */
+static const char *german_locale_dir(void)
+{
+    static const char cache[] = "/tmp/cantact-test-locale";
+    char probe[256], tmp[] = "/tmp/cantact-test-locale.XXXXXX", cmd[512];
+    snprintf(probe, sizeof probe, "%s/de_DE.UTF-8/LC_NUMERIC", cache);
+    if (access(probe, R_OK) == 0)
+        return cache;
+    if (!mkdtemp(tmp))
+        return NULL;
+    snprintf(cmd, sizeof cmd, "localedef -i de_DE -c -f UTF-8 %s/de_DE.UTF-8 >/dev/null 2>&1", tmp);
+    int rc = system(cmd);
+    snprintf(probe, sizeof probe, "%s/de_DE.UTF-8/LC_NUMERIC", tmp);
+    if (access(probe, R_OK) != 0 || rename(tmp, cache) != 0) {
+        snprintf(cmd, sizeof cmd, "rm -rf %s", tmp);
+        (void)!system(cmd);
+    }
+    (void)rc;
+    snprintf(probe, sizeof probe, "%s/de_DE.UTF-8/LC_NUMERIC", cache);
+    return access(probe, R_OK) == 0 ? cache : NULL;
+}
+
+/* The C locale whatever the caller's: a German LC_NUMERIC (decimal comma) changes nothing. */
 static void numbers_in_the_c_locale(void **state)
 {
     (void)state;
-    char dir[] = "/tmp/ct_locale_XXXXXX", cmd[256];
-    if (!mkdtemp(dir))
-        fail_msg("mkdtemp failed");
-    snprintf(cmd, sizeof cmd, "localedef -i de_DE -c -f UTF-8 %s/de_DE.UTF-8 >/dev/null 2>&1", dir);
-    int rc = system(cmd);
-    setenv("LOCPATH", dir, 1);
-    const char *set = rc == 0 ? setlocale(LC_NUMERIC, "de_DE.UTF-8") : NULL;
-    if (!set) {
-        snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-        (void)!system(cmd);
+    const char *dir = german_locale_dir();
+    if (dir)
+        setenv("LOCPATH", dir, 1);
+    const char *set = dir ? setlocale(LC_NUMERIC, "de_DE.UTF-8") : NULL;
+    if (!set)
         fail_msg("cannot make a de_DE locale (localedef, package locales)");
-    }
     assert_true(strtod("1,5", NULL) == 1.5); /* the locale does bite */
     ct_scene sc;
     assert_int_equal(ct_scene_parse(&sc, "s.ini", good, NULL, 0), CT_OK);
@@ -362,8 +382,6 @@ static void numbers_in_the_c_locale(void **state)
     assert_true(strtod("1,5", NULL) == 1.5); /* and the caller's locale is back */
     setlocale(LC_NUMERIC, "C");
     unsetenv("LOCPATH");
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    (void)!system(cmd);
 }
 
 int main(void)
