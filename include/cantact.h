@@ -290,6 +290,53 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
  * without changing the state. */
 int ct_solve_umax(const ct_bundle *b, double W, double tolerance, double *u_max);
 
+/* ---- the impact in time (MODEL.md §11, src/dynamics.c) -------------------------- */
+/* The body (mass m per unit depth) obeys m u'' = -P(u) while in contact. P is piecewise
+ * linear, so the motion is exact piece by piece: harmonic with omega = sqrt(k/m) on a piece of
+ * slope k > 0, uniform deceleration on a plateau (k = 0). The time across a piece of width du
+ * entered and left at speeds v_a, v_b is 2 du / (v_a + v_b) * atan(x) / x with
+ * x = omega du / (v_a + v_b) (no cancellation, the plateau's 2 du / (v_a + v_b) as k -> 0); the
+ * piece holding the turning point takes (1/omega) atan2(m omega v_a, P_a). Unloading is the
+ * time-reverse of a loading from the release point along the unloading curve. */
+
+typedef struct {
+    double t_contact;    /* t_load + t_unload [time] */
+    double t_load;       /* from first contact to u_max, = the time of the peak force [time] */
+    double t_unload;     /* from u_max to release [time] */
+    double P_peak;       /* P(u_max) [force]: P rises on loading and falls on unloading */
+    double v1, v2;       /* incident and rebound speed [length/time] */
+    double e_kinematic;  /* v2 / v1, dimensionless: v2 from the unloading curve's own work */
+    double dissipated;   /* 1/2 m (v1^2 - v2^2) [energy] */
+    double k_unload_max; /* the stiffest piece of the unloading curve [force/length] */
+    double period_min;   /* 2 pi sqrt(m / k_unload_max) [time]: what a DEM time step resolves */
+} ct_dynamics;
+
+typedef struct {
+    double t, u, v, P; /* [time], [length], [length/time] (> 0 towards the surface), [force] */
+    int unloading;     /* 0 on loading (to u_max), 1 on unloading */
+    int event;         /* 1 at a breakpoint of P (a rod's contact, yield or release), 0 on the
+                          uniform grid */
+} ct_history_point;
+
+typedef struct {
+    size_t n;
+    ct_history_point *points; /* in time order */
+} ct_history;
+
+/* One impact of a body of mass m [mass/length] at speed v1 [length/time] on b's current
+ * state, in time, without changing b: res as ct_impact_eval gives it (default options), dyn
+ * its times and forces, and (hist not NULL) the history: every breakpoint of both branches
+ * and `grid` points uniform in time over the contact. */
+int ct_impact_history(const ct_bundle *b, double m, double v1, size_t grid, ct_impact_result *res,
+                      ct_dynamics *dyn, ct_history *hist);
+void ct_history_free(ct_history *h);
+/* A bounce sequence on a copy of b's state: impact k + 1 strikes at impact k's rebound speed,
+ * the rods' state carried; res[k], dyn[k] for impact k (arrays of nmax). It ends after nmax
+ * impacts or once a rebound speed is below v_stop [length/time]; *n gets the impacts run
+ * (a failed impact ends it with its status, *n counting those before it). */
+int ct_bounce(const ct_bundle *b, double m, double v1, size_t nmax, double v_stop,
+              ct_impact_result *res, ct_dynamics *dyn, size_t *n);
+
 /* ---- the Cantor surface (MODEL.md §2, src/surface/cantor.c) ---------------------- */
 
 typedef enum {
@@ -361,6 +408,9 @@ typedef struct {
     int status;    /* CT_OK, or why this impact failed (the speed's later impacts are not run) */
     char message[240];  /* the error's message when status != CT_OK */
     ct_impact_result r; /* valid when status == CT_OK */
+    ct_dynamics dyn;    /* with ct_sweep_spec.dynamics: the impact in time, in units where the
+                           mass is E l0 / h0, so that times are t / tau, tau = sqrt(m h0 /
+                           (E l0)) of any mass, and speeds in h0 / tau (v1 = sqrt(2) V* h0) */
 } ct_sweep_row;
 
 typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);
@@ -391,6 +441,8 @@ typedef struct {
     ct_curve *curve;    /* optional workspace (NULL: a curve per call): the curve of b's state
                            is built here, its arrays reused from one sweep to the next (an
                            ensemble's realisations: no page faults for each new curve) */
+    int dynamics;       /* 1: every row also gets its impact in time (ct_sweep_row.dyn); needs
+                           the curve (the rod path is not taken) */
 } ct_sweep_spec;
 
 /* Runs every speed from b's state (b itself is not changed): rows[speed * impacts + i - 1]

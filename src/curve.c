@@ -50,6 +50,7 @@ struct ct_curve {
     size_t ecap, tcap;
     size_t *runs, rcap;
     size_t *block_runs, bcap;
+    size_t ne; /* events of the last build, sorted in ev */
 };
 
 int ct_curve_alloc(ct_curve **out)
@@ -174,10 +175,15 @@ static int sort_events(ct_curve *c, size_t n, int team)
     (void)team;
     while (count > 1) {
         size_t pairs = count / 2;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(team) if (team > 1 && pairs > 1)
-        for (ptrdiff_t p = 0; p < (ptrdiff_t)pairs; p++) {
-            size_t lo = c->runs[2 * p], mid = c->runs[2 * p + 1], hi = c->runs[2 * p + 2];
-            merge(a, b, lo, mid, hi);
+        if (team > 1 && pairs > 1) {
+#pragma omp parallel for schedule(dynamic, 1) num_threads(team)
+            for (ptrdiff_t p = 0; p < (ptrdiff_t)pairs; p++) {
+                size_t lo = c->runs[2 * p], mid = c->runs[2 * p + 1], hi = c->runs[2 * p + 2];
+                merge(a, b, lo, mid, hi);
+            }
+        } else { /* no thread team for small sorts: entering one costs more than the merge */
+            for (size_t p = 0; p < pairs; p++)
+                merge(a, b, c->runs[2 * p], c->runs[2 * p + 1], c->runs[2 * p + 2]);
         }
         if (count % 2) { /* the odd run out is copied */
             size_t lo = c->runs[count - 1], hi = c->runs[count];
@@ -262,6 +268,7 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     const int team = ct_bundle_team(b);
     const size_t nb = (n + CT_BLOCK - 1) / CT_BLOCK;
     c->n = 0;
+    c->ne = 0;
     c->first_yield = INFINITY;
     c->eps_y = eps_y;
     if (grow((void **)&c->block_runs, &c->bcap, nb + 1, sizeof(size_t)))
@@ -320,6 +327,7 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     }
     sort_events(c, ne, team);
     ev = c->ev;
+    c->ne = ne;
 
     /* the sweep */
     size_t nx = 1;
@@ -482,3 +490,125 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
         t = c->x[hi] - c->x[lo];
     return c->x[lo] + t;
 }
+
+void ct_curve_view_of(const ct_curve *c, ct_curve_view *v)
+{
+    v->n = c->n;
+    v->x = c->x;
+    v->P = c->P;
+    v->W = c->W;
+    v->slope = c->slope;
+}
+
+/* Makes room for n breakpoints (the arrays of the sweep). */
+static int reserve_points(ct_curve *c, size_t n)
+{
+    if (n <= c->cap)
+        return 0;
+    free_points(c);
+    c->x = malloc(n * sizeof(double));
+    c->P = malloc(n * sizeof(double));
+    c->W = malloc(n * sizeof(double));
+    c->D = malloc(n * sizeof(double));
+    c->slope = malloc(n * sizeof(double));
+    c->A = malloc(n * sizeof(double));
+    c->Lmax = malloc(n * sizeof(double));
+    c->cmin = malloc(n * sizeof(double));
+    if (!c->x || !c->P || !c->W || !c->D || !c->slope || !c->A || !c->Lmax || !c->cmin) {
+        free_points(c);
+        return -1;
+    }
+    c->cap = n;
+    return 0;
+}
+
+/* The unloading curve (Eq. 11 rod by rod): loaded from c's state to u_max, every rod in
+ * contact unloads along its elastic line, k (u - r), from its release point r: its contact
+ * if it did not yield, u_max - eps_y L if it did (r = contact + (u_max - yield)). In terms of
+ * c's sorted events below u_max: each contact adds its slope at its contact, and each yield
+ * takes that slope back at the rod's contact and adds it again at its release. The three
+ * sequences are merged as runs (monotone for Cantor stages), then swept like a loading curve
+ * without yields; the last breakpoint is u_max. */
+int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out)
+{
+    CT_NEED(c);
+    CT_NEED(out);
+    out->n = out->ne = 0;
+    out->first_yield = INFINITY;
+    out->eps_y = c->eps_y;
+    size_t nc = 0, ny = 0;
+    for (size_t i = 0; i < c->ne && c->ev[i].x <= u_max; i++)
+        signbit(c->ev[i].dk) ? ny++ : nc++;
+    const size_t m = nc + 2 * ny;
+    if (m == 0)
+        return CT_OK;
+    if (grow((void **)&out->ev, &out->ecap, m, sizeof(event)) ||
+        grow((void **)&out->tmp, &out->tcap, m, sizeof(event)) ||
+        grow((void **)&out->runs, &out->rcap, m + 1, sizeof(size_t)))
+        return ct_error_set(CT_ENOMEM, "unloading curve of %zu events: out of memory", m);
+    /* three runs, each in c's event order: contacts, the yielded rods' contacts taken back,
+     * their releases */
+    size_t qc = 0, qy = nc, qr = nc + ny;
+    for (size_t i = 0; i < c->ne && c->ev[i].x <= u_max; i++) {
+        const event *e = &c->ev[i];
+        if (!signbit(e->dk)) {
+            out->ev[qc++] = (event){e->x, e->dk, 0.0, 0.0, 0.0, 0.0};
+        } else {
+            double release = u_max - c->eps_y * e->L;
+            release = release < e->c ? e->c : release;
+            out->ev[qy++] = (event){e->c, e->dk, 0.0, 0.0, 0.0, 0.0};
+            out->ev[qr++] = (event){release, -e->dk, 0.0, 0.0, 0.0, 0.0};
+        }
+    }
+    sort_events(out, m, 1);
+    const event *ev = out->ev;
+    size_t nx = 2;
+    for (size_t i = 1; i < m; i++)
+        nx += ev[i].x != ev[i - 1].x;
+    if (reserve_points(out, nx))
+        return ct_error_set(CT_ENOMEM, "unloading curve: out of memory");
+    double ks = 0.0, kc = 0.0, Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, k_prev = 0.0, P_prev = 0.0;
+    size_t j = 0, i = 0;
+    ptrdiff_t touching = 0; /* rods in contact: the curve starts at the first release */
+    while (i < m) {
+        const double x = ev[i].x;
+        if (j > 0) {
+            const double dx = x - out->x[j - 1];
+            add_comp(&Ps, &Pc, k_prev * dx);
+            const double P = Ps + Pc;
+            add_comp(&Ws, &Wc, 0.5 * (P_prev + P) * dx);
+            P_prev = P;
+        }
+        for (; i < m && ev[i].x == x; i++) {
+            add_comp(&ks, &kc, ev[i].dk);
+            touching += signbit(ev[i].dk) ? -1 : 1;
+        }
+        if (touching == 0) /* no rod touches: slope 0, not a rounding residue */
+            ks = kc = 0.0;
+        k_prev = ks + kc > 0.0 ? ks + kc : 0.0;
+        if (j == 0 && touching == 0)
+            continue; /* before the first release: no contact, no point */
+        out->x[j] = x;
+        out->P[j] = P_prev;
+        out->W[j] = Ws + Wc;
+        out->slope[j] = k_prev;
+        j++;
+    }
+    if (out->x[j - 1] < u_max) { /* the top of the unloading branch */
+        const double dx = u_max - out->x[j - 1];
+        add_comp(&Ps, &Pc, k_prev * dx);
+        add_comp(&Ws, &Wc, 0.5 * (P_prev + Ps + Pc) * dx);
+        out->x[j] = u_max;
+        out->P[j] = Ps + Pc;
+        out->W[j] = Ws + Wc;
+        out->slope[j] = k_prev;
+        j++;
+    }
+    for (size_t k = 0; k < j; k++) {
+        out->D[k] = out->A[k] = out->Lmax[k] = 0.0;
+        out->cmin[k] = INFINITY;
+    }
+    out->n = j;
+    return CT_OK;
+}
+

@@ -70,6 +70,32 @@ void ct_bundle_parallel(const ct_bundle *b, size_t count, size_t chunk, ct_chunk
  * scratch is kept in b for the next refill). For ensembles. */
 int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t realisation);
 
+/* The breakpoints of a curve as arrays (x sorted; P, cumulative W and the slope on
+ * [x_j, x_{j+1}) at each), for the dynamics. */
+typedef struct {
+    size_t n;
+    const double *x, *P, *W, *slope;
+} ct_curve_view;
+void ct_curve_view_of(const ct_curve *c, ct_curve_view *v);
+/* Into out: the unloading curve of the state c's state reaches when loaded to u_max (its P
+ * for u <= u_max: every rod in contact unloads along its elastic line from its release
+ * point); its last breakpoint is u_max. */
+int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out);
+
+/* ---- the impact in time (src/dynamics.c), for the sweep ---- */
+
+typedef struct ct_dyn_work ct_dyn_work;
+int ct_dyn_work_alloc(ct_dyn_work **out);
+void ct_dyn_work_free(ct_dyn_work *w);
+/* A new speed: the state is c's own (no earlier maximum). */
+void ct_dyn_reset(ct_dyn_work *w);
+/* The impact res (solved on curve c, from c's state or, after ct_dyn_impact saw a plastic
+ * impact of the same speed, from that state: c's state loaded to the earlier maximum and
+ * unloaded) in time, for a body of mass m; hist (not NULL) gets its history with `grid`
+ * uniform points. A plastic impact becomes the state of the next call. */
+int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res, double m,
+                  ct_dynamics *dyn, size_t grid, ct_history *hist);
+
 /* ---- impacts on a curve (src/impact.c), for the sweep ---- */
 
 /* The impact of energy W from the state c's state reaches when loaded to U (-INFINITY: c's

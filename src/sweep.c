@@ -126,8 +126,15 @@ static void fail_from(ct_sweep_row *rows, size_t impacts, size_t v, size_t i, in
 
 /* One speed by carrying the state in `work`: curve rebuilt after every plastic impact. The
  * general path (observers, composite rules, impacts that stay below an earlier maximum). */
+/* The mass of the sweep's impacts in time: E l0 / h0, so that tau = sqrt(m h0 / (E l0)) = 1. */
+static double unit_mass(const ct_layer *L)
+{
+    return L->E * L->l0 / L->h0;
+}
+
 static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *later,
-                          ct_bundle *work, const ct_sweep_spec *s, size_t v, ct_sweep_row *rows)
+                          ct_bundle *work, const ct_sweep_spec *s, size_t v, ct_sweep_row *rows,
+                          ct_dyn_work *dw)
 {
     const ct_layer *L = ct_bundle_layer(b);
     const double W = s->V_star[v] * s->V_star[v] * L->l0 * L->E * L->h0;
@@ -148,6 +155,13 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
             return CT_OK;
         }
         row->message[0] = '\0';
+        if (dw) { /* the impact in time on its own state's curve */
+            ct_dyn_reset(dw);
+            if ((row->status = ct_dyn_impact(dw, c, &row->r, unit_mass(L), &row->dyn, 0, NULL))) {
+                fail_from(rows, impacts, v, i, row->status, ct_error_message());
+                return CT_OK;
+            }
+        }
         if (s->observe && (st = s->observe(row, 0, work, c, s->observe_ctx)))
             return st;
         if (!row->r.elastic) {
@@ -351,7 +365,8 @@ done:
 /* Whether the rod path serves this sweep better than a curve (ct_sweep_path). */
 static int use_rods(const ct_bundle *b, const ct_sweep_spec *s)
 {
-    if (s->observe || !(s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED))
+    if (s->observe || s->dynamics ||
+        !(s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED))
         return 0;
     if (s->path != CT_PATH_AUTO)
         return s->path == CT_PATH_RODS;
@@ -404,6 +419,9 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
     double *adv = NULL, *u0 = NULL, *u1 = NULL, *Wl = NULL, *Wu = NULL;
     size_t *slot = NULL; /* row -> its place in the batched closed forms */
     unsigned char *by_state = NULL;
+    ct_dyn_work *dw = NULL;
+    if (s->dynamics && (st = ct_dyn_work_alloc(&dw)))
+        return st;
     if (s->curve) /* the caller's workspace: its arrays are reused */
         first = s->curve;
     else if ((st = ct_curve_alloc(&first)))
@@ -485,6 +503,19 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
                     break;
                 }
             }
+            if (dw) { /* in time: the first curve, and the unloading curve of each maximum */
+                ct_dyn_reset(dw);
+                for (size_t i = 0; i < impacts; i++) {
+                    ct_sweep_row *row = &rows[v * impacts + i];
+                    if (row->status)
+                        break;
+                    int rs = ct_dyn_impact(dw, first, &row->r, unit_mass(L), &row->dyn, 0, NULL);
+                    if (rs) {
+                        fail_from(rows, impacts, v, i, rs, ct_error_message());
+                        break;
+                    }
+                }
+            }
         }
     }
     int need_state = !fast;
@@ -498,7 +529,7 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
                 continue;
             for (size_t i = 0; i < impacts; i++)
                 fail_row(&rows[v * impacts + i], CT_ESKIPPED, "not run");
-            if ((st = speed_by_state(b, first, later, work, s, v, rows)))
+            if ((st = speed_by_state(b, first, later, work, s, v, rows, dw)))
                 goto done;
             if (s->stop_on_error && (st = first_failure(rows, nrows)))
                 goto done;
@@ -509,6 +540,7 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
     if (s->stop_on_error)
         st = first_failure(rows, nrows);
 done:
+    ct_dyn_work_free(dw);
     if (first != s->curve)
         ct_curve_free(first);
     ct_curve_free(later);

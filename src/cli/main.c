@@ -1,6 +1,7 @@
 /* cantact: the command-line program. Subcommands: run, geometry, merge. */
 #include "cantact.h"
 #include "ensemble.h"
+#include "history.h"
 #include "ranks.h"
 #include "number.h"
 #include "output.h"
@@ -404,7 +405,7 @@ static int build_surface(const ct_scene *sc, int keep_all, ct_bundle **b, ct_pla
  * the last speed, the profile of the surface in that state. */
 typedef struct {
     const ct_scene *sc;
-    FILE *curve, *profile;
+    FILE *curve, *profile, *history;
     int compare;
     ct_curve *post; /* the post-impact state's curve (the unloading branch) */
     char err[300];
@@ -417,6 +418,8 @@ static int observe(const ct_sweep_row *row, int phase, const ct_bundle *b, const
     const ct_scene *sc = o->sc;
     const ct_params *p = &sc->params;
     int st = CT_OK;
+    if (phase == 0 && o->history && (st = ct_cli_history_rows(o->history, sc, row, b)))
+        return st;
     if (phase == 0 && o->curve)
         st = write_branch(o->curve, c, p, row->V_star, row->impact, row->r.u_contact, row->r.u_max,
                           "load", o->compare);
@@ -447,6 +450,8 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, in
         fprintf(f, "%ld,", row->impact);
         ct_put_double(f, row->V_star);
         fprintf(f, ",,,,,,,%s", compare ? ",,," : "");
+        if (sc->what & CT_OUT_TIME)
+            ct_cli_time_row(f, sc, row);
         fputs(",\"", f);
         for (const char *m = row->message; *m; m++)
             fputc(*m == '"' ? '\'' : *m, f);
@@ -479,9 +484,45 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, in
     } else if (compare) {
         fputs(",,,", f);
     }
+    if (sc->what & CT_OUT_TIME)
+        ct_cli_time_row(f, sc, row);
     if (sc->skip_failed)
         fputc(',', f);
     fputc('\n', f);
+}
+
+/* impact.sequence = bounce: impacts at falling speeds, the state carried (src/cli/history.c). */
+static int run_bounce(ct_scene *sc, int quiet)
+{
+    ct_out out;
+    char err[512];
+    ct_bundle *b = NULL;
+    ct_plan_info info;
+    int st;
+    if (ct_out_open(&out, sc->output, err, sizeof err)) {
+        fail_line(err);
+        return EXIT_USAGE;
+    }
+    if ((st = build_surface(sc, 0, &b, &info))) {
+        ct_out_abort(&out);
+        fail_line(ct_error_message());
+        return status_exit(st);
+    }
+    if (!quiet)
+        fprintf(stderr, "cantact: bounce sequence on %zu rods (depth %ld), at most %ld impacts\n",
+                info.rods, info.depth, sc->impacts);
+    st = ct_cli_bounce(out.f, sc, b, err, sizeof err);
+    ct_bundle_free(b);
+    if (st) {
+        ct_out_abort(&out);
+        fail_line(err);
+        return status_exit(st);
+    }
+    if (ct_out_commit(&out, err, sizeof err)) {
+        fail_line(err);
+        return EXIT_USAGE;
+    }
+    return EXIT_DONE;
 }
 
 static int cmd_run(int argc, char **argv)
@@ -505,7 +546,13 @@ static int cmd_run(int argc, char **argv)
         ct_scene_free(&sc);
         return EXIT_USAGE;
     }
-    int nitems = !!(sc.what & CT_OUT_E) + !!(sc.what & CT_OUT_CURVE) + !!(sc.what & CT_OUT_PROFILE);
+    if (sc.bounce) { /* a bounce sequence: its own table */
+        rc = run_bounce(&sc, quiet);
+        ct_scene_free(&sc);
+        return rc;
+    }
+    int nitems = !!(sc.what & CT_OUT_E) + !!(sc.what & CT_OUT_CURVE) +
+                 !!(sc.what & CT_OUT_PROFILE) + !!(sc.what & CT_OUT_HISTORY);
     if (nitems > 1 && !strcmp(sc.output, "-")) {
         fail_line("output.what names several outputs: set output.file (or -o FILE) to a path");
         ct_scene_free(&sc);
@@ -530,13 +577,13 @@ static int cmd_run(int argc, char **argv)
     }
 
     /* open every output first: an unwritable path fails before any work is done */
-    ct_out out_e = {0}, out_curve = {0}, out_profile = {0};
+    ct_out out_e = {0}, out_curve = {0}, out_profile = {0}, out_history = {0};
     ct_bundle *b = NULL;
     ct_sweep_row *rows = NULL;
     run_observer obs = {0};
     char err[512];
-    int opened_e = 0, opened_c = 0, opened_p = 0;
-    char *curve_path = NULL, *profile_path = NULL;
+    int opened_e = 0, opened_c = 0, opened_p = 0, opened_h = 0;
+    char *curve_path = NULL, *profile_path = NULL, *history_path = NULL;
     rc = EXIT_DONE;
     if (sc.what & CT_OUT_E) {
         if (ct_out_open(&out_e, sc.output, err, sizeof err))
@@ -554,6 +601,12 @@ static int cmd_run(int argc, char **argv)
         if (!profile_path || ct_out_open(&out_profile, profile_path, err, sizeof err))
             goto io_fail;
         opened_p = 1;
+    }
+    if (sc.what & CT_OUT_HISTORY) {
+        history_path = nitems > 1 ? derived_path(sc.output, "history") : strdup(sc.output);
+        if (!history_path || ct_out_open(&out_history, history_path, err, sizeof err))
+            goto io_fail;
+        opened_h = 1;
     }
 
     ct_plan_info info;
@@ -588,9 +641,14 @@ static int cmd_run(int argc, char **argv)
     if (opened_e)
         fprintf(out_e.f,
                 "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,"
-                "V_star_crit,u_release_over_h0,elastic%s%s\n",
-                compare ? ",e_series,e_asymptotic,e_asymptotic_consistent" : "",
-                sc.skip_failed ? ",error" : "");
+                "V_star_crit,u_release_over_h0,elastic%s",
+                compare ? ",e_series,e_asymptotic,e_asymptotic_consistent" : "");
+    if (opened_e && (sc.what & CT_OUT_TIME))
+        ct_cli_time_header(out_e.f, &sc);
+    if (opened_e)
+        fprintf(out_e.f, "%s\n", sc.skip_failed ? ",error" : "");
+    if (opened_h)
+        ct_cli_history_header(out_history.f, &sc);
     if (opened_c)
         fprintf(out_curve.f, "V_star,impact,u_over_h0,P_over_PY,branch%s\n",
                 compare ? ",P_series_over_PY,P_asymptotic_over_PY,P_asymptotic_consistent_over_PY"
@@ -607,6 +665,7 @@ static int cmd_run(int argc, char **argv)
     obs.sc = &sc;
     obs.curve = opened_c ? out_curve.f : NULL;
     obs.profile = opened_p ? out_profile.f : NULL;
+    obs.history = opened_h ? out_history.f : NULL;
     obs.compare = compare;
     if (opened_c && (st = ct_curve_alloc(&obs.post)))
         goto lib_fail;
@@ -623,9 +682,10 @@ static int cmd_run(int argc, char **argv)
         .stop_on_error = !sc.skip_failed,
         .progress = show_progress,
         .progress_ctx = &prog,
-        .observe = (opened_c || opened_p) ? observe : NULL,
+        .observe = (opened_c || opened_p || opened_h) ? observe : NULL,
         .observe_ctx = &obs,
         .path = sc.path,
+        .dynamics = !!(sc.what & CT_OUT_TIME),
     };
     st = ct_sweep(b, &spec, rows);
     ct_progress_end(&prog);
@@ -641,6 +701,11 @@ static int cmd_run(int argc, char **argv)
             rc = EXIT_FAILED;
             goto cleanup;
         }
+        if ((sc.what & CT_OUT_TIME) && ct_cli_time_check(&rows[k], err, sizeof err)) {
+            fail_line(err); /* two computations of the rebound disagree: a defect, not a row */
+            rc = EXIT_FAILED;
+            goto cleanup;
+        }
         if (rows[k].status && !failed++)
             first_failed = &rows[k];
         if (opened_e)
@@ -651,7 +716,7 @@ static int cmd_run(int argc, char **argv)
                 "cantact: %zu of %zu impacts failed or not run (first: V* = %g, impact %ld: %s)\n",
                 failed, nrows, first_failed->V_star, first_failed->impact, first_failed->message);
     /* all outputs land together or none does */
-    ct_out *outs[3];
+    ct_out *outs[4];
     size_t nouts = 0;
     if (opened_e)
         outs[nouts++] = &out_e;
@@ -659,7 +724,9 @@ static int cmd_run(int argc, char **argv)
         outs[nouts++] = &out_curve;
     if (opened_p)
         outs[nouts++] = &out_profile;
-    opened_e = opened_c = opened_p = 0; /* commit publishes or drops every one */
+    if (opened_h)
+        outs[nouts++] = &out_history;
+    opened_e = opened_c = opened_p = opened_h = 0; /* commit publishes or drops every one */
     if (ct_out_commit_all(outs, nouts, err, sizeof err)) {
         fail_line(err);
         rc = EXIT_USAGE;
@@ -680,6 +747,9 @@ cleanup:
         ct_out_abort(&out_curve);
     if (opened_p)
         ct_out_abort(&out_profile);
+    if (opened_h)
+        ct_out_abort(&out_history);
+    free(history_path);
     ct_curve_free(obs.post);
     ct_bundle_free(b);
     free(rows);

@@ -78,6 +78,12 @@ static const key_spec known_keys[] = {
     {"surface", "realisation", 0},
     {"ensemble", "realisations", 0},
     {"ensemble", "split", 0},
+    /* the impact in time */
+    {"impact", "sequence", 0},
+    {"impact", "drop_height", 0},
+    {"impact", "gravity", 0},
+    {"impact", "stop_speed", 0},
+    {"output", "history_points", 0},
 };
 #define NKEYS (sizeof known_keys / sizeof known_keys[0])
 
@@ -685,11 +691,31 @@ static int interpret(parse_state *s, ct_scene *sc)
 
     entry *ev = get(s, "impact", "V_star"), *em = get(s, "impact", "mass"),
           *evel = get(s, "impact", "velocity");
+    entry *edrop = get(s, "impact", "drop_height");
+    sc->gravity = 9.81;
+    if ((st = number_key(s, "impact", "gravity", 0.0, INFINITY, "must be > 0", &sc->gravity)))
+        return st;
+    if (edrop) { /* a body dropped from rest: v1 = sqrt(2 g h), as the velocity list */
+        double hd = 0.0;
+        if (evel || ev)
+            return bad(edrop, "impact", "drop_height",
+                       "give either drop_height or velocity / V_star, not both");
+        if (!em)
+            return bad(edrop, "impact", "drop_height", "needs impact.mass");
+        if ((st = number_key(s, "impact", "drop_height", 0.0, INFINITY, "must be > 0", &hd)))
+            return st;
+        char speed[64];
+        snprintf(speed, sizeof speed, "%.17g", sqrt(2.0 * sc->gravity * hd));
+        if ((st = store(s, "impact", "velocity", speed, edrop->where)))
+            return st;
+        evel = get(s, "impact", "velocity");
+    }
     if (ev && (em || evel))
         return bad(ev, "impact", "V_star", "give either V_star or mass + velocity, not both");
     if (!ev && !(em && evel))
         return scene_error(CT_EINVAL, "%s: [impact]: needs V_star, or both mass and velocity",
                            s->name);
+    sc->mass = 0.0;
     if (ev) {
         if ((st = velocity_list(ev, "V_star", &sc->V_star, &sc->nvel)))
             return st;
@@ -699,6 +725,7 @@ static int interpret(parse_state *s, ct_scene *sc)
             return st;
         if ((st = velocity_list(evel, "velocity", &sc->V_star, &sc->nvel)))
             return st;
+        sc->mass = m;
         /* V* = sqrt(m v1^2 / (2 l0 E h0)) */
         double scale = 2.0 * ct_energy_scale(p);
         for (size_t k = 0; k < sc->nvel; k++) {
@@ -720,7 +747,28 @@ static int interpret(parse_state *s, ct_scene *sc)
             return bad(ev ? ev : evel, "impact", ev ? "V_star" : "velocity", msg);
         }
     }
-    sc->impacts = 1;
+    sc->bounce = 0;
+    if ((e = get(s, "impact", "sequence"))) {
+        if (!strcmp(e->value, "bounce"))
+            sc->bounce = 1;
+        else if (strcmp(e->value, "sweep"))
+            return bad(e, "impact", "sequence", "must be sweep or bounce");
+    }
+    sc->stop_speed = 0.0;
+    if ((e = get(s, "impact", "stop_speed"))) {
+        if (!sc->bounce)
+            return bad(e, "impact", "stop_speed", "only with sequence = bounce");
+        if ((st = number_key(s, "impact", "stop_speed", -1.0, INFINITY, "must be >= 0",
+                             &sc->stop_speed)) ||
+            !(sc->stop_speed >= 0.0))
+            return st ? st : bad(e, "impact", "stop_speed", "must be >= 0");
+    }
+    if (sc->bounce && !(sc->mass > 0.0 && sc->nvel == 1))
+        return scene_error(CT_EINVAL,
+                           "%s: impact.sequence = bounce: needs impact.mass and one first speed "
+                           "(impact.velocity or impact.drop_height)",
+                           s->name);
+    sc->impacts = sc->bounce ? 20 : 1;
     if ((st = integer_key(s, "impact", "impacts", 1, 1000000,
                           "must satisfy 1 <= impacts <= 1000000", &sc->impacts)))
         return st;
@@ -809,20 +857,39 @@ static int interpret(parse_state *s, ct_scene *sc)
                 sc->what |= CT_OUT_ENSEMBLE;
             else if (!strcmp(tok, "realisations"))
                 sc->what |= CT_OUT_REALISATIONS;
+            else if (!strcmp(tok, "time"))
+                sc->what |= CT_OUT_TIME;
+            else if (!strcmp(tok, "history"))
+                sc->what |= CT_OUT_HISTORY;
+            else if (!strcmp(tok, "bounce"))
+                sc->what |= CT_OUT_BOUNCE;
             else {
                 free(buf);
                 return bad(e, "output", "what",
-                           "each item must be e, curve, profile, compare, ensemble or "
-                           "realisations");
+                           "each item must be e, time, curve, history, profile, compare, "
+                           "bounce, ensemble or realisations");
             }
         }
         free(buf);
         if (!sc->what)
             return bad(e, "output", "what", "name at least one of e, curve, profile, compare");
-        /* compare adds the paper's laws to e and curve; alone it means e with them */
-        if (sc->what == CT_OUT_COMPARE)
+        /* compare adds the paper's laws to e and curve, time adds the impact in time to e:
+         * alone they mean e with them */
+        if (!(sc->what & ~(unsigned)(CT_OUT_COMPARE | CT_OUT_TIME)))
             sc->what |= CT_OUT_E;
     }
+    if (sc->bounce) { /* a bounce sequence writes its own table */
+        if (e && (sc->what & ~(unsigned)CT_OUT_BOUNCE))
+            return bad(e, "output", "what", "with impact.sequence = bounce it must be bounce");
+        sc->what = CT_OUT_BOUNCE;
+    } else if (sc->what & CT_OUT_BOUNCE) {
+        return bad(e, "output", "what", "bounce needs impact.sequence = bounce");
+    }
+    long hp = 200;
+    if ((st = integer_key(s, "output", "history_points", 0, 100000000,
+                          "must satisfy 0 <= history_points <= 1e8", &hp)))
+        return st;
+    sc->history_points = (size_t)hp;
     /* an ensemble writes its statistics and samples, a single surface the rest */
     const unsigned ens = CT_OUT_ENSEMBLE | CT_OUT_REALISATIONS;
     if (sc->realisations && !e)

@@ -9,6 +9,8 @@
 enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
 /* [ensemble] outputs (src/cli/ensemble.c) */
 enum { CT_OUT_ENSEMBLE = 16, CT_OUT_REALISATIONS = 32 };
+/* the impact in time: columns of the e table, histories, a bounce sequence */
+enum { CT_OUT_TIME = 64, CT_OUT_HISTORY = 128, CT_OUT_BOUNCE = 256 };
 
 /* [surface] type: which kind of surface makes the rods (src/surface/). */
 typedef enum { CT_SURFACE_CANTOR = 0, CT_SURFACE_RANDOM_CANTOR = 1 } ct_surface_type;
@@ -29,6 +31,11 @@ typedef struct {
     ct_sweep_path path;     /* solver.path: auto, curve or rods */
     char *output;           /* CSV path, "-" for stdout */
     unsigned what;          /* CT_OUT_* bits */
+    double mass;            /* [impact] mass per unit depth (0: the scene gave V*) */
+    int bounce;             /* [impact] sequence = bounce */
+    double gravity;         /* [impact] gravity [length/time^2] (bounce flights, drop_height) */
+    double stop_speed;      /* [impact] stop_speed: a bounce sequence ends below it */
+    size_t history_points;  /* [output] history_points: uniform grid points per impact */
     /* type = random_cantor (params.fx, fz are the centres) and [ensemble] */
     ct_ratio_dist ratio_dist;
     double fx_spread, fz_spread;

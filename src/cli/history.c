@@ -1,0 +1,175 @@
+/* The impact in time in the CLI: the e table's time columns (what = time), histories
+ * (what = history) and bounce sequences (impact.sequence = bounce).
+ *
+ * A Cantor scene is computed dimensionless (l0 = h0 = sigma_y = 1, E = E/sigma_y): the sweep's
+ * times are t / tau, tau = sqrt(m h0 / (E l0)), its forces P / P_Y. When the scene gives the
+ * mass (impact.mass with velocity or drop_height) the same quantities are also written in
+ * the scene's units: seconds, metres and N/m for a scene in SI units. */
+#include "history.h"
+
+#include "number.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* DEM codes resolve a contact with a time step a fraction of its period: LAMMPS and LIGGGHTS
+ * users commonly take 1/20 to 1/50 of it; we print period / 50. */
+#define DEM_FRACTION 50.0
+
+/* tau [time] of the scene's body: sqrt(m h0 / (E l0)) in the scene's own units. */
+static double tau_of(const ct_scene *sc)
+{
+    const ct_params *p = &sc->physical;
+    return sqrt(sc->mass * p->h0 / (p->E * p->l0));
+}
+
+static void field(FILE *f, double x)
+{
+    fputc(',', f);
+    if (isfinite(x))
+        ct_put_double(f, x);
+}
+
+void ct_cli_time_header(FILE *f, const ct_scene *sc)
+{
+    fputs(",t_contact_over_tau,t_load_over_tau,t_unload_over_tau,P_peak_over_PY,e_kinematic,"
+          "unload_period_over_tau,dem_time_step_over_tau",
+          f);
+    if (sc->mass > 0.0)
+        fputs(",t_contact_s,t_load_s,t_unload_s,P_peak_N_per_m,unload_period_s,dem_time_step_s", f);
+}
+
+void ct_cli_time_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row)
+{
+    const int n = sc->mass > 0.0 ? 13 : 7;
+    if (row->status) {
+        for (int k = 0; k < n; k++)
+            fputc(',', f);
+        return;
+    }
+    const ct_dynamics *d = &row->dyn;
+    field(f, d->t_contact);
+    field(f, d->t_load);
+    field(f, d->t_unload);
+    field(f, d->P_peak);
+    field(f, d->e_kinematic);
+    field(f, d->period_min);
+    field(f, d->period_min / DEM_FRACTION);
+    if (sc->mass > 0.0) {
+        const ct_params *p = &sc->physical;
+        const double tau = tau_of(sc);
+        field(f, d->t_contact * tau);
+        field(f, d->t_load * tau);
+        field(f, d->t_unload * tau);
+        field(f, d->P_peak * p->sigma_y * p->l0);
+        field(f, d->period_min * tau);
+        field(f, d->period_min * tau / DEM_FRACTION);
+    }
+}
+
+int ct_cli_time_check(const ct_sweep_row *row, char *err, size_t errlen)
+{
+    /* the kinematic e (v2 from the unloading curve's own work) and the energy e agree */
+    if (row->status || fabs(row->dyn.e_kinematic - row->r.e) <= 1e-12 + 4.0 * row->r.e_rounding)
+        return 0;
+    snprintf(err, errlen,
+             "V* = %g, impact %ld: e_kinematic = %.17g and e = %.17g differ by more than 1e-12",
+             row->V_star, row->impact, row->dyn.e_kinematic, row->r.e);
+    return -1;
+}
+
+void ct_cli_history_header(FILE *f, const ct_scene *sc)
+{
+    fputs("V_star,impact,t_over_tau,u_over_h0,udot_over_h0_per_tau,P_over_PY,branch,event", f);
+    if (sc->mass > 0.0)
+        fputs(",t_s,u_m,udot_m_per_s,P_N_per_m", f);
+    fputc('\n', f);
+}
+
+int ct_cli_history_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *row, const ct_bundle *b)
+{
+    /* the sweep's units: h0 = 1, mass E l0 / h0 so that tau = 1, v1 = sqrt(2) V* */
+    const ct_layer *L = ct_bundle_layer(b);
+    const double m = L->E * L->l0 / L->h0, v1 = sqrt(2.0) * row->V_star * L->h0;
+    ct_impact_result r;
+    ct_dynamics d;
+    ct_history h;
+    int st = ct_impact_history(b, m, v1, sc->history_points, &r, &d, &h);
+    if (st)
+        return st;
+    const ct_params *p = &sc->physical;
+    const double tau = sc->mass > 0.0 ? tau_of(sc) : NAN;
+    for (size_t i = 0; i < h.n; i++) {
+        const ct_history_point *q = &h.points[i];
+        ct_put_double(f, row->V_star);
+        fprintf(f, ",%ld", row->impact);
+        field(f, q->t);
+        field(f, q->u / L->h0);
+        field(f, q->v / L->h0);
+        field(f, q->P / (L->sigma_y * L->l0));
+        fprintf(f, ",%s,%d", q->unloading ? "unload" : "load", q->event);
+        if (sc->mass > 0.0) {
+            field(f, q->t * tau);
+            field(f, q->u / L->h0 * p->h0);
+            field(f, q->v / L->h0 * p->h0 / tau);
+            field(f, q->P / (L->sigma_y * L->l0) * p->sigma_y * p->l0);
+        }
+        fputc('\n', f);
+    }
+    ct_history_free(&h);
+    return CT_OK;
+}
+
+int ct_cli_bounce(FILE *f, const ct_scene *sc, const ct_bundle *b, char *err, size_t errlen)
+{
+    const ct_layer *L = ct_bundle_layer(b);
+    const ct_params *p = &sc->physical;
+    const double m = L->E * L->l0 / L->h0, tau = tau_of(sc), speed = p->h0 / tau;
+    const double v1 = sqrt(2.0) * sc->V_star[0] * L->h0; /* in h0 / tau */
+    const size_t nmax = (size_t)sc->impacts;
+    ct_impact_result *res = malloc(nmax * sizeof *res);
+    ct_dynamics *dyn = malloc(nmax * sizeof *dyn);
+    size_t n = 0;
+    int st =
+        res && dyn ? ct_bounce(b, m, v1, nmax, sc->stop_speed / speed, res, dyn, &n) : CT_ENOMEM;
+    if (st && n == 0) {
+        snprintf(err, errlen, "bounce 1: %s",
+                 st == CT_ENOMEM ? "out of memory" : ct_error_message());
+        free(res);
+        free(dyn);
+        return st;
+    }
+    fputs("bounce,V_star,v_in_m_per_s,e,v_out_m_per_s,u_max_over_h0,elastic,t_contact_s,"
+          "P_peak_N_per_m,flight_s,height_m,time_s,v_out_constant_e_m_per_s,"
+          "height_constant_e_m\n",
+          f);
+    const double g = sc->gravity, e1 = dyn[0].e_kinematic;
+    double t = 0.0, v_const = v1 * speed;
+    for (size_t k = 0; k < n; k++) {
+        const double v_in = dyn[k].v1 * speed, v_out = dyn[k].v2 * speed;
+        const double flight = 2.0 * v_out / g, tc = dyn[k].t_contact * tau;
+        v_const *= e1; /* the same bounce with e fixed at the first impact's */
+        fprintf(f, "%zu,", k + 1);
+        ct_put_double(f, res[k].V_star);
+        field(f, v_in);
+        field(f, res[k].e);
+        field(f, v_out);
+        field(f, res[k].u_max / L->h0);
+        fprintf(f, ",%d", res[k].elastic);
+        field(f, tc);
+        field(f, dyn[k].P_peak / (L->sigma_y * L->l0) * p->sigma_y * p->l0);
+        field(f, flight);
+        field(f, v_out * v_out / (2.0 * g));
+        t += tc + flight;
+        field(f, t);
+        field(f, v_const);
+        field(f, v_const * v_const / (2.0 * g));
+        fputc('\n', f);
+    }
+    if (st)
+        snprintf(err, errlen, "bounce %zu: %s", n + 1, ct_error_message());
+    free(res);
+    free(dyn);
+    return st;
+}

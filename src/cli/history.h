@@ -1,0 +1,23 @@
+/* The impact in time in the CLI: the e table's time columns, histories, bounce sequences. */
+#ifndef CT_CLI_HISTORY_H
+#define CT_CLI_HISTORY_H
+
+#include "cantact.h"
+#include "scene.h"
+
+#include <stdio.h>
+
+/* The e table's time columns (what = time): their header names, after the others. */
+void ct_cli_time_header(FILE *f, const ct_scene *sc);
+/* A row's time fields (empty for a failed row). */
+void ct_cli_time_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row);
+/* The check of every run with time: e_kinematic equals the energy e to 1e-12 (beyond the
+ * stated rounding); -1 with a message otherwise. */
+int ct_cli_time_check(const ct_sweep_row *row, char *err, size_t errlen);
+/* The history output: its header, and the rows of one impact from the pre-impact state b. */
+void ct_cli_history_header(FILE *f, const ct_scene *sc);
+int ct_cli_history_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *row, const ct_bundle *b);
+/* A bounce sequence (impact.sequence = bounce) on b, written as a table; a status and err. */
+int ct_cli_bounce(FILE *f, const ct_scene *sc, const ct_bundle *b, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,473 @@
+/* The impact in time (MODEL.md §11): m u'' = -P(u) while in contact, P piecewise linear, so
+ * the motion is exact piece by piece.
+ *
+ * On a piece [x_a, x_b] with P = P_a + k (u - x_a), k >= 0, energy conservation fixes the
+ * speeds v_a, v_b at its ends (v^2 = v1^2 - 2 W(u) / m). With y = u - u_eq, u_eq = x_a - P_a / k,
+ * the motion is y = A sin(theta), v = omega A cos(theta), theta rising at omega = sqrt(k / m);
+ * then du / (v_a + v_b) = tan(dtheta / 2) / omega, so the time across is
+ *     dt = (2 / omega) atan(omega du / (v_a + v_b)) = 2 du / (v_a + v_b) * atanc(x),
+ * x = omega du / (v_a + v_b), atanc(x) = atan(x) / x: exact, without cancellation, and the
+ * uniform deceleration 2 du / (v_a + v_b) of a plateau (k = 0) as its limit. The piece where
+ * the body turns (v = 0) takes (1 / omega) atan2(m omega v_a, P_a) -> m v_a / P_a as k -> 0,
+ * from the remaining energy alone (u_max itself is not needed, so its last digits cost
+ * nothing). Unloading is the time-reverse of a loading from the release point (speed v2 =
+ * sqrt(2 W_unload / m)) up the unloading curve to u_max: the same two formulas.
+ *
+ * Where the work done is below 2^-60 of the kinetic energy, the speed is v0 to double
+ * precision and x^2 < 2^-62: those first pieces (the deep Cantor stages next to the plane)
+ * take du / v0 together, summed as one. */
+#include "internal.h"
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A path through the breakpoints: u, P, the slope on [x_i, x_{i+1}) and the work from the
+ * path's start. */
+typedef struct {
+    size_t n, cap;
+    double *x, *P, *k, *W;
+} path;
+
+struct ct_dyn_work {
+    path load, unload;
+    ct_curve *prev, *cur; /* the unloading curves of the state's maximum U and of this impact */
+    int have_prev;
+    double U;
+    double *t_load, *t_unload; /* per point, for histories */
+    size_t tcap;
+};
+
+static void path_free(path *p)
+{
+    free(p->x);
+    free(p->P);
+    free(p->k);
+    free(p->W);
+    memset(p, 0, sizeof *p);
+}
+
+static int path_push(path *p, double x, double P, double k, double W)
+{
+    if (p->n == p->cap) {
+        size_t cap = p->cap ? 2 * p->cap : 256;
+        double *a = realloc(p->x, cap * sizeof(double)),
+               *b = a ? realloc(p->P, cap * sizeof(double)) : NULL;
+        if (a)
+            p->x = a;
+        if (b)
+            p->P = b;
+        double *c = b ? realloc(p->k, cap * sizeof(double)) : NULL;
+        if (c)
+            p->k = c;
+        double *d = c ? realloc(p->W, cap * sizeof(double)) : NULL;
+        if (d)
+            p->W = d;
+        if (!d)
+            return ct_error_set(CT_ENOMEM, "impact history: out of memory");
+        p->cap = cap;
+    }
+    p->x[p->n] = x;
+    p->P[p->n] = P;
+    p->k[p->n] = k;
+    p->W[p->n] = W;
+    p->n++;
+    return CT_OK;
+}
+
+/* Largest j with v.x[j] <= u (u >= v.x[0]). */
+static size_t piece_of(const ct_curve_view *v, double u)
+{
+    size_t lo = 0, hi = v->n;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v->x[mid] <= u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Appends the curve from a to b (a >= its first point), its work shifted by dW; the point a
+ * itself only when the path is empty (a junction is not repeated). */
+static int path_append(path *p, const ct_curve *c, double a, double b, double dW)
+{
+    ct_curve_view v;
+    ct_curve_view_of(c, &v);
+    if (!v.n || !(b >= a))
+        return CT_OK;
+    int st;
+    size_t j = piece_of(&v, a);
+    double t = a - v.x[j];
+    if (!p->n && (st = path_push(p, a, v.P[j] + v.slope[j] * t, v.slope[j],
+                                 v.W[j] + t * (v.P[j] + 0.5 * v.slope[j] * t) + dW)))
+        return st;
+    if (p->n)
+        p->k[p->n - 1] = v.slope[j]; /* the path goes on along this curve's piece */
+    for (size_t i = j + 1; i < v.n && v.x[i] < b; i++)
+        if (v.x[i] > a && (st = path_push(p, v.x[i], v.P[i], v.slope[i], v.W[i] + dW)))
+            return st;
+    size_t e = piece_of(&v, b);
+    t = b - v.x[e];
+    if (b > p->x[p->n - 1] && (st = path_push(p, b, v.P[e] + v.slope[e] * t, v.slope[e],
+                                              v.W[e] + t * (v.P[e] + 0.5 * v.slope[e] * t) + dW)))
+        return st;
+    return CT_OK;
+}
+
+static double atanc(double x)
+{
+    double x2 = x * x;
+    if (x2 < 1e-8) /* the series: the next term, x^6 / 7, is below 2e-25 */
+        return 1.0 - x2 * (1.0 / 3.0 - x2 * 0.2);
+    return atan(x) / x;
+}
+
+/* Time across a piece of width du, slope k, entered and left at speeds va, vb. */
+static double piece_time(double du, double k, double m, double va, double vb)
+{
+    double s = va + vb;
+    if (!(s > 0.0))
+        return 0.0;
+    return 2.0 * du / s * atanc(sqrt(k / m) * du / s);
+}
+
+/* Time from where the force is P (slope k), at speed v, to the turning point. */
+static double turn_time(double P, double k, double m, double v)
+{
+    double w = sqrt(k / m);
+    if (w == 0.0)
+        return P > 0.0 ? m * v / P : INFINITY;
+    double x = m * w * v;
+    return x < P ? m * v / P * atanc(x / P) : atan2(x, P) / w;
+}
+
+/* Time from the path's start (speed sqrt(2 W_kin / m)) to the turning point where the work
+ * equals W_kin; t (when not NULL, p->n entries) gets the time at every point up to the last
+ * one below the turning point, whose index is *last. */
+static double time_to_turn(const path *p, double W_kin, double m, double *t, size_t *last)
+{
+    size_t J = 0;
+    while (J + 1 < p->n && p->W[J + 1] < W_kin)
+        J++;
+    const double v0 = sqrt(2.0 * W_kin / m);
+    size_t i0 = 0;
+    if (!t) /* the first pieces, while the speed is v0 to double precision */
+        while (i0 < J && p->W[i0 + 1] <= 0x1p-60 * W_kin)
+            i0++;
+    double time = (p->x[i0] - p->x[0]) / v0, v = sqrt(2.0 * (W_kin - p->W[i0]) / m);
+    if (t)
+        t[0] = 0.0;
+    for (size_t i = i0; i < J; i++) {
+        double vn = sqrt(2.0 * (W_kin - p->W[i + 1]) / m);
+        time += piece_time(p->x[i + 1] - p->x[i], p->k[i], m, v, vn);
+        v = vn;
+        if (t)
+            t[i + 1] = time;
+    }
+    *last = J;
+    return time + turn_time(p->P[J], p->k[J], m, v);
+}
+
+int ct_dyn_work_alloc(ct_dyn_work **out)
+{
+    CT_NEED(out);
+    ct_dyn_work *w = calloc(1, sizeof *w);
+    if (!w || ct_curve_alloc(&w->prev) || ct_curve_alloc(&w->cur)) {
+        ct_dyn_work_free(w);
+        *out = NULL;
+        return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
+    }
+    *out = w;
+    return CT_OK;
+}
+
+void ct_dyn_work_free(ct_dyn_work *w)
+{
+    if (!w)
+        return;
+    path_free(&w->load);
+    path_free(&w->unload);
+    ct_curve_free(w->prev);
+    ct_curve_free(w->cur);
+    free(w->t_load);
+    free(w->t_unload);
+    free(w);
+}
+
+void ct_dyn_reset(ct_dyn_work *w)
+{
+    w->have_prev = 0;
+    w->U = -INFINITY;
+}
+
+/* u, v and P at time tau into piece i of a path (v > 0 along the path). */
+static void on_piece(const path *p, size_t i, double v_i, double tau, double m, double *u,
+                     double *v, double *P)
+{
+    const double w = sqrt(p->k[i] / m), z = w * tau, a = p->P[i] / m;
+    /* sin(z) / z and (1 - cos z) / z^2, by their series where z is small */
+    double S, C;
+    if (z * z < 1e-8) {
+        S = 1.0 - z * z / 6.0;
+        C = 0.5 - z * z / 24.0;
+    } else {
+        S = sin(z) / z;
+        C = 2.0 * pow(sin(0.5 * z) / z, 2.0);
+    }
+    *u = p->x[i] + v_i * tau * S - a * tau * tau * C;
+    *v = v_i * cos(z) - a * tau * S;
+    *P = p->P[i] + p->k[i] * (*u - p->x[i]);
+}
+
+static int grow_times(ct_dyn_work *w, size_t n)
+{
+    if (n <= w->tcap)
+        return CT_OK;
+    double *a = realloc(w->t_load, n * sizeof(double));
+    if (a)
+        w->t_load = a;
+    double *b = a ? realloc(w->t_unload, n * sizeof(double)) : NULL;
+    if (b)
+        w->t_unload = b;
+    if (!b)
+        return ct_error_set(CT_ENOMEM, "impact history: out of memory");
+    w->tcap = n;
+    return CT_OK;
+}
+
+static int push_point(ct_history *h, size_t *cap, double t, double u, double v, double P,
+                      int unloading, int event)
+{
+    if (h->n == *cap) {
+        size_t nc = *cap ? 2 * *cap : 512;
+        ct_history_point *q = realloc(h->points, nc * sizeof *q);
+        if (!q)
+            return ct_error_set(CT_ENOMEM, "impact history: out of memory");
+        h->points = q;
+        *cap = nc;
+    }
+    h->points[h->n++] = (ct_history_point){t, u, v, P, unloading, event};
+    return CT_OK;
+}
+
+/* The history of one branch: its breakpoints (times t[0..J], the turning point at T) and
+ * the grid times in [t0, t0 + T], in time order; an unloading branch runs backwards along
+ * its path (time t0 + T - s at path time s). */
+static int branch_history(ct_history *h, size_t *cap, const path *p, const double *t, size_t J,
+                          double T, double W_kin, double m, double t0, int unloading,
+                          const double *grid, size_t ngrid)
+{
+    int st;
+    size_t g = 0, count = J + 2; /* the breakpoints, and the turning point */
+    for (size_t q = 0; q <= count; q++) {
+        if (q == count) { /* grid points at the branch's very end (the release) */
+            if (g == ngrid)
+                break;
+        }
+        /* walk the breakpoints in time order: forward on loading, backward on unloading */
+        size_t i = q == count ? 0 : unloading ? count - 1 - q : q;
+        double s = i <= J ? t[i] : T, time = unloading ? t0 + T - s : t0 + s;
+        if (q == count)
+            time = INFINITY; /* every grid point left */
+        /* grid points before this breakpoint's time */
+        while (g < ngrid && grid[g] < time) {
+            double sg = unloading ? t0 + T - grid[g] : grid[g] - t0;
+            sg = sg < 0.0 ? 0.0 : sg > T ? T : sg;
+            size_t piece = 0;
+            while (piece < J && t[piece + 1] <= sg)
+                piece++;
+            double vi = sqrt(2.0 * fmax(W_kin - p->W[piece], 0.0) / m), u, v, P;
+            on_piece(p, piece, vi, sg - t[piece], m, &u, &v, &P);
+            if ((st = push_point(h, cap, grid[g], u, unloading ? -v : v, P, unloading, 0)))
+                return st;
+            g++;
+        }
+        if (q == count || (unloading && q == 0))
+            continue; /* the end; or u_max: the loading branch's turning point already */
+        double u, P, v;
+        if (i <= J) {
+            u = p->x[i];
+            P = p->P[i];
+            v = sqrt(2.0 * fmax(W_kin - p->W[i], 0.0) / m);
+        } else { /* the turning point: v = 0 */
+            on_piece(p, J, sqrt(2.0 * fmax(W_kin - p->W[J], 0.0) / m), T - t[J], m, &u, &v, &P);
+            v = 0.0;
+        }
+        if ((st = push_point(h, cap, time, u, unloading ? -v : v, P, unloading, 1)))
+            return st;
+    }
+    return CT_OK;
+}
+
+int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res, double m,
+                  ct_dynamics *dyn, size_t grid, ct_history *hist)
+{
+    int st;
+    const double W_kin = res->kinetic_energy, u_max = res->u_max;
+    w->load.n = w->unload.n = 0;
+    /* loading: the state's curve. After an earlier maximum U (repeated impacts on the first
+     * curve) that is the unloading curve of U up to U, then the first curve beyond it. */
+    if (!w->have_prev) {
+        st = path_append(&w->load, c, res->u_contact, u_max, 0.0);
+    } else if (u_max <= w->U) {
+        st = path_append(&w->load, w->prev, ct_curve_first_contact(w->prev), u_max, 0.0);
+    } else {
+        st = path_append(&w->load, w->prev, ct_curve_first_contact(w->prev), w->U, 0.0);
+        if (!st)
+            st = path_append(&w->load, c, w->U, u_max,
+                             ct_curve_work(w->prev, w->U) - ct_curve_work(c, w->U));
+    }
+    if (st)
+        return st;
+    if (!w->load.n)
+        return ct_error_set(CT_EINVAL, "impact in time: no rod in contact");
+    size_t J_load, J_unload;
+    if (hist && (st = grow_times(w, w->load.n + 1)))
+        return st;
+    const double t_load = time_to_turn(&w->load, W_kin, m, hist ? w->t_load : NULL, &J_load);
+    const path *up; /* the unloading branch, as a loading from the release point */
+    double W_back;
+    if (res->elastic) {
+        up = &w->load; /* nothing yielded: the body comes back along the same curve */
+        W_back = W_kin;
+    } else {
+        /* the state after u_max: c's state loaded to u_max (beyond an earlier maximum that is
+         * the first state loaded to u_max as well) */
+        if ((st = ct_curve_unload(c, u_max, w->cur)) ||
+            (st = path_append(&w->unload, w->cur, ct_curve_first_contact(w->cur), u_max, 0.0)))
+            return st;
+        if (!w->unload.n)
+            return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
+        up = &w->unload;
+        W_back = up->W[up->n - 1];
+    }
+    if (hist && (st = grow_times(w, up->n + 1)))
+        return st;
+    const double t_unload =
+        res->elastic ? t_load : time_to_turn(up, W_back, m, hist ? w->t_unload : NULL, &J_unload);
+    if (res->elastic) {
+        J_unload = J_load;
+        if (hist)
+            memcpy(w->t_unload, w->t_load, (J_load + 1) * sizeof(double));
+    }
+    double kmax = 0.0;
+    for (size_t i = 0; i + 1 < up->n; i++)
+        kmax = up->k[i] > kmax ? up->k[i] : kmax;
+    dyn->t_load = t_load;
+    dyn->t_unload = t_unload;
+    dyn->t_contact = t_load + t_unload;
+    dyn->P_peak = w->load.P[w->load.n - 1];
+    dyn->v1 = sqrt(2.0 * W_kin / m);
+    dyn->v2 = sqrt(2.0 * W_back / m);
+    dyn->e_kinematic = dyn->v2 / dyn->v1;
+    dyn->dissipated = W_kin - W_back;
+    dyn->k_unload_max = kmax;
+    dyn->period_min = kmax > 0.0 ? 6.283185307179586 * sqrt(m / kmax) : INFINITY;
+    if (hist) {
+        size_t cap = 0;
+        double *times = NULL;
+        hist->n = 0;
+        hist->points = NULL;
+        if (grid) {
+            if (!(times = malloc(grid * sizeof(double))))
+                return ct_error_set(CT_ENOMEM, "impact history: out of memory");
+            for (size_t g = 0; g < grid; g++)
+                times[g] = dyn->t_contact * (double)g / (double)(grid > 1 ? grid - 1 : 1);
+        }
+        size_t split = 0; /* grid points on loading: t < t_load */
+        while (split < grid && times[split] < t_load)
+            split++;
+        st = branch_history(hist, &cap, &w->load, w->t_load, J_load, t_load, W_kin, m, 0.0, 0,
+                            times, split);
+        if (!st) {
+            /* the turning point closes the loading branch; unloading starts there */
+            st = branch_history(hist, &cap, up, w->t_unload, J_unload, t_unload, W_back, m, t_load,
+                                1, times + split, grid - split);
+        }
+        free(times);
+        if (st) {
+            ct_history_free(hist);
+            return st;
+        }
+    }
+    if (!res->elastic) { /* the state's new maximum: its unloading curve serves the next impact */
+        ct_curve *t = w->prev;
+        w->prev = w->cur;
+        w->cur = t;
+        w->U = u_max;
+        w->have_prev = 1;
+    }
+    return CT_OK;
+}
+
+void ct_history_free(ct_history *h)
+{
+    if (!h)
+        return;
+    free(h->points);
+    h->points = NULL;
+    h->n = 0;
+}
+
+int ct_impact_history(const ct_bundle *b, double m, double v1, size_t grid, ct_impact_result *res,
+                      ct_dynamics *dyn, ct_history *hist)
+{
+    CT_NEED(b);
+    CT_NEED(res);
+    CT_NEED(dyn);
+    if (!isfinite(m) || !(m > 0.0) || !isfinite(v1) || !(v1 > 0.0))
+        return ct_error_set(CT_EINVAL,
+                            "impact in time: mass %g and speed %g must be finite and > 0", m, v1);
+    if (hist) {
+        hist->n = 0;
+        hist->points = NULL;
+    }
+    ct_curve *c;
+    ct_dyn_work *w;
+    int st;
+    if ((st = ct_curve_alloc(&c)))
+        return st;
+    if ((st = ct_dyn_work_alloc(&w))) {
+        ct_curve_free(c);
+        return st;
+    }
+    ct_dyn_reset(w);
+    if (!(st = ct_curve_build(c, b)) && !(st = ct_impact_eval(b, c, 0.5 * m * v1 * v1, NULL, res)))
+        st = ct_dyn_impact(w, c, res, m, dyn, grid, hist);
+    ct_dyn_work_free(w);
+    ct_curve_free(c);
+    return st;
+}
+
+int ct_bounce(const ct_bundle *b, double m, double v1, size_t nmax, double v_stop,
+              ct_impact_result *res, ct_dynamics *dyn, size_t *n)
+{
+    CT_NEED(b);
+    CT_NEED(res);
+    CT_NEED(dyn);
+    CT_NEED(n);
+    *n = 0;
+    if (!isfinite(v_stop) || v_stop < 0.0)
+        return ct_error_set(CT_EINVAL, "bounce: stop speed %g must be finite and >= 0", v_stop);
+    ct_bundle *state;
+    int st = ct_bundle_clone(&state, b);
+    if (st)
+        return st;
+    double v = v1;
+    for (size_t k = 0; k < nmax; k++) {
+        if ((st = ct_impact_history(state, m, v, 0, &res[k], &dyn[k], NULL)))
+            break;
+        *n = k + 1;
+        if (!res[k].elastic)
+            ct_bundle_advance(state, res[k].u_max);
+        v = dyn[k].v2;
+        if (v < v_stop || !(v > 0.0))
+            break;
+    }
+    ct_bundle_free(state);
+    return st;
+}
+

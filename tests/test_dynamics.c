@@ -1,0 +1,309 @@
+/* The impact in time (MODEL.md §11, src/dynamics.c): a single linear rod (t_c = pi sqrt(m/k)
+ * exactly, a symmetric history), an elastic impact (t_load = t_unload, e_kinematic = 1), a
+ * plateau worked by hand, a deep surface against GSL's adaptive ODE integration of
+ * m u'' = -P(u) with P summed rod by rod (loading, then unloading from the state the rods
+ * are left in), energy conservation at every event, and the sweep's rows against impacts
+ * run one by one. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_odeiv2.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "assert_rel.h"
+#include "cantact.h"
+
+#define PI 3.14159265358979323846
+
+static ct_bundle *one_rod(double E, double top, double area)
+{
+    ct_layer L = {.E = E, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 1.0};
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 1, &top, &area), CT_OK);
+    return b;
+}
+
+/* k = E s / L = 100 * 1 / 10 = 10, m = 2: t_c = pi sqrt(m / k), the history symmetric. */
+static void single_linear_rod(void **state)
+{
+    (void)state;
+    ct_bundle *b = one_rod(100.0, 0.0, 1.0);
+    const double m = 2.0, k = 10.0, v1 = 0.05; /* stays below the yield point 0.1 */
+    ct_impact_result r;
+    ct_dynamics d;
+    ct_history h;
+    assert_int_equal(ct_impact_history(b, m, v1, 101, &r, &d, &h), CT_OK);
+    assert_true(r.elastic && r.e == 1.0);
+    assert_rel(d.t_contact, PI * sqrt(m / k), 1e-15);
+    assert_rel(d.t_load, d.t_unload, 1e-15);
+    assert_rel(d.P_peak, v1 * sqrt(m * k), 1e-15); /* k A, A = v1 / omega */
+    assert_rel(d.period_min, 2.0 * PI * sqrt(m / k), 1e-15);
+    assert_true(d.e_kinematic == 1.0 && d.v2 == d.v1);
+    /* the grid: u(t) = (v1 / omega) sin(omega t), and u(t) = u(t_c - t) */
+    const double w = sqrt(k / m);
+    size_t grid = 0;
+    for (size_t i = 0; i < h.n; i++) {
+        const ct_history_point *q = &h.points[i];
+        assert_true(fabs(q->u - v1 / w * sin(w * q->t)) <= 1e-15 * v1 / w);
+        assert_true(fabs(q->v - v1 * cos(w * q->t)) <= 1e-15 * v1);
+        if (i)
+            assert_true(q->t >= h.points[i - 1].t);
+        grid += !q->event;
+    }
+    assert_int_equal(grid, 101);
+    ct_history_free(&h);
+    ct_bundle_free(b);
+}
+
+/* One rod past its yield point, by hand: k = 10, m = 1, yield at u = 0.1 with F = 1; from
+ * v1 = 1 the harmonic arc u = sin(omega t) / omega reaches 0.1 at t1 = asin(0.1 omega) / omega
+ * with speed cos(omega t1), then the plateau decelerates it by F / m = 1 in t2 = cos(omega t1).
+ * Unloading from rest at u_max along k (u - u_max + 0.1) is a quarter period, pi / (2 omega),
+ * and the rod gives back F^2 / (2k) = 0.05: v2 = sqrt(0.1). */
+static void plateau_by_hand(void **state)
+{
+    (void)state;
+    ct_bundle *b = one_rod(100.0, 0.0, 1.0);
+    ct_impact_result r;
+    ct_dynamics d;
+    assert_int_equal(ct_impact_history(b, 1.0, 1.0, 0, &r, &d, NULL), CT_OK);
+    const double w = sqrt(10.0), t1 = asin(0.1 * w) / w, t2 = cos(w * t1);
+    assert_false(r.elastic);
+    assert_rel(d.t_load, t1 + t2, 1e-14);
+    assert_rel(d.t_unload, PI / (2.0 * w), 1e-14);
+    assert_rel(d.P_peak, 1.0, 1e-15);
+    assert_rel(d.v2, sqrt(0.1), 1e-14);
+    assert_rel(d.dissipated, 0.5 - 0.05, 1e-14);
+    assert_rel(d.e_kinematic, r.e, 1e-14);
+    ct_bundle_free(b);
+}
+
+/* Below V*_c nothing yields: the body comes back as it came, e_kinematic = 1 exactly. */
+static void elastic_impact_is_symmetric(void **state)
+{
+    (void)state;
+    ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 40, INFINITY), CT_OK);
+    const double m = p.E * p.l0 / p.h0, V = 5e-5, v1 = sqrt(2.0) * V * p.h0;
+    ct_impact_result r;
+    ct_dynamics d;
+    assert_int_equal(ct_impact_history(b, m, v1, 0, &r, &d, NULL), CT_OK);
+    assert_true(r.elastic);
+    assert_true(d.t_load == d.t_unload && d.e_kinematic == 1.0);
+    ct_bundle_free(b);
+}
+
+/* ---- the ODE reference: m u'' = -P(u), P summed rod by rod ---- */
+typedef struct {
+    const ct_bundle *b;
+    double m;
+} ode_ctx;
+
+static int rhs(double t, const double y[], double dydt[], void *params)
+{
+    (void)t;
+    const ode_ctx *c = params;
+    dydt[0] = y[1];
+    dydt[1] = -ct_bundle_force(c->b, y[0]) / c->m;
+    return GSL_SUCCESS;
+}
+
+/* Integrates from (u, v) at t = 0 until g(y) = y[which] - level changes sign; returns the
+ * crossing time and state, located to 1e-15 relative by bisection on re-integrations. */
+static double integrate_to(const ode_ctx *c, double u, double v, int which, double level,
+                           double y_out[2])
+{
+    gsl_odeiv2_system sys = {rhs, NULL, 2, (void *)c};
+    gsl_odeiv2_driver *d =
+        gsl_odeiv2_driver_alloc_y_new(&sys, gsl_odeiv2_step_rk8pd, 1e-6, 1e-14, 1e-14);
+    double y[2] = {u, v}, t = 0.0, dt = 1e-3;
+    double sign0 = y[which] - level;
+    /* march until the sign changes */
+    for (int it = 0; it < 1000000; it++) {
+        double y1[2] = {y[0], y[1]}, t1 = t;
+        gsl_odeiv2_driver_reset(d);
+        assert_int_equal(gsl_odeiv2_driver_apply(d, &t1, t + dt, y1), GSL_SUCCESS);
+        if ((y1[which] - level) * sign0 <= 0.0)
+            break;
+        y[0] = y1[0], y[1] = y1[1], t = t1;
+    }
+    /* bisect the step that crosses */
+    double lo = 0.0, hi = dt;
+    for (int it = 0; it < 60 && hi - lo > 1e-16 * (t + hi); it++) {
+        double mid = 0.5 * (lo + hi), y1[2] = {y[0], y[1]}, t1 = t;
+        gsl_odeiv2_driver_reset(d);
+        assert_int_equal(gsl_odeiv2_driver_apply(d, &t1, t + mid, y1), GSL_SUCCESS);
+        if ((y1[which] - level) * sign0 > 0.0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    double y1[2] = {y[0], y[1]}, t1 = t;
+    gsl_odeiv2_driver_reset(d);
+    assert_int_equal(gsl_odeiv2_driver_apply(d, &t1, t + lo, y1), GSL_SUCCESS);
+    y_out[0] = y1[0];
+    y_out[1] = y1[1];
+    gsl_odeiv2_driver_free(d);
+    return t + 0.5 * (lo + hi);
+}
+
+/* A deep surface (40 stage rods) struck twice: t_load, t_unload, P_peak and v2 against the
+ * ODE, to 1e-9. The second impact starts from the state the first left (its reloading runs
+ * along the unloading line). */
+static void deep_surface_against_ode(void **state)
+{
+    (void)state;
+    gsl_set_error_handler_off();
+    ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 40, INFINITY), CT_OK);
+    const double m = 3.0, V = 3e-3, v1 = V * sqrt(2.0 * p.l0 * p.E * p.h0 / m);
+    for (int impact = 0; impact < 2; impact++) {
+        ct_impact_result r;
+        ct_dynamics d;
+        assert_int_equal(ct_impact_history(b, m, v1, 0, &r, &d, NULL), CT_OK);
+        assert_false(r.elastic);
+        ode_ctx c = {b, m};
+        double y[2];
+        /* loading: from first contact at v1 until v = 0 */
+        double t_load = integrate_to(&c, ct_bundle_first_contact(b), v1, 1, 0.0, y);
+        double u_max = y[0], P_peak = ct_bundle_force(b, u_max);
+        assert_rel(d.t_load, t_load, 1e-9);
+        assert_rel(d.P_peak, P_peak, 1e-9);
+        assert_rel(r.u_max, u_max, 1e-9);
+        /* unloading: the rods left at u_max, from rest until the release point */
+        ct_bundle_advance(b, r.u_max);
+        double release = ct_bundle_first_contact(b);
+        double t_unload = integrate_to(&c, r.u_max, 0.0, 0, release, y);
+        assert_rel(d.t_unload, t_unload, 1e-9);
+        assert_rel(d.v2, -y[1], 1e-9);
+        assert_rel(d.e_kinematic, r.e, 1e-12);
+    }
+    ct_bundle_free(b);
+}
+
+/* Energy: 1/2 m v^2 + W(u) = 1/2 m v1^2 at every loading event, W summed rod by rod in
+ * closed form; and 1/2 m v^2 + W_unload(u) = 1/2 m v2^2 on unloading. */
+static void energy_at_every_event(void **state)
+{
+    (void)state;
+    ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 60, INFINITY), CT_OK);
+    const double m = p.E * p.l0 / p.h0, v1 = sqrt(2.0) * 2e-3;
+    ct_impact_result r;
+    ct_dynamics d;
+    ct_history h;
+    assert_int_equal(ct_impact_history(b, m, v1, 50, &r, &d, &h), CT_OK);
+    const double W_kin = 0.5 * m * v1 * v1, u0 = ct_bundle_first_contact(b);
+    ct_bundle *after;
+    assert_int_equal(ct_bundle_clone(&after, b), CT_OK);
+    ct_bundle_advance(after, r.u_max);
+    const double rel = ct_bundle_first_contact(after), W_back = 0.5 * m * d.v2 * d.v2;
+    size_t events = 0;
+    for (size_t i = 0; i < h.n; i++) {
+        const ct_history_point *q = &h.points[i];
+        double kin = 0.5 * m * q->v * q->v;
+        if (!q->unloading) {
+            double E = kin + ct_bundle_work(b, u0, q->u);
+            if (!(fabs(E - W_kin) <= 1e-13 * W_kin))
+                fail_msg("loading point %zu (event %d): energy %.17g vs %.17g", i, q->event, E,
+                         W_kin);
+        } else {
+            double E = kin + ct_bundle_work(after, rel, q->u);
+            if (!(fabs(E - W_back) <= 1e-13 * W_kin))
+                fail_msg("unloading point %zu (event %d): energy %.17g vs %.17g", i, q->event, E,
+                         W_back);
+        }
+        events += q->event;
+        /* P of the history against the rods' own sum at the same u */
+        double P = q->unloading ? ct_bundle_force(after, q->u) : ct_bundle_force(b, q->u);
+        assert_true(fabs(q->P - P) <= 1e-12 * d.P_peak);
+    }
+    assert_true(events > 40);
+    assert_true(h.points[h.n - 1].t == d.t_contact);
+    assert_rel(-h.points[h.n - 1].v, d.v2, 1e-12);
+    ct_history_free(&h);
+    ct_bundle_free(after);
+    ct_bundle_free(b);
+}
+
+static int no_op(const ct_sweep_row *row, int phase, const ct_bundle *b, const ct_curve *c,
+                 void *ctx)
+{
+    (void)row, (void)phase, (void)b, (void)c, (void)ctx;
+    return 0;
+}
+
+/* The sweep's time columns: its fast path (one curve, repeated impacts by the unloading curve
+ * of each maximum) against its state-carrying path (an observer), and the first impact
+ * against ct_impact_history with the sweep's mass E l0 / h0. */
+static void sweep_rows_against_one_by_one(void **state)
+{
+    (void)state;
+    ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 80, INFINITY), CT_OK);
+    enum { NV = 5, IMP = 4 };
+    const double V[NV] = {5e-5, 2e-4, 1e-3, 4e-3, 1e-2};
+    ct_sweep_row fast[NV * IMP], slow[NV * IMP];
+    ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = IMP, .dynamics = 1};
+    ct_impact_opts_default(&spec.opts);
+    assert_int_equal(ct_sweep(b, &spec, fast), CT_OK);
+    spec.observe = no_op;
+    assert_int_equal(ct_sweep(b, &spec, slow), CT_OK);
+    for (int q = 0; q < NV * IMP; q++) {
+        assert_int_equal(fast[q].status, CT_OK);
+        assert_int_equal(slow[q].status, CT_OK);
+        const ct_dynamics *a = &fast[q].dyn, *c = &slow[q].dyn;
+        assert_rel(a->t_load, c->t_load, 1e-11);
+        assert_rel(a->t_unload, c->t_unload, 1e-11);
+        assert_rel(a->P_peak, c->P_peak, 1e-12);
+        assert_rel(a->e_kinematic, fast[q].r.e, 1e-12);
+        assert_rel(c->e_kinematic, slow[q].r.e, 1e-12);
+    }
+    for (int v = 0; v < NV; v++) {
+        ct_impact_result r;
+        ct_dynamics d;
+        assert_int_equal(ct_impact_history(b, p.E, sqrt(2.0) * V[v], 0, &r, &d, NULL), CT_OK);
+        assert_rel(fast[v * IMP].dyn.t_contact, d.t_contact, 1e-14);
+        assert_rel(fast[v * IMP].dyn.P_peak, d.P_peak, 1e-14);
+    }
+    ct_bundle_free(b);
+}
+
+static void bad_input(void **state)
+{
+    (void)state;
+    ct_bundle *b = one_rod(100.0, 0.0, 1.0);
+    ct_impact_result r;
+    ct_dynamics d;
+    assert_int_equal(ct_impact_history(b, 0.0, 1.0, 0, &r, &d, NULL), CT_EINVAL);
+    assert_int_equal(ct_impact_history(b, 1.0, NAN, 0, &r, &d, NULL), CT_EINVAL);
+    assert_int_equal(ct_impact_history(NULL, 1.0, 1.0, 0, &r, &d, NULL), CT_EINVAL);
+    assert_int_equal(ct_impact_history(b, 1.0, 1.0, 0, &r, NULL, NULL), CT_EINVAL);
+    assert_int_equal(ct_impact_history(b, 1.0, 100.0, 0, &r, &d, NULL), CT_ERANGE); /* crushed */
+    ct_history_free(NULL);
+    ct_bundle_free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(single_linear_rod),
+        cmocka_unit_test(plateau_by_hand),
+        cmocka_unit_test(elastic_impact_is_symmetric),
+        cmocka_unit_test(deep_surface_against_ode),
+        cmocka_unit_test(energy_at_every_event),
+        cmocka_unit_test(sweep_rows_against_one_by_one),
+        cmocka_unit_test(bad_input),
+    };
+    return cmocka_run_group_tests_name("dynamics", tests, NULL, NULL);
+}
