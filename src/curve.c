@@ -245,6 +245,49 @@ double ct_curve_bytes(size_t events)
     return (double)events * (2.0 * sizeof(event) + sizeof(size_t) + 8.0 * sizeof(double));
 }
 
+/* Pass 1 of a build for block j: the runs of identical rods in it. */
+static void count_runs(ct_curve *c, const double *top, const double *length, const double *eps_p,
+                       size_t n, size_t j)
+{
+    size_t k0 = j * CT_BLOCK, k1 = k0 + CT_BLOCK < n ? k0 + CT_BLOCK : n, r = 1;
+    for (size_t k = k0 + 1; k < k1; k++)
+        r += !same_rod(top, length, eps_p, k);
+    c->block_runs[j + 1] = r;
+}
+
+typedef struct {
+    const double *top, *length, *area, *eps_p;
+    size_t n;
+    double E, eps_y;
+    size_t nruns;
+} rods_in;
+
+/* Pass 2 for block j: a contact and a yield event per run, contacts first. */
+static void block_events(ct_curve *c, const rods_in *r, size_t j)
+{
+    const double *top = r->top, *length = r->length, *area = r->area, *eps_p = r->eps_p;
+    const double E = r->E, eps_y = r->eps_y;
+    size_t k0 = j * CT_BLOCK, k1 = k0 + CT_BLOCK < r->n ? k0 + CT_BLOCK : r->n;
+    size_t out = c->block_runs[j];
+    event *ev = c->ev;
+    for (size_t k = k0; k < k1;) {
+        double s = area[k], sc = 0.0;
+        size_t l = k + 1;
+        while (l < k1 && same_rod(top, length, eps_p, l))
+            add_comp(&s, &sc, area[l++]);
+        s += sc;
+        double contact = top[k] + eps_p[k] * length[k];
+        double yield = top[k] + (eps_p[k] + eps_y) * length[k];
+        double slope = E * s / length[k];
+        const double F = E * s * eps_y;
+        ev[out] = (event){contact, slope, 0.0, 0.0, 0.0, 0.0};
+        ev[r->nruns + out] =
+            (event){yield, -slope, F, F - slope * (yield - contact), length[k], contact};
+        out++;
+        k = l;
+    }
+}
+
 size_t ct_curve_events(const ct_bundle *b)
 {
     const size_t n = ct_bundle_size(b);
@@ -274,14 +317,15 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     if (grow((void **)&c->block_runs, &c->bcap, nb + 1, sizeof(size_t)))
         goto oom;
 
-    /* pass 1: rod runs per block */
-    (void)team;
-#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
-    for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++) {
-        size_t k0 = (size_t)j * CT_BLOCK, k1 = k0 + CT_BLOCK < n ? k0 + CT_BLOCK : n, r = 1;
-        for (size_t k = k0 + 1; k < k1; k++)
-            r += !same_rod(top, length, eps_p, k);
-        c->block_runs[j + 1] = r;
+    /* pass 1: rod runs per block (a thread team only where it pays: entering one costs more
+     * than a small curve) */
+    if (team > 1) {
+#pragma omp parallel for schedule(static) num_threads(team)
+        for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++)
+            count_runs(c, top, length, eps_p, n, (size_t)j);
+    } else {
+        for (size_t j = 0; j < nb; j++)
+            count_runs(c, top, length, eps_p, n, j);
     }
     c->block_runs[0] = 0;
     for (size_t j = 0; j < nb; j++)
@@ -289,9 +333,12 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     const size_t nruns = nb ? c->block_runs[nb] : 0, ne = 2 * nruns;
     if (ne == 0)
         return CT_OK;
+    /* the memory check reads /proc/meminfo: only for curves where it can matter */
     const double need = ct_curve_bytes(ne);
-    const double have = (double)ct_available_memory() +
-                        (double)(c->ecap + c->tcap) * sizeof(event) + 8.0 * sizeof(double) * c->cap;
+    const double have = need < 64e6 ? INFINITY
+                                    : (double)ct_available_memory() +
+                                          (double)(c->ecap + c->tcap) * sizeof(event) +
+                                          8.0 * sizeof(double) * c->cap;
     if (need > 0.9 * have)
         return ct_error_set(CT_ENOMEM,
                             "load curve of %zu rods (%zu events): needs %.3g GiB, more than the "
@@ -304,26 +351,14 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
 
     /* pass 2: contacts in rod order, then yields in rod order */
     event *ev = c->ev;
-#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
-    for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++) {
-        size_t k0 = (size_t)j * CT_BLOCK, k1 = k0 + CT_BLOCK < n ? k0 + CT_BLOCK : n;
-        size_t out = c->block_runs[j];
-        for (size_t k = k0; k < k1;) {
-            double s = area[k], sc = 0.0;
-            size_t l = k + 1;
-            while (l < k1 && same_rod(top, length, eps_p, l))
-                add_comp(&s, &sc, area[l++]);
-            s += sc;
-            double contact = top[k] + eps_p[k] * length[k];
-            double yield = top[k] + (eps_p[k] + eps_y) * length[k];
-            double slope = E * s / length[k];
-            const double F = E * s * eps_y;
-            ev[out] = (event){contact, slope, 0.0, 0.0, 0.0, 0.0};
-            ev[nruns + out] =
-                (event){yield, -slope, F, F - slope * (yield - contact), length[k], contact};
-            out++;
-            k = l;
-        }
+    const rods_in rods = {top, length, area, eps_p, n, E, eps_y, nruns};
+    if (team > 1) {
+#pragma omp parallel for schedule(static) num_threads(team)
+        for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++)
+            block_events(c, &rods, (size_t)j);
+    } else {
+        for (size_t j = 0; j < nb; j++)
+            block_events(c, &rods, j);
     }
     sort_events(c, ne, team);
     ev = c->ev;
@@ -610,5 +645,30 @@ int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out)
     }
     out->n = j;
     return CT_OK;
+}
+
+size_t ct_curve_event_count(const ct_curve *c)
+{
+    return c->ne;
+}
+
+void ct_curve_split_events(const ct_curve *c, double *cx, double *ck, size_t *nc, double *yy,
+                           double *yc, double *yL, double *yk, size_t *ny)
+{
+    size_t a = 0, b = 0;
+    for (size_t i = 0; i < c->ne; i++) {
+        const event *e = &c->ev[i];
+        if (!signbit(e->dk)) {
+            cx[a] = e->x;
+            ck[a++] = e->dk;
+        } else {
+            yy[b] = e->x;
+            yc[b] = e->c;
+            yL[b] = e->L;
+            yk[b++] = -e->dk;
+        }
+    }
+    *nc = a;
+    *ny = b;
 }
 

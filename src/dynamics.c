@@ -30,6 +30,13 @@ typedef struct {
     double *x, *P, *k, *W;
 } path;
 
+/* A curve as arrays, with the moments M1_j = int_{x_0}^{x_j} W du and M2_j = int W^2 du
+ * (exact: W is quadratic on each piece) for the first pieces of a branch. */
+typedef struct {
+    size_t n, cap;
+    double *x, *P, *k, *W, *M1, *M2;
+} pcurve;
+
 struct ct_dyn_work {
     path load, unload;
     ct_curve *prev, *cur; /* the unloading curves of the state's maximum U and of this impact */
@@ -37,7 +44,20 @@ struct ct_dyn_work {
     double U;
     double *t_load, *t_unload; /* per point, for histories */
     size_t tcap;
+    /* the sweep's fast path (ct_dyn_prepare, ct_dyn_impact_fast) */
+    const ct_curve *first;
+    double eps_y;
+    pcurve first_pc, pprev, pcur;
+    double *ev; /* the first curve's events, split: cx ck (nc), yy yc yL yk eps_y yL (ny) */
+    size_t evcap, nc, ny;
+    int monotone; /* the yielded rods' contacts rise and their lengths fall in yield order */
+    int nested;   /* and the yields come in the contacts' order (see ct_dyn_prepare) */
+    int one_shot; /* ct_impact_history: one impact, prepared (no state to carry) */
 };
+
+static size_t count_upto(const double *v, size_t n, double u);
+static int unload_nested(ct_dyn_work *w, double u_max, size_t nc, size_t ny, pcurve *out);
+static int pcurve_reserve(pcurve *c, size_t n);
 
 static void path_free(path *p)
 {
@@ -184,10 +204,78 @@ int ct_dyn_work_alloc(ct_dyn_work **out)
     return CT_OK;
 }
 
+static void pcurve_free(pcurve *c)
+{
+    free(c->x);
+    free(c->P);
+    free(c->k);
+    free(c->W);
+    free(c->M1);
+    free(c->M2);
+    memset(c, 0, sizeof *c);
+}
+
+static int pcurve_reserve(pcurve *c, size_t n)
+{
+    if (n <= c->cap)
+        return CT_OK;
+    pcurve_free(c);
+    c->x = malloc(n * sizeof(double));
+    c->P = malloc(n * sizeof(double));
+    c->k = malloc(n * sizeof(double));
+    c->W = malloc(n * sizeof(double));
+    c->M1 = malloc(n * sizeof(double));
+    c->M2 = malloc(n * sizeof(double));
+    if (!c->x || !c->P || !c->k || !c->W || !c->M1 || !c->M2) {
+        pcurve_free(c);
+        return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
+    }
+    c->cap = n;
+    return CT_OK;
+}
+
+/* M1, M2 at every point: on a piece W = a + b t + (k/2) t^2, all terms >= 0. */
+static void pcurve_moments(pcurve *c)
+{
+    double m1 = 0.0, m2 = 0.0;
+    if (!c->n)
+        return;
+    c->M1[0] = c->M2[0] = 0.0;
+    for (size_t i = 0; i + 1 < c->n; i++) {
+        const double d = c->x[i + 1] - c->x[i], a = c->W[i], b = c->P[i], k = c->k[i];
+        m1 += d * (a + d * (0.5 * b + d * k / 6.0));
+        m2 +=
+            d * (a * a +
+                 d * (a * b + d * ((b * b + a * k) / 3.0 + d * (0.25 * b * k + d * k * k / 20.0))));
+        c->M1[i + 1] = m1;
+        c->M2[i + 1] = m2;
+    }
+}
+
+static int pcurve_from_curve(pcurve *pc, const ct_curve *c)
+{
+    ct_curve_view v;
+    ct_curve_view_of(c, &v);
+    int st = pcurve_reserve(pc, v.n ? v.n : 1);
+    if (st)
+        return st;
+    pc->n = v.n;
+    memcpy(pc->x, v.x, v.n * sizeof(double));
+    memcpy(pc->P, v.P, v.n * sizeof(double));
+    memcpy(pc->k, v.slope, v.n * sizeof(double));
+    memcpy(pc->W, v.W, v.n * sizeof(double));
+    pcurve_moments(pc);
+    return CT_OK;
+}
+
 void ct_dyn_work_free(ct_dyn_work *w)
 {
     if (!w)
         return;
+    pcurve_free(&w->first_pc);
+    pcurve_free(&w->pprev);
+    pcurve_free(&w->pcur);
+    free(w->ev);
     path_free(&w->load);
     path_free(&w->unload);
     ct_curve_free(w->prev);
@@ -261,7 +349,8 @@ static int branch_history(ct_history *h, size_t *cap, const path *p, const doubl
                           const double *grid, size_t ngrid)
 {
     int st;
-    size_t g = 0, count = J + 2; /* the breakpoints, and the turning point */
+    size_t g = 0, count = J + 2;      /* the breakpoints, and the turning point */
+    size_t piece = unloading ? J : 0; /* grid times are in order: the piece only moves on */
     for (size_t q = 0; q <= count; q++) {
         if (q == count) { /* grid points at the branch's very end (the release) */
             if (g == ngrid)
@@ -276,9 +365,10 @@ static int branch_history(ct_history *h, size_t *cap, const path *p, const doubl
         while (g < ngrid && grid[g] < time) {
             double sg = unloading ? t0 + T - grid[g] : grid[g] - t0;
             sg = sg < 0.0 ? 0.0 : sg > T ? T : sg;
-            size_t piece = 0;
-            while (piece < J && t[piece + 1] <= sg)
+            while (!unloading && piece < J && t[piece + 1] <= sg)
                 piece++;
+            while (unloading && piece > 0 && t[piece] > sg)
+                piece--;
             double vi = sqrt(2.0 * fmax(W_kin - p->W[piece], 0.0) / m), u, v, P;
             on_piece(p, piece, vi, sg - t[piece], m, &u, &v, &P);
             if ((st = push_point(h, cap, grid[g], u, unloading ? -v : v, P, unloading, 0)))
@@ -336,9 +426,23 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
     } else {
         /* the state after u_max: c's state loaded to u_max (beyond an earlier maximum that is
          * the first state loaded to u_max as well) */
-        if ((st = ct_curve_unload(c, u_max, w->cur)) ||
-            (st = path_append(&w->unload, w->cur, ct_curve_first_contact(w->cur), u_max, 0.0)))
+        if (w->one_shot && w->first == c && w->nested) {
+            /* one impact from a virgin layer (ct_impact_history): the two-run unloading */
+            const size_t ne = ct_curve_event_count(c);
+            const size_t nc = count_upto(w->ev, w->nc, u_max),
+                         ny = count_upto(w->ev + 2 * ne, w->ny, u_max);
+            if ((st = pcurve_reserve(&w->pcur, nc + 2 * ny + 2)) ||
+                (st = unload_nested(w, u_max, nc, ny, &w->pcur)))
+                return st;
+            for (size_t i = 0; i < w->pcur.n; i++)
+                if ((st = path_push(&w->unload, w->pcur.x[i], w->pcur.P[i], w->pcur.k[i],
+                                    w->pcur.W[i])))
+                    return st;
+        } else if ((st = ct_curve_unload(c, u_max, w->cur)) ||
+                   (st = path_append(&w->unload, w->cur, ct_curve_first_contact(w->cur), u_max,
+                                     0.0))) {
             return st;
+        }
         if (!w->unload.n)
             return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
         up = &w->unload;
@@ -393,7 +497,8 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
             return st;
         }
     }
-    if (!res->elastic) { /* the state's new maximum: its unloading curve serves the next impact */
+    if (!res->elastic &&
+        !w->one_shot) { /* the new maximum: its unloading curve serves the next impact */
         ct_curve *t = w->prev;
         w->prev = w->cur;
         w->cur = t;
@@ -435,7 +540,10 @@ int ct_impact_history(const ct_bundle *b, double m, double v1, size_t grid, ct_i
         return st;
     }
     ct_dyn_reset(w);
-    if (!(st = ct_curve_build(c, b)) && !(st = ct_impact_eval(b, c, 0.5 * m * v1 * v1, NULL, res)))
+    w->one_shot = 1;
+    const ct_layer *L = ct_bundle_layer(b);
+    if (!(st = ct_curve_build(c, b)) && !(st = ct_dyn_prepare(w, c, L->sigma_y / L->E)) &&
+        !(st = ct_impact_eval(b, c, 0.5 * m * v1 * v1, NULL, res)))
         st = ct_dyn_impact(w, c, res, m, dyn, grid, hist);
     ct_dyn_work_free(w);
     ct_curve_free(c);
@@ -471,3 +579,322 @@ int ct_bounce(const ct_bundle *b, double m, double v1, size_t nmax, double v_sto
     return st;
 }
 
+/* ---- the sweep's fast path: no history, the first pieces of a branch by their moments ---- */
+
+int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, double eps_y)
+{
+    int st;
+    w->first = c;
+    w->eps_y = eps_y;
+    if (!w->one_shot && (st = pcurve_from_curve(&w->first_pc, c))) /* for the sweep's walks */
+        return st;
+    size_t ne = ct_curve_event_count(c);
+    if (7 * ne > w->evcap) {
+        double *e = realloc(w->ev, 7 * (ne ? ne : 1) * sizeof(double));
+        if (!e)
+            return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
+        w->ev = e;
+        w->evcap = 7 * (ne ? ne : 1);
+    }
+    double *cx = w->ev, *ck = cx + ne, *yy = ck + ne, *yc = yy + ne, *yL = yc + ne, *yk = yL + ne;
+    ct_curve_split_events(c, cx, ck, &w->nc, yy, yc, yL, yk, &w->ny);
+    for (size_t i = 0; i < w->ny; i++)
+        w->ev[6 * ne + i] = eps_y * yL[i];
+    w->monotone = 1;
+    for (size_t i = 1; i < w->ny && w->monotone; i++)
+        w->monotone = yc[i] >= yc[i - 1] && yL[i] <= yL[i - 1];
+    /* nested: the rods yield in the order they touch (every virgin layer: yield = top (1 -
+     * eps_y) + eps_y H* rises with the top), each contact paired with its own yield */
+    w->nested = w->monotone && w->nc == w->ny;
+    for (size_t i = 0; i < w->ny && w->nested; i++)
+        w->nested = cx[i] == yc[i] && ck[i] == yk[i];
+    return CT_OK;
+}
+
+/* Count of sorted values <= u. */
+static size_t count_upto(const double *v, size_t n, double u)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v[mid] <= u)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+static void add_comp(double *s, double *c, double x)
+{
+    double t = *s + x;
+    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
+    *s = t;
+}
+
+/* The nested case: the yielded rods are the first ny to touch, so their contacts and the
+ * contacts taken back cancel exactly (the same x, the same slope) and only two runs are
+ * left, of slopes that only add: the yielded rods' releases and the contacts of the rods
+ * still elastic (ny .. nc). All increments are positive: plain sums. */
+static int unload_nested(ct_dyn_work *w, double u_max, size_t nc, size_t ny, pcurve *out)
+{
+    const size_t ne = ct_curve_event_count(w->first);
+    const double *cx = w->ev, *ck = cx + ne, *yc = ck + 2 * ne, *yk = yc + 2 * ne, *eL = yk + ne;
+    size_t a = ny, r = 0, j = 0;
+    double k = 0.0, P = 0.0, W = 0.0, x_prev = 0.0;
+#define RELEASE(i) (u_max - eL[i] < yc[i] ? yc[i] : u_max - eL[i])
+    double xr = ny ? RELEASE(0) : INFINITY;
+    for (;;) {
+        double xa = a < nc ? cx[a] : INFINITY, x = xa < xr ? xa : xr;
+        if (x == INFINITY)
+            break;
+        if (j > 0) {
+            const double dx = x - x_prev, Pn = P + k * dx;
+            W += 0.5 * (P + Pn) * dx;
+            P = Pn;
+        }
+        if (j == 0 || x > x_prev) {
+            out->x[j] = x;
+            out->P[j] = P;
+            out->W[j] = W;
+            j++;
+        }
+        for (; a < nc && cx[a] == x; a++)
+            k += ck[a];
+        for (; r < ny && xr == x;) {
+            k += yk[r];
+            xr = ++r < ny ? RELEASE(r) : INFINITY;
+        }
+        out->k[j - 1] = k;
+        x_prev = x;
+    }
+#undef RELEASE
+    if (j == 0)
+        return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
+    if (x_prev < u_max) {
+        const double dx = u_max - x_prev, Pn = P + k * dx;
+        out->x[j] = u_max;
+        out->W[j] = W + 0.5 * (P + Pn) * dx;
+        out->P[j] = Pn;
+        out->k[j] = k;
+        j++;
+    }
+    out->n = j;
+    out->M1[0] = -1.0; /* moments: computed by walk where it needs them */
+    return CT_OK;
+}
+
+/* The unloading curve from u_max of the first curve's state (ct_curve_unload), merged from
+ * its three sorted runs without a sort when they are monotone. */
+static int unload_fast(ct_dyn_work *w, double u_max, pcurve *out)
+{
+    int st;
+    if (!w->monotone) {
+        if ((st = ct_curve_unload(w->first, u_max, w->cur)))
+            return st;
+        return pcurve_from_curve(out, w->cur);
+    }
+    const size_t ne = ct_curve_event_count(w->first);
+    const double *cx = w->ev, *ck = cx + ne, *yy = ck + ne, *yc = yy + ne, *yL = yc + ne,
+                 *yk = yL + ne;
+    const size_t nc = count_upto(cx, w->nc, u_max), ny = count_upto(yy, w->ny, u_max);
+    if ((st = pcurve_reserve(out, nc + 2 * ny + 2)))
+        return st;
+    if (w->nested)
+        return unload_nested(w, u_max, nc, ny, out);
+    size_t a = 0, b = 0, r = 0, j = 0;
+    double ks = 0.0, kc = 0.0, Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, k_prev = 0.0, P_prev = 0.0;
+    ptrdiff_t touching = 0;
+    const double *eL = w->ev + 6 * ne; /* eps_y L of each yield, once per sweep */
+#define RELEASE(i) (u_max - eL[i] < yc[i] ? yc[i] : u_max - eL[i])
+    double xr = ny ? RELEASE(0) : INFINITY;
+    for (;;) {
+        double xa = a < nc ? cx[a] : INFINITY, xb = b < ny ? yc[b] : INFINITY;
+        double x = xa < xb ? (xa < xr ? xa : xr) : (xb < xr ? xb : xr);
+        if (x == INFINITY)
+            break;
+        if (j > 0) {
+            const double dx = x - out->x[j - 1];
+            add_comp(&Ps, &Pc, k_prev * dx);
+            const double P = Ps + Pc;
+            add_comp(&Ws, &Wc, 0.5 * (P_prev + P) * dx);
+            P_prev = P;
+        }
+        for (; a < nc && cx[a] == x; a++, touching++)
+            add_comp(&ks, &kc, ck[a]);
+        for (; b < ny && yc[b] == x; b++, touching--)
+            add_comp(&ks, &kc, -yk[b]);
+        for (; r < ny && xr == x; touching++) {
+            add_comp(&ks, &kc, yk[r]);
+            xr = ++r < ny ? RELEASE(r) : INFINITY;
+        }
+        if (touching == 0)
+            ks = kc = 0.0;
+        k_prev = ks + kc > 0.0 ? ks + kc : 0.0;
+        if (j == 0 && touching == 0)
+            continue;
+        out->x[j] = x;
+        out->P[j] = P_prev;
+        out->W[j] = Ws + Wc;
+        out->k[j] = k_prev;
+        j++;
+    }
+#undef RELEASE
+    if (j == 0)
+        return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
+    if (out->x[j - 1] < u_max) {
+        const double dx = u_max - out->x[j - 1];
+        add_comp(&Ps, &Pc, k_prev * dx);
+        add_comp(&Ws, &Wc, 0.5 * (P_prev + Ps + Pc) * dx);
+        out->x[j] = u_max;
+        out->P[j] = Ps + Pc;
+        out->W[j] = Ws + Wc;
+        out->k[j] = k_prev;
+        j++;
+    }
+    out->n = j;
+    pcurve_moments(out);
+    return CT_OK;
+}
+
+/* Largest i with c->x[i] <= u. */
+static size_t pc_piece(const pcurve *c, double u)
+{
+    size_t lo = 0, hi = c->n;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (c->x[mid] <= u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* Time from A's first point (work 0, speed sqrt(2 W_kin / m)) to where the work reaches
+ * W_kin; beyond endA the path goes on along B with its work shifted by dW (B NULL: A goes
+ * on). While the work is below 1e-5 W_kin the speed is v0 (1 - W / W_kin)^(-1/2), whose
+ * series to second order integrates to (dx + M1 / (2 W_kin) + 3 M2 / (8 W_kin^2)) / v0
+ * (error below 5/16 (1e-5)^3 relative); then piece by piece. *kmax (not NULL) gets the
+ * stiffest piece passed. */
+static double walk(const pcurve *A, double endA, const pcurve *B, double dW, double W_kin, double m,
+                   double *kmax)
+{
+    const double v0 = sqrt(2.0 * W_kin / m), delta = 1e-5 * W_kin;
+    size_t lo = 0, hi = A->n;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (A->W[mid] <= delta && A->x[mid] <= endA)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    size_t i = lo;
+    double M1 = 0.0, M2 = 0.0;
+    if (A->M1[0] < 0.0) { /* moments not kept: the prefix's own pieces */
+        for (size_t q = 0; q < i; q++) {
+            const double d = A->x[q + 1] - A->x[q], a = A->W[q], b = A->P[q], k = A->k[q];
+            M1 += d * (a + d * (0.5 * b + d * k / 6.0));
+            M2 += d * (a * a + d * (a * b + d * ((b * b + a * k) / 3.0 +
+                                                 d * (0.25 * b * k + d * k * k / 20.0))));
+        }
+    } else {
+        M1 = A->M1[i];
+        M2 = A->M2[i];
+    }
+    double t = (A->x[i] - A->x[0] + M1 / (2.0 * W_kin) + 3.0 * M2 / (8.0 * W_kin * W_kin)) / v0;
+    const pcurve *C = A;
+    double end = B ? endA : INFINITY, off = 0.0, km = 0.0;
+    double x = A->x[i], P = A->P[i], k = A->k[i], W = A->W[i];
+    double v = sqrt(2.0 * (W_kin - W) / m);
+    for (;;) {
+        int on_point = i + 1 < C->n && C->x[i + 1] < end;
+        double xn = on_point ? C->x[i + 1] : end;
+        double d = xn - x;
+        double Wn =
+            on_point ? C->W[i + 1] + off : (isinf(xn) ? INFINITY : W + d * (P + 0.5 * k * d));
+        km = k > km ? k : km;
+        if (!(Wn < W_kin)) {
+            t += turn_time(P, k, m, v);
+            break;
+        }
+        double vn = sqrt(2.0 * (W_kin - Wn) / m);
+        t += piece_time(d, k, m, v, vn);
+        v = vn;
+        if (on_point) {
+            i++;
+            x = C->x[i];
+            P = C->P[i];
+            k = C->k[i];
+            W = Wn;
+        } else { /* A ends: B from here */
+            size_t j = pc_piece(B, end);
+            double s = end - B->x[j];
+            x = end;
+            P = B->P[j] + B->k[j] * s;
+            k = B->k[j];
+            off = dW;
+            W = B->W[j] + s * (B->P[j] + 0.5 * B->k[j] * s) + off;
+            C = B;
+            i = j;
+            end = INFINITY;
+        }
+    }
+    if (kmax)
+        *kmax = km;
+    return t;
+}
+
+static double pc_force(const pcurve *c, double u)
+{
+    size_t j = pc_piece(c, u);
+    return c->P[j] + c->k[j] * (u - c->x[j]);
+}
+
+static double pc_work(const pcurve *c, double u)
+{
+    size_t j = pc_piece(c, u);
+    double s = u - c->x[j];
+    return c->W[j] + s * (c->P[j] + 0.5 * c->k[j] * s);
+}
+
+int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn)
+{
+    int st;
+    const double W_kin = res->kinetic_energy, u_max = res->u_max;
+    double t_load, kmax;
+    const pcurve *F = &w->first_pc;
+    if (!w->have_prev) {
+        t_load = walk(F, INFINITY, NULL, 0.0, W_kin, m, &kmax);
+        dyn->P_peak = pc_force(F, u_max);
+    } else if (u_max <= w->U) {
+        t_load = walk(&w->pprev, INFINITY, NULL, 0.0, W_kin, m, &kmax);
+        dyn->P_peak = pc_force(&w->pprev, u_max);
+    } else {
+        const pcurve *A = &w->pprev;
+        t_load = walk(A, w->U, F, A->W[A->n - 1] - pc_work(F, w->U), W_kin, m, &kmax);
+        dyn->P_peak = pc_force(F, u_max);
+    }
+    double W_back = W_kin, t_unload = t_load;
+    if (!res->elastic) {
+        if ((st = unload_fast(w, u_max, &w->pcur)))
+            return st;
+        W_back = w->pcur.W[w->pcur.n - 1];
+        t_unload = walk(&w->pcur, INFINITY, NULL, 0.0, W_back, m, &kmax);
+        pcurve t = w->pprev;
+        w->pprev = w->pcur;
+        w->pcur = t;
+        w->U = u_max;
+        w->have_prev = 1;
+    }
+    dyn->t_load = t_load;
+    dyn->t_unload = t_unload;
+    dyn->t_contact = t_load + t_unload;
+    dyn->v1 = sqrt(2.0 * W_kin / m);
+    dyn->v2 = sqrt(2.0 * W_back / m);
+    dyn->e_kinematic = dyn->v2 / dyn->v1;
+    dyn->dissipated = W_kin - W_back;
+    dyn->k_unload_max = kmax;
+    dyn->period_min = kmax > 0.0 ? 6.283185307179586 * sqrt(m / kmax) : INFINITY;
+    return CT_OK;
+}

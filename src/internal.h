@@ -81,6 +81,11 @@ void ct_curve_view_of(const ct_curve *c, ct_curve_view *v);
  * for u <= u_max: every rod in contact unloads along its elastic line from its release
  * point); its last breakpoint is u_max. */
 int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out);
+/* The events of the last build (ct_curve_event_count of them), split in order: contacts at
+ * cx with slope ck; yields at yy of rods with contact yc, length yL and slope yk. */
+size_t ct_curve_event_count(const ct_curve *c);
+void ct_curve_split_events(const ct_curve *c, double *cx, double *ck, size_t *nc, double *yy,
+                           double *yc, double *yL, double *yk, size_t *ny);
 
 /* ---- the impact in time (src/dynamics.c), for the sweep ---- */
 
@@ -95,6 +100,11 @@ void ct_dyn_reset(ct_dyn_work *w);
  * uniform points. A plastic impact becomes the state of the next call. */
 int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res, double m,
                   ct_dynamics *dyn, size_t grid, ct_history *hist);
+/* The sweep's fast path, on the first curve c (prepared once: its moments, its events): the
+ * same impacts as ct_dyn_impact on c, without histories, the first pieces of each branch by
+ * their moments. ct_dyn_reset starts a speed. */
+int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, double eps_y);
+int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn);
 
 /* ---- impacts on a curve (src/impact.c), for the sweep ---- */
 

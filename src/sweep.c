@@ -428,6 +428,8 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
         goto done;
     if ((st = ct_curve_build(first, b)))
         goto done;
+    if (dw && (st = ct_dyn_prepare(dw, first, L->sigma_y / L->E)))
+        goto done;
     by_state = calloc(s->nvel ? s->nvel : 1, 1);
     if (!by_state) {
         st = ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
@@ -509,7 +511,7 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
                     ct_sweep_row *row = &rows[v * impacts + i];
                     if (row->status)
                         break;
-                    int rs = ct_dyn_impact(dw, first, &row->r, unit_mass(L), &row->dyn, 0, NULL);
+                    int rs = ct_dyn_impact_fast(dw, &row->r, unit_mass(L), &row->dyn);
                     if (rs) {
                         fail_from(rows, impacts, v, i, rs, ct_error_message());
                         break;

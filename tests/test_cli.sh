@@ -29,6 +29,18 @@ expect() {
     ok
 }
 
+# Device files used by the tests: as root, private copies made with mknod, so that a broken
+# build (the mutation check runs this script against deliberate mistakes, as root in CI) can
+# never replace the system's /dev/null or /dev/full; otherwise the system's (a non-root
+# process cannot replace them). Links like /dev/stdout likewise point from $tmp.
+devnull=/dev/null devfull=/dev/full
+if [ "$(id -u)" -eq 0 ] && mknod "$tmp/null" c 1 3 2>/dev/null && mknod "$tmp/full" c 1 7 2>/dev/null; then
+    chmod 666 "$tmp/null" "$tmp/full"
+    devnull=$tmp/null devfull=$tmp/full
+fi
+ln -s /proc/self/fd/1 "$tmp/stdout_link"
+ln -s /proc/self/fd/2 "$tmp/stderr_link"
+
 cat >"$tmp/s.ini" <<INI
 [surface]
 fx = 1.5
@@ -138,9 +150,9 @@ reader=$!
 expect 0 "output to a FIFO" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/fifo"
 wait $reader
 [ -p "$tmp/fifo" ] && [ "$(wc -l <"$tmp/fifo.out")" -eq 4 ] && ok || bad "FIFO replaced or not written"
-if [ -c /dev/null ]; then
-    expect 0 "output to /dev/null" -- "$ct" run -q "$tmp/s.ini" -o /dev/null
-    [ -c /dev/null ] && ok || bad "/dev/null is no longer a device"
+if [ -c "$devnull" ]; then
+    expect 0 "output to a null device" -- "$ct" run -q "$tmp/s.ini" -o "$devnull"
+    [ -c "$devnull" ] && ok || bad "$devnull is no longer a device"
 fi
 expect 2 "output to a directory" -- "$ct" run -q "$tmp/s.ini" -o "$tmp"
 
@@ -180,11 +192,13 @@ ln -s target.csv "$tmp/link.csv"
 expect 0 "output through a symbolic link" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/link.csv"
 [ -L "$tmp/link.csv" ] && [ "$(wc -l <"$tmp/target.csv")" -eq 4 ] && ok ||
     bad "symbolic link replaced, or its target not written"
-# /dev/stdout and /dev/stderr (links to a pipe, a file, a terminal) are written in place
-"$ct" run -q "$tmp/s.ini" -o /dev/stdout | cat >"$tmp/devstdout.csv"
-[ "$(wc -l <"$tmp/devstdout.csv")" -eq 4 ] && ok || bad "-o /dev/stdout into a pipe"
-"$ct" run -q "$tmp/s.ini" -o /dev/stderr 2>"$tmp/devstderr.csv"
-[ "$(wc -l <"$tmp/devstderr.csv")" -eq 4 ] && ok || bad "-o /dev/stderr into a file"
+# links to /proc/self/fd/1 and 2, as /dev/stdout and /dev/stderr are (to a pipe, a file)
+"$ct" run -q "$tmp/s.ini" -o "$tmp/stdout_link" | cat >"$tmp/devstdout.csv"
+[ "$(wc -l <"$tmp/devstdout.csv")" -eq 4 ] && [ -L "$tmp/stdout_link" ] && ok ||
+    bad "-o a link to stdout (a pipe)"
+"$ct" run -q "$tmp/s.ini" -o "$tmp/stderr_link" 2>"$tmp/devstderr.csv"
+[ "$(wc -l <"$tmp/devstderr.csv")" -eq 4 ] && [ -L "$tmp/stderr_link" ] && ok ||
+    bad "-o a link to stderr (a file)"
 ln -s nowhere/x.csv "$tmp/dangling.csv"
 expect 2 "output through a dangling link" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/dangling.csv"
 grep -q "symbolic link" "$tmp/err" && ok || bad "dangling link message: $(cat "$tmp/err")"
@@ -202,8 +216,8 @@ cp "$tmp/s.ini" "$tmp/mode_old.csv" && chmod 604 "$tmp/mode_old.csv"
 "$ct" run -q "$tmp/s.ini" -o "$tmp/mode_old.csv" && [ "$(stat -c %a "$tmp/mode_old.csv")" = 604 ] &&
     ok || bad "existing file mode not kept: $(stat -c %a "$tmp/mode_old.csv")"
 # several outputs land together or not at all: the curve goes to a device that refuses it
-if [ -e /dev/full ]; then
-    ln -s /dev/full "$tmp/both_curve.csv"
+if [ -e "$devfull" ]; then
+    ln -s "$devfull" "$tmp/both_curve.csv"
     expect 2 "one of two outputs fails at commit" -- "$ct" run -q "$tmp/s.ini" \
         --set output.what=e,curve -o "$tmp/both.csv"
     [ ! -e "$tmp/both.csv" ] && ok || bad "the e output landed although the curve failed"
@@ -286,8 +300,8 @@ if paste -d, "$tmp/pruned.csv" "$tmp/kept.csv" | awk -F, -v n=9 '
           if (d > 1e-12 * m) { print "row " NR " column " c ": " a " vs " b; bad = 1 }
       } }
     END { exit bad || rows != 93 }'; then ok; else bad "pruning changed a reported number"; fi
-grep -q "left out as never touched" <("$ct" run "$scene" --set surface.depth=20 -o /dev/null 2>&1) &&
-    ! grep -q " 0 left out" <("$ct" run "$scene" --set surface.depth=20 -o /dev/null 2>&1) &&
+grep -q "left out as never touched" <("$ct" run "$scene" --set surface.depth=20 -o "$tmp/leftout.csv" 2>&1) &&
+    ! grep -q " 0 left out" <("$ct" run "$scene" --set surface.depth=20 -o "$tmp/leftout.csv" 2>&1) &&
     ok || bad "the default scene at depth 20 leaves rods out (else the check above is empty)"
 
 echo "$pass passed, $failn failed"

@@ -188,7 +188,7 @@ static void out_of_range(void **state)
     const char *sets_q[] = {"solver.quadrature=magic"};
     expect_error(good, sets_q, 1, "solver.quadrature", "breakpoints");
     const char *sets_w[] = {"output.what=e,pictures"};
-    expect_error(good, sets_w, 1, "output.what", "e, curve, profile");
+    expect_error(good, sets_w, 1, "output.what", "e, time, curve");
     const char *sets_s[] = {"surface.representation=segments"};
     expect_error(good, sets_s, 1, "segments", "integer surface.depth");
     const char *sets_both[] = {"impact.mass=1"};
