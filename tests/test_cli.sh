@@ -156,6 +156,73 @@ if [ -c "$devnull" ]; then
 fi
 expect 2 "output to a directory" -- "$ct" run -q "$tmp/s.ini" -o "$tmp"
 
+# --- the impact in time ---
+# time columns: e_kinematic equals e; with a mass, seconds are t / tau times tau
+expect 0 "what = e,time" -- "$ct" run -q "$tmp/s.ini" --set output.what=e,time
+head -1 "$tmp/out" | grep -q ",t_contact_over_tau,t_load_over_tau,t_unload_over_tau,P_peak_over_PY,e_kinematic," &&
+    ! head -1 "$tmp/out" | grep -q "_s," && ok || bad "time header: $(head -1 "$tmp/out")"
+awk -F, 'NR > 1 { d = $4 - $14; if (d < 0) d = -d; if (d > 1e-12 || $10 != $11 + $12) exit 1 }' "$tmp/out" &&
+    ok || bad "e_kinematic or t_contact columns"
+cat >"$tmp/phys.ini" <<INI
+[surface]
+fx = 1.5
+fz = 1.3
+H = 10
+h0 = 2e-6
+l0 = 1e-3
+[material]
+E = 2e11
+sigma_y = 4e8
+[impact]
+mass = 0.01
+velocity = 0.05, 0.5
+[output]
+what = e,time
+INI
+expect 0 "time columns in seconds" -- "$ct" run -q "$tmp/phys.ini"
+# tau = sqrt(m h0 / (E l0)) = sqrt(0.01 * 2e-6 / (2e11 * 1e-3)) = 1e-8 s; P_Y = sigma_y l0 = 4e5 N/m
+awk -F, 'NR > 1 { r = $17 / ($10 * 1e-8) - 1; p = $20 / ($13 * 4e5) - 1; if (r * r > 1e-26 || p * p > 1e-26) exit 1 }' "$tmp/out" &&
+    ok || bad "seconds columns: $(cat "$tmp/out")"
+# history: every event and the grid, in time order, the last point at t_contact
+expect 0 "what = history" -- "$ct" run -q "$tmp/s.ini" --set output.what=history \
+    --set impact.V_star=1e-3 --set output.history_points=50
+awk -F, 'NR == 1 { next } { if ($3 < t) exit 1; t = $3; grid += ($8 == 0); n++ } END { exit !(grid == 50 && n > 100) }' "$tmp/out" &&
+    ok || bad "history rows"
+expect 0 "what = e,time,history" -- "$ct" run -q "$tmp/s.ini" --set output.what=e,time,history \
+    --set impact.V_star=1e-3 -o "$tmp/eh.csv"
+tc=$(awk -F, 'NR == 2 { print $10 }' "$tmp/eh.csv")
+last=$(tail -1 "$tmp/eh_history.csv" | cut -d, -f3)
+awk -v a="$tc" -v b="$last" 'BEGIN { d = a / b - 1; exit !(d * d < 1e-24) }' && ok || bad "history ends at t_contact ($tc vs $last)"
+# bounce: from a drop height, the state carried; a constant-e bounce beside it
+cat >"$tmp/bounce.ini" <<INI
+[surface]
+fx = 1.5
+fz = 1.3
+H = 10
+h0 = 2e-6
+l0 = 1e-3
+[material]
+E = 2e11
+sigma_y = 4e8
+[impact]
+mass = 0.01
+drop_height = 0.05
+sequence = bounce
+impacts = 5
+gravity = 9.81
+INI
+expect 0 "bounce sequence" -- "$ct" run -q "$tmp/bounce.ini"
+# v_in of bounce 1 = sqrt(2 g h); each v_in is the previous v_out; heights v_out^2 / (2 g)
+awk -F, 'NR == 2 { d = $3 / sqrt(2 * 9.81 * 0.05) - 1; if (d * d > 1e-28) exit 1 }
+         NR > 2 { d = $3 / prev - 1; if (d * d > 1e-28) exit 1 }
+         NR > 1 { prev = $5; h = $5 * $5 / (2 * 9.81); d = $11 / h - 1; if (d * d > 1e-26) exit 1; n++ }
+         END { exit n != 5 }' "$tmp/out" && ok || bad "bounce table: $(cat "$tmp/out")"
+expect 2 "bounce without a mass" -- "$ct" run -q "$tmp/s.ini" --set impact.sequence=bounce
+expect 2 "drop_height with velocity" -- "$ct" run -q "$tmp/phys.ini" --set impact.drop_height=1
+expect 2 "stop_speed without bounce" -- "$ct" run -q "$tmp/phys.ini" --set impact.stop_speed=0.1
+expect 2 "what = bounce without a sequence" -- "$ct" run -q "$tmp/phys.ini" --set output.what=bounce
+expect 2 "history_points out of range" -- "$ct" run -q "$tmp/s.ini" --set output.history_points=-1
+
 # --- physics that must not break on valid input ---
 # scale: e depends on the dimensionless groups alone, so a scene at l0 = 1e200, h0 = 1e-200
 # or sigma_y = 1e250 (E scaled alike) gives the very bytes of the unit scene
@@ -268,7 +335,7 @@ else
 fi
 # standard output is spooled to disk, not memory: 1500 load curves (about 60 MB) to stdout
 # in a resident size under half of that
-if [ -x /usr/bin/time ]; then
+if [ -x /usr/bin/time ] && [ -z "${ASAN_OPTIONS:-}" ]; then # ASan's own memory would count
     /usr/bin/time -f %M -o "$tmp/rss" "$ct" run -q "$tmp/s.ini" \
         --set impact.V_star=1e-4:1e-2:1500:log --set output.what=curve |
         wc -c >"$tmp/bytes"
