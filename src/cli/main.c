@@ -5,6 +5,7 @@
 #include "number.h"
 #include "output.h"
 #include "scene.h"
+#include "table.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -29,6 +30,8 @@ static const char *main_help =
     "                   compare)\n"
     "  geometry SCENE   print the Cantor geometry of the scene's surface\n"
     "  merge SCENE PART.csv...  combine the realisations of runs with --realisations a:b\n"
+    "  table SCENE      e(V*) as a table whose interpolation meets [table] tolerance (for DEM\n"
+    "                   codes: include/cantact_table.h reads it)\n"
     "\n"
     "Options:\n"
     "  -h, --help       this help (also: cantact <subcommand> --help)\n"
@@ -746,6 +749,8 @@ static int dispatch(int argc, char **argv)
     }
     if (!strcmp(cmd, "merge"))
         return ct_cli_merge(argc - 2, argv + 2);
+    if (!strcmp(cmd, "table"))
+        return ct_cli_table(argc - 2, argv + 2);
     if (!strcmp(cmd, "geometry"))
         return cmd_geometry(argc - 2, argv + 2);
     fprintf(stderr, "cantact: unknown subcommand '%s' (try cantact --help)\n", cmd);

@@ -17,7 +17,7 @@ typedef struct {
     ct_surface_type surface_type;
     ct_params params;   /* as given; the CLI computes a Cantor scene in dimensionless form */
     ct_params physical; /* the parameters as given, once the CLI made params dimensionless */
-    long depth; /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
+    long depth;         /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
     ct_representation representation;
     double *V_star; /* velocities, dimensionless, in input order */
     size_t nvel;
@@ -36,6 +36,12 @@ typedef struct {
     uint64_t realisation;    /* the one realisation of a run without [ensemble] */
     uint64_t realisations;   /* [ensemble] realisations; 0: no ensemble */
     ct_ensemble_split split; /* [ensemble] split */
+    double mass;             /* [impact] mass as given (0: V_star given) */
+    /* [table] (cantact table, src/cli/table.c) */
+    double table_tolerance;          /* largest |e_table - e|, absolute */
+    double table_V_min, table_V_max; /* the table's V* range */
+    ct_interp table_interpolation;
+    long table_max_nodes, table_check_points;
 } ct_scene;
 
 /* The scene's random Cantor surface (type = random_cantor). */
