@@ -199,13 +199,20 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
             while (kl && key[kl - 1] == ' ')
                 kl--;
             key[kl] = '\0';
-            const char *v = eq + 1;
-            while (*v == ' ')
-                v++;
+            char v[64]; /* the value's first word: a comment may follow it */
+            const char *w = eq + 1;
+            size_t vl = 0;
+            while (*w == ' ')
+                w++;
+            while (w[vl] && w[vl] != ' ' && w[vl] != '\t' && w[vl] != '\n' && w[vl] != '\r' &&
+                   vl + 1 < sizeof v)
+                vl++;
+            memcpy(v, w, vl);
+            v[vl] = '\0';
             if (!strcmp(key, "interpolation")) {
-                if (!strncmp(v, "monotone_cubic", 14))
+                if (!strcmp(v, "monotone_cubic"))
                     t->rule = CT_TAB_MONOTONE_CUBIC;
-                else if (!strncmp(v, "linear", 6))
+                else if (!strcmp(v, "linear"))
                     t->rule = CT_TAB_LINEAR;
                 else
                     CT_TAB_FAIL("interpolation: must be monotone_cubic or linear");

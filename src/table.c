@@ -349,21 +349,14 @@ static int check_spec(const ct_table_spec *s)
 int ct_table_build(ct_table **out, const ct_bundle *b, const ct_table_spec *spec)
 {
     CT_NEED(out);
+    *out = NULL;
     CT_NEED(b);
     CT_NEED(spec);
-    *out = NULL;
     int st;
     if ((st = check_spec(spec)))
         return st;
     const size_t K = spec->check_points;
     const double tol = spec->tolerance;
-    const ct_layer *L = ct_bundle_layer(b);
-    const double scale = L->l0 * L->E * L->h0;
-    double W_crit, u_yield;
-    if ((st = ct_critical_energy(b, &W_crit, &u_yield)))
-        return st;
-    const double Vc = sqrt(W_crit / scale);
-
     exact_ctx ex = {.b = b, .spec = spec};
     dlist kinks = {0}, nodes = {0}, ne = {0}, newV = {0};
     double *chk = NULL, *nchk = NULL, *vals = NULL, *errs = NULL;
@@ -373,8 +366,12 @@ int ct_table_build(ct_table **out, const ct_bundle *b, const ct_table_spec *spec
         st = ct_error_set(CT_ENOMEM, "table: out of memory");
         goto done;
     }
-    if ((st = ct_curve_alloc(&ex.curve)) ||
-        (st = kink_speeds(b, ex.curve, fmax(spec->V_min, Vc), spec->V_max, &kinks)))
+    /* V*_c as every sweep reports it (and V_max's impact must be computable at all) */
+    double e_top;
+    if ((st = ct_curve_alloc(&ex.curve)) || (st = exact_e(&ex, &spec->V_max, 1, &e_top)))
+        goto done;
+    const double Vc = ex.rows[0].r.V_star_crit;
+    if ((st = kink_speeds(b, ex.curve, fmax(spec->V_min, Vc), spec->V_max, &kinks)))
         goto done;
 
     /* first nodes: the ends, V*_c, two per decade above V*_c */
