@@ -1,0 +1,155 @@
+/* Struct layouts as the C compiler makes them, for python/tests/test_layout.py: it compares
+ * them with the cffi declarations of python/cantact/_ffi.py (ABI mode trusts those). Every
+ * struct the module declares is listed; "name size" then "name.field offset" lines. */
+#include <stddef.h>
+#include <stdio.h>
+
+#include "cantact.h"
+
+#define SIZE(T) printf(#T " %zu\n", sizeof(T))
+#define FIELD(T, f) printf(#T "." #f " %zu\n", offsetof(T, f))
+
+int main(void)
+{
+    SIZE(ct_params);
+    FIELD(ct_params, fx);
+    FIELD(ct_params, fz);
+    FIELD(ct_params, l0);
+    FIELD(ct_params, h0);
+    FIELD(ct_params, Hstar);
+    FIELD(ct_params, E);
+    FIELD(ct_params, sigma_y);
+    SIZE(ct_layer);
+    FIELD(ct_layer, E);
+    FIELD(ct_layer, sigma_y);
+    FIELD(ct_layer, Hstar);
+    FIELD(ct_layer, l0);
+    FIELD(ct_layer, h0);
+    SIZE(ct_rod_info);
+    FIELD(ct_rod_info, top);
+    FIELD(ct_rod_info, length);
+    FIELD(ct_rod_info, area);
+    FIELD(ct_rod_info, plastic_strain);
+    FIELD(ct_rod_info, x_left);
+    FIELD(ct_rod_info, x_right);
+    FIELD(ct_rod_info, stage);
+    SIZE(ct_impact_opts);
+    FIELD(ct_impact_opts, rule);
+    FIELD(ct_impact_opts, nodes);
+    FIELD(ct_impact_opts, tolerance);
+    FIELD(ct_impact_opts, check);
+    SIZE(ct_impact_result);
+    FIELD(ct_impact_result, kinetic_energy);
+    FIELD(ct_impact_result, V_star);
+    FIELD(ct_impact_result, u_contact);
+    FIELD(ct_impact_result, u_max);
+    FIELD(ct_impact_result, u_release);
+    FIELD(ct_impact_result, W_load);
+    FIELD(ct_impact_result, W_unload);
+    FIELD(ct_impact_result, W_load_closed);
+    FIELD(ct_impact_result, W_unload_closed);
+    FIELD(ct_impact_result, e);
+    FIELD(ct_impact_result, e_closed);
+    FIELD(ct_impact_result, quad_error);
+    FIELD(ct_impact_result, e_rounding);
+    FIELD(ct_impact_result, V_star_crit);
+    FIELD(ct_impact_result, elastic);
+    SIZE(ct_cantor_plan);
+    FIELD(ct_cantor_plan, params);
+    FIELD(ct_cantor_plan, depth);
+    FIELD(ct_cantor_plan, representation);
+    FIELD(ct_cantor_plan, depth_tolerance);
+    FIELD(ct_cantor_plan, V_star);
+    FIELD(ct_cantor_plan, nvel);
+    FIELD(ct_cantor_plan, impacts);
+    FIELD(ct_cantor_plan, opts);
+    FIELD(ct_cantor_plan, keep_all_rods);
+    FIELD(ct_cantor_plan, threads);
+    SIZE(ct_plan_info);
+    FIELD(ct_plan_info, depth);
+    FIELD(ct_plan_info, bound);
+    FIELD(ct_plan_info, rods);
+    FIELD(ct_plan_info, omitted);
+    FIELD(ct_plan_info, u_reach);
+    SIZE(ct_sweep_row);
+    FIELD(ct_sweep_row, speed);
+    FIELD(ct_sweep_row, impact);
+    FIELD(ct_sweep_row, V_star);
+    FIELD(ct_sweep_row, status);
+    FIELD(ct_sweep_row, message);
+    FIELD(ct_sweep_row, r);
+    SIZE(ct_sweep_spec);
+    FIELD(ct_sweep_spec, V_star);
+    FIELD(ct_sweep_spec, nvel);
+    FIELD(ct_sweep_spec, impacts);
+    FIELD(ct_sweep_spec, opts);
+    FIELD(ct_sweep_spec, stop_on_error);
+    FIELD(ct_sweep_spec, progress);
+    FIELD(ct_sweep_spec, progress_ctx);
+    FIELD(ct_sweep_spec, observe);
+    FIELD(ct_sweep_spec, observe_ctx);
+    FIELD(ct_sweep_spec, path);
+    FIELD(ct_sweep_spec, curve);
+    SIZE(ct_random_cantor);
+    FIELD(ct_random_cantor, params);
+    FIELD(ct_random_cantor, dist);
+    FIELD(ct_random_cantor, fx_spread);
+    FIELD(ct_random_cantor, fz_spread);
+    FIELD(ct_random_cantor, depth);
+    FIELD(ct_random_cantor, seed);
+    SIZE(ct_ensemble_spec);
+    FIELD(ct_ensemble_spec, surface);
+    FIELD(ct_ensemble_spec, first);
+    FIELD(ct_ensemble_spec, count);
+    FIELD(ct_ensemble_spec, V_star);
+    FIELD(ct_ensemble_spec, nvel);
+    FIELD(ct_ensemble_spec, impacts);
+    FIELD(ct_ensemble_spec, opts);
+    FIELD(ct_ensemble_spec, path);
+    FIELD(ct_ensemble_spec, stop_on_error);
+    FIELD(ct_ensemble_spec, threads);
+    FIELD(ct_ensemble_spec, split);
+    FIELD(ct_ensemble_spec, progress);
+    FIELD(ct_ensemble_spec, progress_ctx);
+    SIZE(ct_ensemble_samples);
+    FIELD(ct_ensemble_samples, first);
+    FIELD(ct_ensemble_samples, count);
+    FIELD(ct_ensemble_samples, nrows);
+    FIELD(ct_ensemble_samples, e);
+    FIELD(ct_ensemble_samples, u_max);
+    FIELD(ct_ensemble_samples, V_star_crit);
+    FIELD(ct_ensemble_samples, status);
+    FIELD(ct_ensemble_samples, fx_clipped);
+    FIELD(ct_ensemble_samples, fz_clipped);
+    FIELD(ct_ensemble_samples, draws);
+    FIELD(ct_ensemble_samples, quad_error_max);
+    FIELD(ct_ensemble_samples, failed_realisation);
+    FIELD(ct_ensemble_samples, failed_row);
+    FIELD(ct_ensemble_samples, message);
+    SIZE(ct_stats);
+    FIELD(ct_stats, n);
+    FIELD(ct_stats, mean);
+    FIELD(ct_stats, sd);
+    FIELD(ct_stats, sem);
+    FIELD(ct_stats, q05);
+    FIELD(ct_stats, q50);
+    FIELD(ct_stats, q95);
+    SIZE(ct_table_spec);
+    FIELD(ct_table_spec, V_min);
+    FIELD(ct_table_spec, V_max);
+    FIELD(ct_table_spec, tolerance);
+    FIELD(ct_table_spec, interpolation);
+    FIELD(ct_table_spec, max_nodes);
+    FIELD(ct_table_spec, check_points);
+    FIELD(ct_table_spec, opts);
+    FIELD(ct_table_spec, path);
+    SIZE(ct_table_info);
+    FIELD(ct_table_info, V_star_crit);
+    FIELD(ct_table_info, worst_error);
+    FIELD(ct_table_info, worst_V_star);
+    FIELD(ct_table_info, checked);
+    FIELD(ct_table_info, kinks);
+    FIELD(ct_table_info, rounds);
+    FIELD(ct_table_info, evaluations);
+    return 0;
+}
