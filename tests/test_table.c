@@ -353,6 +353,34 @@ static void default_cantor(void **state)
     ct_bundle_free(b);
 }
 
+/* The rule of cantact_table.h, written here from the cubic Hermite basis (h00, h10, h01,
+ * h11) and the secant, against the library's evaluation of tables made from given nodes. */
+static void rule_from_the_basis(void **state)
+{
+    (void)state;
+    double V[4] = {0.5, 1.0, 3.0, 4.0}, e[4] = {1.0, 0.8, 0.3, 0.35}, d[4] = {0.0, -0.4, 0.2, 0.1};
+    for (int rule = 0; rule < 2; rule++) {
+        ct_table *t;
+        assert_int_equal(ct_table_from_nodes(&t, 4, V, e, d, (ct_interp)rule, 0.25), CT_OK);
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k <= 40; k++) {
+                const double x0 = log(V[i]), x1 = log(V[i + 1]), h = x1 - x0;
+                const double x = x0 + h * k / 40.0, tt = (x - x0) / h;
+                const double h00 = 2 * tt * tt * tt - 3 * tt * tt + 1,
+                             h10 = tt * tt * tt - 2 * tt * tt + tt,
+                             h01 = -2 * tt * tt * tt + 3 * tt * tt, h11 = tt * tt * tt - tt * tt;
+                const double want =
+                    rule == CT_INTERP_LINEAR
+                        ? e[i] + (e[i + 1] - e[i]) * tt
+                        : h00 * e[i] + h10 * h * d[i] + h01 * e[i + 1] + h11 * h * d[i + 1];
+                assert_true(fabs(ct_table_eval(t, exp(x)) - want) <= 1e-14);
+            }
+        assert_true(ct_table_eval(t, 0.25) == 1.0 && ct_table_eval(t, 0.3) == e[0]);
+        assert_true(ct_table_eval(t, 10.0) == e[3]);
+        ct_table_free(t);
+    }
+}
+
 static void bad_input(void **state)
 {
     (void)state;
@@ -412,7 +440,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(two_rods_cubic),   cmocka_unit_test(two_rods_linear),
         cmocka_unit_test(pchip_conditions), cmocka_unit_test(reader_round_trip),
-        cmocka_unit_test(default_cantor),   cmocka_unit_test(bad_input),
+        cmocka_unit_test(default_cantor),   cmocka_unit_test(rule_from_the_basis),
+        cmocka_unit_test(bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
