@@ -82,7 +82,8 @@ static const char *run_help =
     "[material] E sigma_y;\n"
     "[impact] V_star | mass velocity, impacts; [solver] quadrature nodes tolerance\n"
     "depth_tolerance threads on_error (stop|skip) check (closed|none) path (auto|curve|rods);\n"
-    "[output] file what.\n"
+    "[output] file what; [table] tolerance V_star interpolation max_nodes check_points\n"
+    "(cantact table).\n"
     "See README.md.\n";
 
 static const char *geometry_help =
