@@ -77,6 +77,12 @@ has lin.csv "^# interpolation = linear" "linear header"
 expect 0 "table to stdout" -- "$ct" table -q "$tmp/s.ini"
 grep -q "^V_star,e,de_dlnV_star$" "$tmp/out" && ok || bad "stdout table"
 
+# the thread count changes no byte
+OMP_NUM_THREADS=1 "$ct" table -q "$tmp/s.ini" -o "$tmp/t1.csv"
+OMP_NUM_THREADS=2 "$ct" table -q "$tmp/s.ini" --set solver.threads=2 -o "$tmp/t2.csv"
+sed -i 's|^# scene = .*||' "$tmp/t1.csv" "$tmp/t2.csv"
+cmp -s "$tmp/t1.csv" "$tmp/t2.csv" && ok || bad "tables differ between 1 and 2 threads"
+
 # the tolerance cannot be met: exit 1, no file
 expect 1 "max_nodes too small" -- "$ct" table "$tmp/s.ini" --set table.max_nodes=20 -o "$tmp/none.csv"
 has err "max_nodes = 20" "max_nodes message"
