@@ -1,6 +1,6 @@
 /* cantact_table.h: read and evaluate an e(V*) table written by `cantact table` (or by
- * ct_table_build), for DEM codes. One header, C99, no dependencies but the C library and libm
- * (link with -lm): no libcantact, no GSL, no OpenMP. Every function is static inline.
+ * ct_table_build), for DEM codes. One header, C99 (C++11 too), no dependencies but the C library
+ * and libm (link with -lm): no libcantact, no GSL, no OpenMP. Every function is static inline.
  *
  *     #include "cantact_table.h"
  *     ct_tab t;
@@ -243,13 +243,13 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
             continue;
         if (t->n == cap) {
             size_t ncap = cap ? 2 * cap : 256;
-            double *a = realloc(t->V_star, ncap * sizeof(double));
+            double *a = (double *)realloc(t->V_star, ncap * sizeof(double));
             if (a)
                 t->V_star = a;
-            double *b = a ? realloc(t->e, ncap * sizeof(double)) : NULL;
+            double *b = a ? (double *)realloc(t->e, ncap * sizeof(double)) : NULL;
             if (b)
                 t->e = b;
-            double *c = b ? realloc(t->slope, ncap * sizeof(double)) : NULL;
+            double *c = b ? (double *)realloc(t->slope, ncap * sizeof(double)) : NULL;
             if (c)
                 t->slope = c;
             if (!c)
@@ -276,7 +276,7 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
         CT_TAB_FAIL("missing # interpolation = ... or # V_star_crit = ... (not a cantact table)");
     if (t->n < 2)
         CT_TAB_FAIL("%lu nodes: a table needs at least 2", (unsigned long)t->n);
-    if (!(t->ln_V_star = malloc(t->n * sizeof(double))))
+    if (!(t->ln_V_star = (double *)malloc(t->n * sizeof(double))))
         CT_TAB_FAIL("out of memory");
     for (size_t i = 0; i < t->n; i++) {
         t->ln_V_star[i] = log(t->V_star[i]);

@@ -268,7 +268,7 @@ static int kink_speeds(const ct_bundle *b, ct_curve *c, double lo, double hi, dl
 {
     int st;
     if ((st = ct_curve_build(c, b)))
-        return st;
+        return st == CT_ENOMEM ? CT_OK : st; /* no room for a curve: splits at middles only */
     const ct_layer *L = ct_bundle_layer(b);
     const double scale = L->l0 * L->E * L->h0;
     const double *x = ct_curve_points(c);
