@@ -21,20 +21,21 @@ INTERPOLATIONS = {"monotone_cubic": lib.CT_INTERP_MONOTONE_CUBIC,
                   "linear": lib.CT_INTERP_LINEAR}
 ERRORS = {"raise": "raise", "rows": "rows"}
 
-# The per-row results: (attribute, field of ct_impact_result, unit). Units: "1" dimensionless,
+# The per-row results: (attribute, field of ct_sweep_row, unit). Units: "1" dimensionless,
 # "u" a length (divided by h0), "W" an energy (divided by P_Y h0 = sigma_y l0 h0). The
-# dynamics' t_contact and P_peak join here (with "t" and "P") when ct_impact_result has them.
+# dynamics' t_contact and P_peak join here (e.g. ("t_contact_over_tau", "t_contact", "t"), a
+# unit added to _units) when ct_sweep_row or its ct_impact_result ("r.<field>") has them.
 ROW_FIELDS = (
-    ("e", "e", "1"),
-    ("u_max_over_h0", "u_max", "u"),
-    ("V_star_crit", "V_star_crit", "1"),
-    ("u_contact_over_h0", "u_contact", "u"),
-    ("u_release_over_h0", "u_release", "u"),
-    ("e_closed_form", "e_closed", "1"),
-    ("quadrature_error", "quad_error", "1"),
-    ("W_load_over_PY_h0", "W_load", "W"),
-    ("W_unload_over_PY_h0", "W_unload", "W"),
-    ("e_rounding", "e_rounding", "1"),
+    ("e", "r.e", "1"),
+    ("u_max_over_h0", "r.u_max", "u"),
+    ("V_star_crit", "r.V_star_crit", "1"),
+    ("u_contact_over_h0", "r.u_contact", "u"),
+    ("u_release_over_h0", "r.u_release", "u"),
+    ("e_closed_form", "r.e_closed", "1"),
+    ("quadrature_error", "r.quad_error", "1"),
+    ("W_load_over_PY_h0", "r.W_load", "W"),
+    ("W_unload_over_PY_h0", "r.W_unload", "W"),
+    ("e_rounding", "r.e_rounding", "1"),
 )
 
 
@@ -80,16 +81,13 @@ def _opts(quadrature, nodes, tolerance, check_):
 def _row_dtype():
     """The rows of ct_sweep as a NumPy structured type (offsets from cffi's layout)."""
     names, formats, offsets = [], [], []
-    for attr, field, _ in ROW_FIELDS:
-        names.append(attr)
-        formats.append("f8")
-        offsets.append(ffi.offsetof("ct_sweep_row", "r", field))
-    for attr, field, fmt in (("status", "status", "i4"), ("elastic", ("r", "elastic"), "i4"),
-                             ("message", "message", "S240")):
+    fields = [(attr, field, "f8") for attr, field, _ in ROW_FIELDS]
+    fields += [("status", "status", "i4"), ("elastic", "r.elastic", "i4"),
+               ("message", "message", "S240")]
+    for attr, field, fmt in fields:
         names.append(attr)
         formats.append(fmt)
-        offsets.append(ffi.offsetof("ct_sweep_row", *(field if isinstance(field, tuple)
-                                                       else (field,))))
+        offsets.append(ffi.offsetof("ct_sweep_row", *field.split(".")))
     return np.dtype({"names": names, "formats": formats, "offsets": offsets,
                      "itemsize": ffi.sizeof("ct_sweep_row")})
 
