@@ -6,6 +6,7 @@
 #include "number.h"
 #include "output.h"
 #include "scene.h"
+#include "table.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +31,8 @@ static const char *main_help =
     "                   compare)\n"
     "  geometry SCENE   print the Cantor geometry of the scene's surface\n"
     "  merge SCENE PART.csv...  combine the realisations of runs with --realisations a:b\n"
+    "  table SCENE      e(V*) as a table whose interpolation meets [table] tolerance (for DEM\n"
+    "                   codes: include/cantact_table.h reads it)\n"
     "\n"
     "Options:\n"
     "  -h, --help       this help (also: cantact <subcommand> --help)\n"
@@ -80,7 +83,8 @@ static const char *run_help =
     "[material] E sigma_y;\n"
     "[impact] V_star | mass velocity, impacts; [solver] quadrature nodes tolerance\n"
     "depth_tolerance threads on_error (stop|skip) check (closed|none) path (auto|curve|rods);\n"
-    "[output] file what.\n"
+    "[output] file what; [table] tolerance V_star interpolation max_nodes check_points\n"
+    "(cantact table).\n"
     "See README.md.\n";
 
 static const char *geometry_help =
@@ -307,20 +311,6 @@ static int write_profile(FILE *f, const ct_bundle *b, const ct_params *p)
     return CT_OK;
 }
 
-/* The model depends on its dimensionless groups alone (MODEL.md §1): a Cantor scene is
- * computed with l0 = h0 = sigma_y = 1, H* = H* / h0 and E = E/sigma_y, whatever its scale (an l0
- * of 1e200 or a sigma_y of 1e-250 would otherwise leave the range of doubles). Its outputs are
- * dimensionless already (u/h0, P/P_Y, V*); the scene's own values stay in sc->physical. */
-static void make_dimensionless(ct_scene *sc)
-{
-    ct_params *p = &sc->params;
-    sc->physical = *p;
-    if (sc->surface_type != CT_SURFACE_CANTOR && sc->surface_type != CT_SURFACE_RANDOM_CANTOR)
-        return;
-    p->Hstar = p->Hstar / p->h0;
-    p->E = p->E / p->sigma_y;
-    p->l0 = p->h0 = p->sigma_y = 1.0;
-}
 
 /* Parses a subcommand's arguments and loads its scene. Returns -1 when the scene is loaded
  * into *sc (the caller goes on), else the exit status to return (help shown, or an error). */
@@ -360,7 +350,7 @@ static int load_scene_args(int argc, char **argv, const char *cmd, const char *h
         return EXIT_USAGE;
     }
     free(a.output_set);
-    make_dimensionless(sc);
+    ct_scene_make_dimensionless(sc);
     if ((sc->surface_type == CT_SURFACE_CANTOR || sc->surface_type == CT_SURFACE_RANDOM_CANTOR) &&
         (st = ct_params_validate(&sc->params))) {
         /* E/sigma_y times H* / h0 may overflow */
@@ -816,6 +806,8 @@ static int dispatch(int argc, char **argv)
     }
     if (!strcmp(cmd, "merge"))
         return ct_cli_merge(argc - 2, argv + 2);
+    if (!strcmp(cmd, "table"))
+        return ct_cli_table(argc - 2, argv + 2);
     if (!strcmp(cmd, "geometry"))
         return cmd_geometry(argc - 2, argv + 2);
     fprintf(stderr, "cantact: unknown subcommand '%s' (try cantact --help)\n", cmd);

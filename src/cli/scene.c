@@ -84,6 +84,12 @@ static const key_spec known_keys[] = {
     {"impact", "gravity", 0},
     {"impact", "stop_speed", 0},
     {"output", "history_points", 0},
+    /* cantact table */
+    {"table", "tolerance", 0},
+    {"table", "V_star", 0},
+    {"table", "interpolation", 0},
+    {"table", "max_nodes", 0},
+    {"table", "check_points", 0},
 };
 #define NKEYS (sizeof known_keys / sizeof known_keys[0])
 
@@ -128,11 +134,11 @@ static int store(parse_state *s, const char *section, const char *key, const cha
         if (strcmp(where, "--set"))
             return scene_error(CT_EINVAL,
                                "%s:%d: [%s]: unknown section (known: surface, material, "
-                               "impact, solver, output, ensemble)",
+                               "impact, solver, output, ensemble, table)",
                                s->name, s->section_line, section);
         return scene_error(CT_EINVAL,
                            "--set: [%s]: unknown section (known: surface, material, impact, "
-                           "solver, output, ensemble)",
+                           "solver, output, ensemble, table)",
                            section);
     }
     int k = find_key(section, key);
@@ -252,7 +258,7 @@ static char *read_string_line(char *buf, int size, void *stream)
         if (!section_known(name))
             return reader_error(s,
                                 "%s:%d: [%s]: unknown section (known: surface, material, "
-                                "impact, solver, output)",
+                                "impact, solver, output, ensemble, table)",
                                 name);
         s->section_line = s->line;
         snprintf(buf, (size_t)size, "[%s]\n", name);
@@ -592,6 +598,56 @@ static int random_cantor_keys(parse_state *s, ct_scene *sc)
     return CT_OK;
 }
 
+/* [table]: the keys of cantact table. Its V* range defaults to the range of [impact]'s speeds. */
+static int table_keys(parse_state *s, ct_scene *sc)
+{
+    entry *e;
+    int st;
+    sc->table_tolerance = 1e-6;
+    if ((st = number_key(s, "table", "tolerance", -INFINITY, INFINITY,
+                         "must satisfy 1e-13 <= tolerance < 0.5", &sc->table_tolerance)))
+        return st;
+    if (!(sc->table_tolerance >= 1e-13 && sc->table_tolerance < 0.5))
+        return bad(get(s, "table", "tolerance"), "table", "tolerance",
+                   "must satisfy 1e-13 <= tolerance < 0.5");
+    sc->table_V_min = sc->table_V_max = sc->V_star[0];
+    for (size_t k = 1; k < sc->nvel; k++) {
+        sc->table_V_min = fmin(sc->table_V_min, sc->V_star[k]);
+        sc->table_V_max = fmax(sc->table_V_max, sc->V_star[k]);
+    }
+    if ((e = get(s, "table", "V_star"))) {
+        const char *colon = strchr(e->value, ':');
+        char first[128];
+        const char *why = "not a finite number";
+        if (!colon || strchr(colon + 1, ':') || (size_t)(colon - e->value) >= sizeof first)
+            return bad(e, "table", "V_star", "expected from:to (two numbers, 0 < from < to)");
+        memcpy(first, e->value, (size_t)(colon - e->value));
+        first[colon - e->value] = '\0';
+        if (!parse_number_why(first, &sc->table_V_min, &why) ||
+            !parse_number_why(colon + 1, &sc->table_V_max, &why))
+            return bad(e, "table", "V_star", why);
+        if (!(sc->table_V_min > 0.0 && sc->table_V_max > sc->table_V_min))
+            return bad(e, "table", "V_star", "expected from:to with 0 < from < to");
+    }
+    sc->table_interpolation = CT_INTERP_MONOTONE_CUBIC;
+    if ((e = get(s, "table", "interpolation"))) {
+        if (!strcmp(e->value, "monotone_cubic"))
+            sc->table_interpolation = CT_INTERP_MONOTONE_CUBIC;
+        else if (!strcmp(e->value, "linear"))
+            sc->table_interpolation = CT_INTERP_LINEAR;
+        else
+            return bad(e, "table", "interpolation", "must be monotone_cubic or linear");
+    }
+    sc->table_max_nodes = 100000;
+    sc->table_check_points = 16;
+    if ((st = integer_key(s, "table", "max_nodes", 2, 10000000,
+                          "must satisfy 2 <= max_nodes <= 10000000", &sc->table_max_nodes)) ||
+        (st = integer_key(s, "table", "check_points", 1, 1000,
+                          "must satisfy 1 <= check_points <= 1000", &sc->table_check_points)))
+        return st;
+    return CT_OK;
+}
+
 void ct_scene_random_cantor(const ct_scene *sc, ct_random_cantor *rc)
 {
     rc->params = sc->params;
@@ -771,6 +827,8 @@ static int interpret(parse_state *s, ct_scene *sc)
     sc->impacts = sc->bounce ? 20 : 1;
     if ((st = integer_key(s, "impact", "impacts", 1, 1000000,
                           "must satisfy 1 <= impacts <= 1000000", &sc->impacts)))
+        return st;
+    if ((st = table_keys(s, sc)))
         return st;
 
     ct_impact_opts_default(&sc->opts);
@@ -1046,6 +1104,17 @@ int ct_scene_load(ct_scene *scene, const char *path, const char *const *override
     free(text);
     return st;
 }
+void ct_scene_make_dimensionless(ct_scene *sc)
+{
+    ct_params *p = &sc->params;
+    sc->physical = *p;
+    if (sc->surface_type != CT_SURFACE_CANTOR && sc->surface_type != CT_SURFACE_RANDOM_CANTOR)
+        return;
+    p->Hstar = p->Hstar / p->h0;
+    p->E = p->E / p->sigma_y;
+    p->l0 = p->h0 = p->sigma_y = 1.0;
+}
+
 void ct_scene_free(ct_scene *scene)
 {
     if (!scene)

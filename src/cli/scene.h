@@ -19,7 +19,7 @@ typedef struct {
     ct_surface_type surface_type;
     ct_params params;   /* as given; the CLI computes a Cantor scene in dimensionless form */
     ct_params physical; /* the parameters as given, once the CLI made params dimensionless */
-    long depth; /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
+    long depth;         /* >= 0, CT_DEPTH_AUTO or CT_DEPTH_FRACTAL */
     ct_representation representation;
     double *V_star; /* velocities, dimensionless, in input order */
     size_t nvel;
@@ -43,6 +43,11 @@ typedef struct {
     uint64_t realisation;    /* the one realisation of a run without [ensemble] */
     uint64_t realisations;   /* [ensemble] realisations; 0: no ensemble */
     ct_ensemble_split split; /* [ensemble] split */
+    /* [table] (cantact table, src/cli/table.c) */
+    double table_tolerance;          /* largest |e_table - e|, absolute */
+    double table_V_min, table_V_max; /* the table's V* range */
+    ct_interp table_interpolation;
+    long table_max_nodes, table_check_points;
 } ct_scene;
 
 /* The scene's random Cantor surface (type = random_cantor). */
@@ -56,6 +61,11 @@ int ct_scene_load(ct_scene *scene, const char *path, const char *const *override
 int ct_scene_parse(ct_scene *scene, const char *name, const char *text,
                    const char *const *overrides, size_t noverrides);
 void ct_scene_free(ct_scene *scene);
+/* The model depends on its dimensionless groups alone (MODEL.md §1): a (random) Cantor scene
+ * is computed with l0 = h0 = sigma_y = 1, H* = H* / h0 and E = E / sigma_y, whatever its scale
+ * (an l0 of 1e200 or a sigma_y of 1e-250 would otherwise leave the range of doubles); its
+ * outputs are dimensionless already. The values as given stay in scene->physical. */
+void ct_scene_make_dimensionless(ct_scene *scene);
 /* Returns the message of the last scene error in this thread. */
 const char *ct_scene_message(void);
 

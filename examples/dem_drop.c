@@ -1,0 +1,245 @@
+/* A minimal DEM loop: a sphere dropped on a flat wall, with a linear spring-dashpot normal
+ * contact whose damping is set, per contact, from e(v_impact) of a cantact table.
+ *
+ * Build: cc -O2 dem_drop.c -lm -I/path/to/include   (cantact_table.h only: no libcantact)
+ * Usage: dem_drop TABLE.csv [--height H] [--speed V0] [--gravity G] [--bounces N]
+ *                 [--v-per-V-star S] [--steps-per-contact K] [--check TOL]
+ *
+ * The contact, per contact (the three lines a DEM code needs, marked below):
+ *   at first touch, with the normal approach speed v_impact:
+ *     e    = ct_tab_e_of_speed(&table, v_impact)        (the table's e(V*), V* = v / S)
+ *     zeta = -ln e / sqrt(pi^2 + ln^2 e)               (the linear spring-dashpot's damping
+ *                                                        ratio that returns e)
+ *     c_n  = 2 zeta sqrt(m_eff k_n)
+ *   then F_n = k_n delta + c_n d(delta)/dt while delta > 0 (delta: the overlap). Without
+ *   gravity, this oscillator leaves the wall (delta = 0) with speed e v_impact exactly: the
+ *   damped half period pi / omega_d and the decay exp(-zeta omega_n t) give
+ *   e = exp(-pi zeta / sqrt(1 - zeta^2)), whose inverse is the relation above.
+ *
+ * The loop: fixed steps dt = (damped contact time) / K. In flight the motion is ballistic
+ * (exact); in contact the step is classical Runge-Kutta (RK4); a step that crosses first touch
+ * or separation is cut there (the touch time from the ballistic quadratic, the separation by
+ * regula falsi on the RK4 step length), so that v_impact and v_rebound are not blurred by
+ * the step. Prints one CSV row per contact: the rebound speed against e_table v_impact.
+ * With --check TOL it exits 1 when some |v_rebound / v_impact - e_table| exceeds TOL (the
+ * test runs it without gravity: the difference is then the integrator's error alone; with
+ * gravity, the weight acting during the contact adds about g t_contact / v_impact). */
+#include "cantact_table.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef M_PI
+#define M_PI 3.14159265358979323846
+#endif
+
+/* The sphere: steel, radius 2 mm; the contact's normal stiffness. */
+typedef struct {
+    double mass;    /* kg */
+    double k_n;     /* N/m */
+    double g;       /* m/s^2, pulls towards the wall */
+    double c_n;     /* N s/m, set per contact */
+    double v_per_V; /* impact speed per unit V* (m/s) */
+} sim;
+
+/* e -> damping ratio of the linear spring-dashpot (contact ends at zero overlap). */
+static double damping_ratio(double e)
+{
+    if (!(e > 0.0))
+        return 1.0; /* e = 0: critical damping, no rebound */
+    const double l = log(e);
+    return -l / sqrt(M_PI * M_PI + l * l);
+}
+
+/* d/dt (z, v) in contact: z < 0 is the overlap delta = -z. */
+static void deriv(const sim *s, double z, double v, double *dz, double *dv)
+{
+    const double force = s->k_n * (-z) + s->c_n * (-v); /* F_n = k_n delta + c_n d(delta)/dt */
+    *dz = v;
+    *dv = force / s->mass - s->g;
+}
+
+static void rk4(const sim *s, double z, double v, double h, double *z1, double *v1)
+{
+    double k1z, k1v, k2z, k2v, k3z, k3v, k4z, k4v;
+    deriv(s, z, v, &k1z, &k1v);
+    deriv(s, z + 0.5 * h * k1z, v + 0.5 * h * k1v, &k2z, &k2v);
+    deriv(s, z + 0.5 * h * k2z, v + 0.5 * h * k2v, &k3z, &k3v);
+    deriv(s, z + h * k3z, v + h * k3v, &k4z, &k4v);
+    *z1 = z + h / 6.0 * (k1z + 2.0 * k2z + 2.0 * k3z + k4z);
+    *v1 = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+}
+
+static double arg_value(int argc, char **argv, int *k)
+{
+    if (*k + 1 >= argc) {
+        fprintf(stderr, "dem_drop: %s needs a value\n", argv[*k]);
+        exit(2);
+    }
+    char *end;
+    double v = strtod(argv[++*k], &end);
+    if (*end || !isfinite(v)) {
+        fprintf(stderr, "dem_drop: %s %s: not a number\n", argv[*k - 1], argv[*k]);
+        exit(2);
+    }
+    return v;
+}
+
+int main(int argc, char **argv)
+{
+    const char *path = NULL;
+    double height = 1.0, speed = 0.0, tol = -1.0, v_per_V = NAN, steps = 400.0, bounces = 8.0;
+    sim s = {.mass = 7850.0 * 4.0 / 3.0 * M_PI * 0.002 * 0.002 * 0.002, .k_n = 1e5, .g = 9.81};
+    for (int k = 1; k < argc; k++) {
+        if (!strcmp(argv[k], "--height"))
+            height = arg_value(argc, argv, &k);
+        else if (!strcmp(argv[k], "--speed"))
+            speed = arg_value(argc, argv, &k);
+        else if (!strcmp(argv[k], "--gravity"))
+            s.g = arg_value(argc, argv, &k);
+        else if (!strcmp(argv[k], "--bounces"))
+            bounces = arg_value(argc, argv, &k);
+        else if (!strcmp(argv[k], "--v-per-V-star"))
+            v_per_V = arg_value(argc, argv, &k);
+        else if (!strcmp(argv[k], "--steps-per-contact"))
+            steps = arg_value(argc, argv, &k);
+        else if (!strcmp(argv[k], "--check"))
+            tol = arg_value(argc, argv, &k);
+        else if (argv[k][0] == '-') {
+            fprintf(stderr, "dem_drop: unknown option %s\n", argv[k]);
+            return 2;
+        } else {
+            path = argv[k];
+        }
+    }
+    if (!path || !(height >= 0.0) || !(speed >= 0.0) || !(s.g >= 0.0) || !(steps >= 4.0) ||
+        !(bounces >= 1.0)) {
+        fprintf(stderr, "usage: dem_drop TABLE.csv [--height H >= 0] [--speed V0 >= 0] "
+                        "[--gravity G >= 0] [--bounces N >= 1] [--v-per-V-star S] "
+                        "[--steps-per-contact K >= 4] [--check TOL]\n");
+        return 2;
+    }
+    ct_tab table;
+    char err[512];
+    if (ct_tab_load(&table, path, err, sizeof err)) {
+        fprintf(stderr, "dem_drop: %s\n", err);
+        return 2;
+    }
+    if (isfinite(v_per_V))
+        table.v_per_V_star = v_per_V;
+    s.v_per_V = table.v_per_V_star;
+    if (!(s.v_per_V > 0.0)) {
+        fprintf(stderr,
+                "dem_drop: %s has no v_per_V_star (give [impact] mass in the scene, or "
+                "--v-per-V-star)\n",
+                path);
+        ct_tab_free(&table);
+        return 2;
+    }
+    /* the time step: the undamped contact time pi/omega_n over K (damping only lengthens it) */
+    const double omega = sqrt(s.k_n / s.mass), dt = M_PI / omega / steps;
+    double z = height, v = -speed, t = 0.0, v_in = 0.0, e = 1.0;
+    int in_contact = 0, contacts = 0, status = 0;
+    double worst = 0.0;
+    printf("contact,t_s,v_impact_m_s,V_star,e_table,zeta,v_rebound_m_s,e_measured,"
+           "e_measured_minus_e_table,covered\n");
+    const double t_end = 1e3; /* s: a bound, never reached by a bouncing sphere */
+    while (contacts < (int)bounces && t < t_end) {
+        if (!in_contact) {
+            if (s.g == 0.0 && v >= 0.0)
+                break; /* leaves for good */
+            /* ballistic step; first touch (z = 0) inside it cuts it */
+            double z1 = z + v * dt - 0.5 * s.g * dt * dt;
+            if (z1 > 0.0) {
+                z = z1;
+                v -= s.g * dt;
+                t += dt;
+                continue;
+            }
+            /* z + v h - g h^2 / 2 = 0: the smaller positive root, without cancellation */
+            double h;
+            if (s.g > 0.0) {
+                const double disc = sqrt(v * v + 2.0 * s.g * z);
+                h = 2.0 * z / (disc - v); /* = (v + disc) / g */
+            } else {
+                h = z / -v;
+            }
+            v -= s.g * h;
+            t += h;
+            z = 0.0;
+            /* ---- the contact starts: e from the table, then the damping (3 lines) ---- */
+            v_in = -v;
+            e = ct_tab_e_of_speed(&table, v_in);
+            const double zeta = damping_ratio(e);
+            s.c_n = 2.0 * zeta * sqrt(s.mass * s.k_n);
+            in_contact = 1;
+            continue;
+        }
+        double z1, v1;
+        rk4(&s, z, v, dt, &z1, &v1);
+        if (z1 < 0.0) {
+            z = z1;
+            v = v1;
+            t += dt;
+            continue;
+        }
+        /* separation inside this step: z(h) = 0 by regula falsi (Illinois) on the step
+         * length, bracketed by z(a) <= 0 < z(b) */
+        double a = 0.0, za = z, b = dt, zb = z1, h = dt;
+        for (int it = 0, side = 0; it < 200 && b - a > 4e-16 * dt; it++) {
+            h = (a * zb - b * za) / (zb - za);
+            if (!(h > a && h < b))
+                h = 0.5 * (a + b);
+            double zh, vh;
+            rk4(&s, z, v, h, &zh, &vh);
+            if (zh == 0.0)
+                break;
+            if (zh < 0.0) {
+                a = h;
+                za = zh;
+                if (side < 0)
+                    zb *= 0.5;
+                side = -1;
+            } else {
+                b = h;
+                zb = zh;
+                if (side > 0)
+                    za *= 0.5;
+                side = 1;
+            }
+        }
+        rk4(&s, z, v, h, &z1, &v1);
+        t += h;
+        z = 0.0;
+        v = v1;
+        in_contact = 0;
+        contacts++;
+        const double V = v_in / s.v_per_V, measured = v / v_in;
+        const double diff = measured - e;
+        worst = fmax(worst, fabs(diff));
+        printf("%d,%.9g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.3g,%d\n", contacts, t, v_in, V, e,
+               damping_ratio(e), v, measured, diff, ct_tab_covers(&table, V));
+        if (!ct_tab_covers(&table, V))
+            fprintf(stderr,
+                    "dem_drop: contact %d: V* = %g is outside the table (e of its nearest "
+                    "end used)\n",
+                    contacts, V);
+        if (tol >= 0.0 && !(fabs(diff) <= tol)) {
+            fprintf(stderr,
+                    "dem_drop: contact %d: v_rebound / v_impact = %.17g, e_table = %.17g: differ "
+                    "by %.3g > %.3g\n",
+                    contacts, measured, e, diff, tol);
+            status = 1;
+        }
+    }
+    fprintf(stderr, "dem_drop: %d contacts, largest |v_rebound / v_impact - e_table| = %.3g\n",
+            contacts, worst);
+    if (tol >= 0.0 && contacts == 0) {
+        fprintf(stderr, "dem_drop: --check: no contact happened\n");
+        status = 1;
+    }
+    ct_tab_free(&table);
+    return status;
+}

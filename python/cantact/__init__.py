@@ -1,0 +1,28 @@
+"""cantact: the coefficient of restitution of a rough surface of elastic-perfectly-plastic
+rods (Cantor-fractal, random Cantor or your own rods), through libcantact.
+
+    import cantact
+    s = cantact.Cantor(fx=1.5, fz=1.3, H=10, E=500)          # E/sigma_y = 500, H*/h0 = 10
+    r = cantact.restitution(s, V_star=np.geomspace(1e-5, 1e-2, 31))
+    r.e[:, 0], r.u_max_over_h0[:, 0], r.V_star_crit[:, 0]     # arrays [speed, impact - 1]
+    t = cantact.table(s, V_star=(1e-5, 1e-2), tolerance=1e-6)  # e(V*) with a checked error
+    t(0.003)                                                   # its interpolation
+
+Results are dimensionless as the cantact program's (V*, u/h0, P/P_Y); errors raise
+cantact.Error subclasses carrying the library's status and message. See README.md.
+"""
+from ._errors import (Error, InvalidInput, IOFailure, NoConvergence, NotRun, OutOfMemory,
+                      OutsideModel, strerror)
+from ._ffi import LIBRARY_PATH, ffi, lib
+from ._surfaces import Cantor, RandomCantor, Rods
+from ._api import (ROW_FIELDS, Ensemble, LoadCurve, Restitution, Table, asym_load,
+                   asym_unload, ensemble, law_restitution, load_curve, read_table, restitution,
+                   series_load, series_unload, table)
+
+__all__ = [
+    "Cantor", "RandomCantor", "Rods", "restitution", "Restitution", "ensemble", "Ensemble",
+    "load_curve", "LoadCurve", "series_load", "series_unload", "asym_load", "asym_unload",
+    "law_restitution", "table", "Table", "read_table", "Error", "InvalidInput", "OutOfMemory",
+    "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS",
+    "LIBRARY_PATH",
+]

@@ -1,0 +1,526 @@
+"""Restitution, ensembles, the load curve, the paper's laws and e(V*) tables: NumPy arrays in,
+NumPy arrays out, every call through libcantact's own path (the same as `cantact run`)."""
+import math
+
+import numpy as np
+
+from . import _check as chk
+from ._errors import check as _ok, error, invalid
+from ._ffi import ffi, lib
+from ._surfaces import Cantor, RandomCantor, surface_of
+
+QUADRATURES = {"breakpoints": lib.CT_QUAD_BREAKPOINTS, "trapezoid": lib.CT_QUAD_TRAPEZOID,
+               "simpson": lib.CT_QUAD_SIMPSON, "gauss": lib.CT_QUAD_GAUSS,
+               "closed": lib.CT_QUAD_CLOSED}
+PATHS = {"auto": lib.CT_PATH_AUTO, "curve": lib.CT_PATH_CURVE, "rods": lib.CT_PATH_RODS}
+SPLITS = {"auto": lib.CT_SPLIT_AUTO, "realisations": lib.CT_SPLIT_REALISATIONS,
+          "rods": lib.CT_SPLIT_RODS}
+LAWS = {"series": lib.CT_LAW_SERIES, "asymptotic": lib.CT_LAW_ASYMPTOTIC,
+        "asymptotic_consistent": lib.CT_LAW_ASYMPTOTIC_CONSISTENT}
+INTERPOLATIONS = {"monotone_cubic": lib.CT_INTERP_MONOTONE_CUBIC,
+                  "linear": lib.CT_INTERP_LINEAR}
+ERRORS = {"raise": "raise", "rows": "rows"}
+
+# The per-row results: (attribute, field of ct_sweep_row, unit). Units: "1" dimensionless,
+# "u" a length (divided by h0), "W" an energy (divided by P_Y h0 = sigma_y l0 h0), "P" a force
+# (divided by P_Y = sigma_y l0). The sweep's times are t / tau already (its mass is E l0 / h0,
+# tau = sqrt(m h0 / (E l0)) = 1), its speeds in h0 / tau. The "dyn." fields are NaN unless
+# restitution(..., time=True).
+ROW_FIELDS = (
+    ("e", "r.e", "1"),
+    ("u_max_over_h0", "r.u_max", "u"),
+    ("V_star_crit", "r.V_star_crit", "1"),
+    ("u_contact_over_h0", "r.u_contact", "u"),
+    ("u_release_over_h0", "r.u_release", "u"),
+    ("e_closed_form", "r.e_closed", "1"),
+    ("quadrature_error", "r.quad_error", "1"),
+    ("W_load_over_PY_h0", "r.W_load", "W"),
+    ("W_unload_over_PY_h0", "r.W_unload", "W"),
+    ("e_rounding", "r.e_rounding", "1"),
+    ("t_contact_over_tau", "dyn.t_contact", "1"),
+    ("t_load_over_tau", "dyn.t_load", "1"),
+    ("t_unload_over_tau", "dyn.t_unload", "1"),
+    ("P_peak_over_PY", "dyn.P_peak", "P"),
+    ("e_kinematic", "dyn.e_kinematic", "1"),
+    ("unload_period_over_tau", "dyn.period_min", "1"),
+)
+
+
+def _units(b):
+    """Library units of b's outputs: the factors that make them dimensionless."""
+    L = lib.ct_bundle_layer(b)
+    PY = L.sigma_y * L.l0
+    return {"1": 1.0, "u": L.h0, "P": PY, "W": PY * L.h0}
+
+
+def _speeds(surface, V_star, mass, speed, name="V_star"):
+    """V* from V_star, or from mass and speed as the CLI computes it:
+    V* = sqrt(m / (2 l0 E h0)) v with the surface's parameters as given."""
+    if V_star is not None:
+        if mass is not None or speed is not None:
+            raise invalid("give either V_star or mass and speed, not both")
+        return chk.array(name, V_star, positive=True)
+    if mass is None or speed is None:
+        raise invalid("needs V_star, or both mass and speed")
+    m = chk.real("mass", mass, 0.0)
+    v = chk.array("speed", speed, positive=True)
+    V = math.sqrt(m / (2.0 * surface._physical_energy_scale())) * v
+    bad = ~(np.isfinite(V) & (V > 0))
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise invalid(f"speed[{k}] = {v[k]!r} with mass {m!r} gives V* = {V[k]!r}: not a "
+                      "finite number > 0")
+    return V
+
+
+def _opts(quadrature, nodes, tolerance, check_):
+    o = ffi.new("ct_impact_opts *")
+    lib.ct_impact_opts_default(o)
+    o.rule = chk.choice("quadrature", quadrature, QUADRATURES)
+    o.nodes = chk.integer("nodes", nodes, 3, 100000000)
+    o.tolerance = chk.real("tolerance", tolerance, 1e-15, 1e-3, lo_closed=True)
+    if not isinstance(check_, (bool, np.bool_)):
+        raise invalid(f"check = {check_!r}: must be True or False")
+    o.check = 1 if check_ else 0
+    return o
+
+
+def _row_dtype():
+    """The rows of ct_sweep as a NumPy structured type (offsets from cffi's layout)."""
+    names, formats, offsets = [], [], []
+    fields = [(attr, field, "f8") for attr, field, _ in ROW_FIELDS]
+    fields += [("status", "status", "i4"), ("elastic", "r.elastic", "i4"),
+               ("message", "message", "S240")]
+    for attr, field, fmt in fields:
+        names.append(attr)
+        formats.append(fmt)
+        offsets.append(ffi.offsetof("ct_sweep_row", *field.split(".")))
+    return np.dtype({"names": names, "formats": formats, "offsets": offsets,
+                     "itemsize": ffi.sizeof("ct_sweep_row")})
+
+
+class Restitution:
+    """The rows of a restitution sweep. Every per-row array has shape (len(V_star), impacts):
+    [speed, impact - 1]. Attributes: V_star; e, u_max_over_h0, V_star_crit, u_contact_over_h0,
+    u_release_over_h0, e_closed_form, quadrature_error (NaN with check=False),
+    W_load_over_PY_h0, W_unload_over_PY_h0, e_rounding (floats; NaN where a row failed);
+    elastic (bool); status (int: 0, or the library's status of a failed or not-run row);
+    message (str); info (depth, bound, rods, omitted of the surface built)."""
+
+    def __init__(self, V_star, impacts, rows, units, info):
+        self.V_star = V_star
+        self.impacts = impacts
+        self.info = info
+        shape = (V_star.size, impacts)
+        a = np.frombuffer(ffi.buffer(rows), dtype=_row_dtype()).reshape(shape)
+        self.status = np.array(a["status"], dtype=int)
+        failed = self.status != 0
+        for attr, _, unit in ROW_FIELDS:
+            x = np.array(a[attr], dtype=np.float64) / units[unit]
+            x[failed] = np.nan
+            setattr(self, attr, x)
+        self.elastic = (np.array(a["elastic"]) != 0) & ~failed
+        self.message = np.array([m.decode(errors="replace") for m in a["message"].ravel()],
+                                dtype=object).reshape(shape)
+
+    def __repr__(self):
+        return (f"<Restitution: {self.V_star.size} speeds x {self.impacts} impacts, "
+                f"{int((self.status != 0).sum())} failed>")
+
+
+def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
+                quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True, path="auto",
+                errors="raise", time=False):
+    """e and the rest of each impact: for each speed, `impacts` impacts from the virgin surface
+    (the plastic strain carried from one to the next). Speeds as V_star (dimensionless) or as
+    mass and speed (in the units of the surface's parameters: V* = sqrt(m v^2/(2 l0 E h0))).
+    errors="raise" raises the first failed impact's error (the library's message, its V* and
+    impact); errors="rows" returns failed rows with their status and message instead.
+    time=True adds each impact in time (t_contact_over_tau, t_load_over_tau,
+    t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau; MODEL.md §11)."""
+    surface = surface_of("surface", surface)
+    V = _speeds(surface, V_star, mass, speed)
+    impacts = chk.integer("impacts", impacts, 1, 1000000)
+    opts = _opts(quadrature, nodes, tolerance, check)
+    how = chk.choice("path", path, PATHS)
+    mode = chk.choice("errors", errors, ERRORS)
+    b, info = surface._build(V, impacts, opts)
+    rows = ffi.new("ct_sweep_row[]", V.size * impacts)
+    spec = ffi.new("ct_sweep_spec *")
+    speeds = ffi.from_buffer("double[]", V)
+    spec.V_star = speeds
+    spec.nvel = V.size
+    spec.impacts = impacts
+    spec.opts = opts[0]
+    spec.stop_on_error = 1 if mode == "raise" else 0
+    spec.path = how
+    if not isinstance(time, (bool, np.bool_)):
+        raise invalid(f"time = {time!r}: must be True or False")
+    spec.dynamics = 1 if time else 0
+    _ok(lib.ct_sweep(b, spec, rows))
+    result = Restitution(V, impacts, rows, _units(b), info)
+    if not time:
+        for attr, field, _ in ROW_FIELDS:
+            if field.startswith("dyn."):
+                setattr(result, attr, np.full_like(result.e, np.nan))
+    return result
+
+
+class Ensemble:
+    """The samples of an ensemble of random realisations: e, u_max_over_h0, V_star_crit and
+    status have shape (realisations, len(V_star), impacts); fx_clipped, fz_clipped count the
+    clipped draws of each realisation (of `draws` each). stats(quantity) summarises them."""
+
+    def __init__(self, V_star, impacts, s, h0):
+        R, n = int(s.count), int(s.nrows)
+        shape = (R, V_star.size, impacts)
+
+        def take(ptr, dtype, count):
+            return np.frombuffer(ffi.buffer(ptr, count * np.dtype(dtype).itemsize),
+                                 dtype=dtype).copy()
+
+        self.V_star = V_star
+        self.impacts = impacts
+        self.first = int(s.first)
+        self.realisations = np.arange(self.first, self.first + R, dtype=np.uint64)
+        self.e = take(s.e, np.float64, R * n).reshape(shape)
+        self.u_max_over_h0 = take(s.u_max, np.float64, R * n).reshape(shape) / h0
+        self.V_star_crit = take(s.V_star_crit, np.float64, R * n).reshape(shape)
+        self.status = take(s.status, np.intc, R * n).reshape(shape).astype(int)
+        self.fx_clipped = take(s.fx_clipped, np.uint64, R)
+        self.fz_clipped = take(s.fz_clipped, np.uint64, R)
+        self.draws = int(s.draws)
+        self.quadrature_error_max = float(s.quad_error_max)
+        self.message = ffi.string(s.message).decode(errors="replace")
+
+    def stats(self, quantity="e"):
+        """Statistics over the realisations of each row (library's ct_sample_stats: mean, sd,
+        sem = sd/sqrt(n), type-7 quantiles q05, q50, q95, NaN samples left out): a dict of
+        arrays of shape (len(V_star), impacts); n = 0 and NaN where no sample computed."""
+        x = chk.choice("quantity", quantity, {"e": self.e, "u_max_over_h0": self.u_max_over_h0,
+                                              "V_star_crit": self.V_star_crit})
+        R = x.shape[0]
+        flat = np.ascontiguousarray(x.reshape(R, -1))
+        nrows = flat.shape[1]
+        keys = ("mean", "sd", "sem", "q05", "q50", "q95")
+        out = {k: np.full(nrows, np.nan) for k in keys}
+        out["n"] = np.zeros(nrows, dtype=int)
+        work = ffi.new("double[]", R)
+        st = ffi.new("ct_stats *")
+        buf = ffi.from_buffer("double[]", flat)
+        for q in range(nrows):
+            if lib.ct_sample_stats(buf + q, R, nrows, work, st) != lib.CT_OK:
+                continue  # no sample of this row computed
+            out["n"][q] = st.n
+            for k in keys:
+                out[k][q] = getattr(st, k)
+        return {k: v.reshape(x.shape[1:]) for k, v in out.items()}
+
+    def __repr__(self):
+        return (f"<Ensemble: {self.e.shape[0]} realisations x {self.V_star.size} speeds x "
+                f"{self.impacts} impacts>")
+
+
+def ensemble(surface, V_star=None, *, mass=None, speed=None, realisations, first=0, impacts=1,
+             quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True, path="auto",
+             threads=0, split="auto", errors="raise"):
+    """Realisations first .. first + realisations - 1 of a RandomCantor surface, each built,
+    swept and dropped by the library (ct_ensemble: the samples do not depend on the thread
+    count or the split). errors="raise" raises the lowest failing realisation's error;
+    errors="rows" keeps failed samples as NaN with their status."""
+    if not isinstance(surface, RandomCantor):
+        raise invalid(f"surface: an ensemble needs a RandomCantor surface, got "
+                      f"{type(surface).__name__}")
+    V = _speeds(surface, V_star, mass, speed)
+    impacts = chk.integer("impacts", impacts, 1, 1000000)
+    count = chk.integer("realisations", realisations, 1, 2**63 - 1)
+    first = chk.integer("first", first, 0, 2**64 - 1 - count)
+    opts = _opts(quadrature, nodes, tolerance, check)
+    mode = chk.choice("errors", errors, ERRORS)
+    spec = ffi.new("ct_ensemble_spec *")
+    spec.surface = surface._rc[0]
+    spec.first = first
+    spec.count = count
+    speeds = ffi.from_buffer("double[]", V)
+    spec.V_star = speeds
+    spec.nvel = V.size
+    spec.impacts = impacts
+    spec.opts = opts[0]
+    spec.path = chk.choice("path", path, PATHS)
+    spec.stop_on_error = 1 if mode == "raise" else 0
+    spec.threads = chk.integer("threads", threads, 0, 1024)
+    spec.split = chk.choice("split", split, SPLITS)
+    out = ffi.new("ct_ensemble_samples **")
+    _ok(lib.ct_ensemble_samples_alloc(out, first, count, V.size * impacts))
+    s = ffi.gc(out[0], lib.ct_ensemble_samples_free)
+    _ok(lib.ct_ensemble(spec, s))
+    return Ensemble(V, impacts, s, surface._rc.params.h0)
+
+
+# ---- the load curve ----------------------------------------------------------------------
+
+
+class LoadCurve:
+    """P(u) of a surface's state (virgin, or after being loaded to `after`), exactly: the
+    piecewise-linear curve of the library (ct_curve_*). Dimensionless: u in h0, P in
+    P_Y = sigma_y l0, W and the dissipation in P_Y h0. breakpoints: the sorted breakpoints
+    (u/h0); force, work, dissipation, release take arrays of u/h0, inverse_work of W."""
+
+    def __init__(self, surface, V_star=None, after=None):
+        surface = surface_of("surface", surface)
+        if V_star is None:
+            if isinstance(surface, Cantor) and surface.depth in ("auto", "fractal"):
+                raise invalid(f"depth = {surface.depth!r} is chosen for the smallest impact: "
+                              "give V_star (the speeds the curve is for)")
+            V_star = [1.0]
+        V = chk.array("V_star", V_star, positive=True)
+        opts = _opts("breakpoints", 64, 1e-14, False)
+        b, self.info = surface._build(V, 1, opts, keep_all=True)
+        self._units = _units(b)
+        if after is not None:
+            u_adv = chk.real("after", after, 0.0, lo_closed=True) * self._units["u"]
+            out = ffi.new("ct_bundle **")
+            _ok(lib.ct_bundle_clone(out, b))
+            b = ffi.gc(out[0], lib.ct_bundle_free)
+            lib.ct_bundle_advance(b, u_adv)
+        self._bundle = b  # the curve reads it no more, but keep the state's rods with it
+        c = ffi.new("ct_curve **")
+        _ok(lib.ct_curve_alloc(c))
+        self._curve = ffi.gc(c[0], lib.ct_curve_free)
+        _ok(lib.ct_curve_build(self._curve, b))
+        n = lib.ct_curve_size(self._curve)
+        pts = lib.ct_curve_points(self._curve)
+        self.breakpoints = np.frombuffer(ffi.buffer(pts, n * 8), dtype=np.float64).copy()
+        self.breakpoints /= self._units["u"]
+        self.first_contact = lib.ct_curve_first_contact(self._curve) / self._units["u"]
+        self.first_yield = lib.ct_curve_first_yield(self._curve) / self._units["u"]
+
+    def _map(self, fn, x, name, unit_in, unit_out, nonnegative=False):
+        a = chk.array(name, x, nonnegative=nonnegative) * self._units[unit_in]
+        return np.array([fn(self._curve, v) for v in a], dtype=np.float64) / self._units[unit_out]
+
+    def force(self, u):
+        """P/P_Y at u/h0 (0 below the first contact)."""
+        return self._map(lib.ct_curve_force, u, "u", "u", "P")
+
+    def work(self, u):
+        """W/(P_Y h0) from the first contact to u/h0."""
+        return self._map(lib.ct_curve_work, u, "u", "u", "W")
+
+    def dissipation(self, u):
+        """The plastic work/(P_Y h0) of loading the state to u/h0."""
+        return self._map(lib.ct_curve_dissipation, u, "u", "u", "W")
+
+    def release(self, u):
+        """The release point/h0 after loading to u/h0."""
+        return self._map(lib.ct_curve_release, u, "u", "u", "u")
+
+    def inverse_work(self, W):
+        """u/h0 where the work from the first contact is W (in P_Y h0), W >= 0."""
+        return self._map(lib.ct_curve_inverse_work, W, "W", "W", "u", nonnegative=True)
+
+
+def load_curve(surface, V_star=None, after=None):
+    """The load curve of a surface (see LoadCurve)."""
+    return LoadCurve(surface, V_star, after)
+
+
+# ---- the paper's laws --------------------------------------------------------------------
+
+
+def _law_surface(surface):
+    if not isinstance(surface, Cantor):
+        raise invalid(f"surface: the paper's laws model the deterministic Cantor surface, got "
+                      f"{type(surface).__name__}")
+    return surface._params
+
+
+def _pointwise(fn, n, errors):
+    """Calls fn(k, out) for k < n; a failure raises (errors="raise") or gives NaN."""
+    mode = chk.choice("errors", errors, {"raise": "raise", "nan": "nan"})
+    out = np.full(n, np.nan)
+    val = ffi.new("double *")
+    for k in range(n):
+        st = fn(k, val)
+        if st == lib.CT_OK:
+            out[k] = val[0]
+        elif mode == "raise":
+            raise error(st, f"[{k}]: " + ffi.string(lib.ct_error_message()).decode())
+    return out
+
+
+def series_load(surface, u, errors="raise"):
+    """The paper's series (Eqs. 12-21, Eq. 15 between nodes): P/P_Y at u/h0."""
+    p = _law_surface(surface)
+    x = chk.array("u", u, nonnegative=True)
+    return _pointwise(lambda k, v: lib.ct_series_load(p, x[k], v), x.size, errors)
+
+
+def series_unload(surface, u_max, u, errors="raise"):
+    """The series unloading from u_max/h0 (Eqs. 22-24): P/P_Y at u/h0."""
+    p = _law_surface(surface)
+    um = chk.real("u_max", u_max, 0.0, lo_closed=True)
+    x = chk.array("u", u, nonnegative=True)
+    return _pointwise(lambda k, v: lib.ct_series_unload(p, um, x[k], v), x.size, errors)
+
+
+def asym_load(surface, u, errors="raise"):
+    """The asymptotic law (Eqs. 33-34): P/P_Y at u/h0 (u <= h0)."""
+    p = _law_surface(surface)
+    x = chk.array("u", u, nonnegative=True)
+    return _pointwise(lambda k, v: lib.ct_asym_load(p, x[k], v), x.size, errors)
+
+
+def asym_unload(surface, u_max, u, consistent=False, errors="raise"):
+    """Asymptotic unloading from u_max/h0, Eq. 38 as printed or (consistent=True) with its
+    second branch derived consistently from Eq. 23: P/P_Y at u/h0."""
+    p = _law_surface(surface)
+    um = chk.real("u_max", u_max, 0.0, lo_closed=True)
+    x = chk.array("u", u, nonnegative=True)
+    if not isinstance(consistent, (bool, np.bool_)):
+        raise invalid(f"consistent = {consistent!r}: must be True or False")
+    c = 1 if consistent else 0
+    return _pointwise(lambda k, v: lib.ct_asym_unload(p, um, x[k], c, v), x.size, errors)
+
+
+def law_restitution(surface, V_star=None, *, mass=None, speed=None, law="asymptotic",
+                    errors="raise"):
+    """e and u_max/h0 of one impact on the virgin fractal under one of the paper's laws
+    (ct_law_impact): "series", "asymptotic" (Eq. 38 as printed) or "asymptotic_consistent".
+    Returns (e, u_max_over_h0); errors="nan" gives NaN where the law does not apply."""
+    p = _law_surface(surface)
+    V = _speeds(surface, V_star, mass, speed)
+    which = chk.choice("law", law, LAWS)
+    scale = lib.ct_energy_scale(p)
+    W = V * V * scale  # the kinetic energy, as a sweep computes it
+    mode = chk.choice("errors", errors, {"raise": "raise", "nan": "nan"})
+    e = np.full(V.size, np.nan)
+    u = np.full(V.size, np.nan)
+    um, ev = ffi.new("double *"), ffi.new("double *")
+    for k in range(V.size):
+        st = lib.ct_law_impact(p, which, W[k], um, ev)
+        if st == lib.CT_OK:
+            e[k], u[k] = ev[0], um[0]
+        elif mode == "raise":
+            raise error(st, f"V* = {V[k]!r}: " + ffi.string(lib.ct_error_message()).decode())
+    return e, u
+
+
+# ---- e(V*) tables ------------------------------------------------------------------------
+
+
+class Table:
+    """An e(V*) table (ct_table): nodes V_star, e and slope (de/d ln V*), its interpolation
+    ("monotone_cubic" or "linear", in ln V*) and, when built, what the build checked (info:
+    V_star_crit, worst_error, worst_V_star, checked, kinks, rounds, evaluations). Calling it
+    evaluates the interpolation (the library's, which include/cantact_table.h shares): e = 1 at
+    and below V_star_crit, the nearest end's e outside the nodes (covers() says where the table
+    knows e)."""
+
+    def __init__(self, handle, tolerance=None):
+        self._t = handle
+        n = lib.ct_table_size(handle)
+
+        def arr(ptr):
+            return np.frombuffer(ffi.buffer(ptr, n * 8), dtype=np.float64).copy()
+
+        self.V_star = arr(lib.ct_table_V_star(handle))
+        self.e = arr(lib.ct_table_e(handle))
+        self.slope = arr(lib.ct_table_slope(handle))
+        rule = lib.ct_table_interpolation(handle)
+        self.interpolation = ffi.string(lib.ct_interp_name(rule)).decode()
+        info = ffi.new("ct_table_info *")
+        lib.ct_table_get_info(handle, info)
+        self.info = {k: getattr(info, k) for k in ("V_star_crit", "worst_error", "worst_V_star",
+                                                   "checked", "kinks", "rounds", "evaluations")}
+        self.V_star_crit = info.V_star_crit
+        self.tolerance = tolerance
+
+    def __call__(self, V_star):
+        V = chk.array("V_star", V_star, positive=True)
+        return np.array([lib.ct_table_eval(self._t, v) for v in V], dtype=np.float64)
+
+    def covers(self, V_star):
+        """True where the table knows e: at or below V*_c, or within its nodes."""
+        V = chk.array("V_star", V_star, positive=True)
+        return (V <= self.V_star_crit) | ((V >= self.V_star[0]) & (V <= self.V_star[-1]))
+
+    def __repr__(self):
+        return (f"<Table: {self.V_star.size} nodes, {self.interpolation}, V* "
+                f"{self.V_star[0]:.6g} .. {self.V_star[-1]:.6g}, worst error "
+                f"{self.info['worst_error']:.3g}>")
+
+
+def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
+          interpolation="monotone_cubic", max_nodes=100000, check_points=16,
+          quadrature="breakpoints", nodes=64, check=True, path="auto"):
+    """e(V*) of the first impact on the virgin surface as a table whose interpolation meets
+    `tolerance` (absolute, in e) at every checked point (ct_table_build): V_star = (from, to),
+    or mass and speed = (from, to). Raises NoConvergence when max_nodes would not do."""
+    surface = surface_of("surface", surface)
+    V = _speeds(surface, V_star, mass, speed)
+    if V.size != 2 or not V[0] < V[1]:
+        raise invalid(f"V_star (or speed): the range (from, to) with from < to, got {V!r}")
+    spec = ffi.new("ct_table_spec *")
+    lib.ct_table_spec_default(spec)
+    spec.V_min, spec.V_max = V[0], V[1]
+    spec.tolerance = chk.real("tolerance", tolerance, 1e-13, 1.0, lo_closed=True)
+    spec.interpolation = chk.choice("interpolation", interpolation, INTERPOLATIONS)
+    spec.max_nodes = chk.integer("max_nodes", max_nodes, 2, 10**9)
+    spec.check_points = chk.integer("check_points", check_points, 1, 100000)
+    opts = _opts(quadrature, nodes, 1e-14, check)
+    spec.opts = opts[0]
+    spec.path = chk.choice("path", path, PATHS)
+    b, _ = surface._build(V, 1, opts)
+    out = ffi.new("ct_table **")
+    _ok(lib.ct_table_build(out, b, spec))
+    return Table(ffi.gc(out[0], lib.ct_table_free), spec.tolerance)
+
+
+def read_table(path):
+    """A table written by `cantact table` (the format include/cantact_table.h reads), as a
+    Table evaluated by the library: the same numbers as the C reader's."""
+    keys = {}
+    rows = []
+    header = False
+    with open(path, encoding="utf-8") as f:
+        for lineno, line in enumerate(f, 1):
+            if line.startswith("#"):
+                if "=" in line:
+                    k, v = line[1:].split("=", 1)
+                    keys[k.strip()] = v.split()[0] if v.split() else ""
+                continue
+            if not header:
+                if not line.startswith("V_star,e,de_dlnV_star"):
+                    raise invalid(f"{path}:{lineno}: expected the header V_star,e,de_dlnV_star")
+                header = True
+                continue
+            if not line.strip():
+                continue
+            fields = line.strip().split(",")
+            try:
+                if len(fields) != 3:
+                    raise ValueError
+                rows.append([float(x) for x in fields])
+            except ValueError:
+                raise invalid(f"{path}:{lineno}: expected three numbers V_star,e,de_dlnV_star")
+    if "interpolation" not in keys or "V_star_crit" not in keys:
+        raise invalid(f"{path}: missing # interpolation = ... or # V_star_crit = ... (not a "
+                      "cantact table)")
+    rule = chk.choice("interpolation", keys["interpolation"], INTERPOLATIONS)
+    try:
+        Vc = float(keys["V_star_crit"])
+    except ValueError:
+        raise invalid(f"{path}: V_star_crit = {keys['V_star_crit']!r}: not a number")
+    a = np.array(rows, dtype=np.float64).reshape(-1, 3)
+    V, e, d = (np.ascontiguousarray(a[:, k]) for k in range(3))
+    out = ffi.new("ct_table **")
+    _ok(lib.ct_table_from_nodes(out, V.size, ffi.from_buffer("double[]", V),
+                                  ffi.from_buffer("double[]", e), ffi.from_buffer("double[]", d),
+                                  rule, Vc))
+    t = Table(ffi.gc(out[0], lib.ct_table_free),
+              float(keys["tolerance"]) if "tolerance" in keys else None)
+    for k in ("worst_error", "v_per_V_star"):
+        if k in keys:
+            t.info[k] = float(keys[k])
+    return t

@@ -1,0 +1,611 @@
+/* e(V*) tables with a checked interpolation error: nodes chosen adaptively so that the stated
+ * interpolation (include/cantact_table.h, which evaluates them; the same code here) reproduces
+ * the exact model within a tolerance at every checked point.
+ *
+ * Why the nodes go where they go: e(V*) is smooth (algebraic) between the speeds at which
+ * u_max reaches a breakpoint of P(u) (a rod's contact or yield point): W(u) is piecewise
+ * quadratic and the dissipation D(u) piecewise linear there, e = sqrt(1 - D(u_max)/W). At a
+ * yield point D gains slope, so e has a kink; at a contact point its second derivative jumps;
+ * at V*_c (the first yield) e leaves the constant 1 with a finite slope. So V*_c is always a
+ * node (below it e = 1 exactly, not interpolated), and an interval that fails its checks is
+ * split at a breakpoint's V* when it holds one: both halves are then smooth. */
+#include "internal.h"
+
+#include "cantact_table.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+_Static_assert((int)CT_INTERP_MONOTONE_CUBIC == CT_TAB_MONOTONE_CUBIC &&
+                   (int)CT_INTERP_LINEAR == CT_TAB_LINEAR,
+               "ct_interp and cantact_table.h's rules must agree");
+
+struct ct_table {
+    size_t n;
+    double *V, *x, *e, *d; /* nodes, ln V*, e, de/dx */
+    ct_interp rule;
+    ct_table_info info;
+};
+
+const char *ct_interp_name(ct_interp rule)
+{
+    switch (rule) {
+    case CT_INTERP_MONOTONE_CUBIC:
+        return "monotone_cubic";
+    case CT_INTERP_LINEAR:
+        return "linear";
+    }
+    return NULL;
+}
+
+void ct_table_spec_default(ct_table_spec *spec)
+{
+    memset(spec, 0, sizeof *spec);
+    spec->tolerance = 1e-6;
+    spec->interpolation = CT_INTERP_MONOTONE_CUBIC;
+    spec->max_nodes = 100000;
+    spec->check_points = 16;
+    ct_impact_opts_default(&spec->opts);
+    spec->path = CT_PATH_AUTO;
+}
+
+static double sign_of(double v)
+{
+    return (v > 0.0) - (v < 0.0);
+}
+
+/* Fritsch and Carlson (1980) give the monotonicity region of a cubic Hermite piece: with the
+ * secant delta, alpha = d_i/delta and beta = d_i+1/delta in [0, 3] suffice. The weighted
+ * harmonic mean (Fritsch and Butland 1984) stays inside it and is local (no sweep order). */
+void ct_pchip_slopes(size_t n, const double *x, const double *y, double *d)
+{
+    if (n < 2) {
+        if (n == 1)
+            d[0] = 0.0;
+        return;
+    }
+    if (n == 2) {
+        d[0] = d[1] = (y[1] - y[0]) / (x[1] - x[0]);
+        return;
+    }
+    for (size_t i = 1; i + 1 < n; i++) {
+        const double h0 = x[i] - x[i - 1], h1 = x[i + 1] - x[i];
+        const double s0 = (y[i] - y[i - 1]) / h0, s1 = (y[i + 1] - y[i]) / h1;
+        if (s0 * s1 <= 0.0) { /* a local extremum or a flat side: the piece must not overshoot */
+            d[i] = 0.0;
+            continue;
+        }
+        const double w1 = 2.0 * h1 + h0, w2 = h1 + 2.0 * h0;
+        d[i] = (w1 + w2) / (w1 / s0 + w2 / s1);
+    }
+    /* ends: the three-point one-sided formula, kept to the secant's sign and to 3 secants */
+    for (int end = 0; end < 2; end++) {
+        const size_t a = end ? n - 1 : 0, b = end ? n - 2 : 1, c = end ? n - 3 : 2;
+        const double h0 = fabs(x[b] - x[a]), h1 = fabs(x[c] - x[b]);
+        const double s0 = (y[b] - y[a]) / (x[b] - x[a]), s1 = (y[c] - y[b]) / (x[c] - x[b]);
+        double da = ((2.0 * h0 + h1) * s0 - h0 * s1) / (h0 + h1);
+        if (sign_of(da) != sign_of(s0))
+            da = 0.0;
+        else if (sign_of(s0) != sign_of(s1) && fabs(da) > 3.0 * fabs(s0))
+            da = 3.0 * s0;
+        d[a] = da;
+    }
+}
+
+/* Slopes of the table's nodes: nodes below V*_c stand for e = 1 and are not interpolated,
+ * so the cubic starts at the first node at or above V*_c, an end there (a kink: e's slope
+ * jumps from 0). */
+static void table_slopes(ct_table *t)
+{
+    size_t c0 = 0;
+    while (c0 < t->n && t->V[c0] < t->info.V_star_crit)
+        c0++;
+    for (size_t i = 0; i < t->n; i++)
+        t->d[i] = 0.0;
+    if (t->rule == CT_INTERP_MONOTONE_CUBIC && t->n - c0 >= 2)
+        ct_pchip_slopes(t->n - c0, t->x + c0, t->e + c0, t->d + c0);
+}
+
+double ct_table_eval(const ct_table *t, double V_star)
+{
+    return ct_tab_interp(t->n, t->x, t->e, t->d, (int)t->rule, t->info.V_star_crit, V_star);
+}
+
+static int table_alloc(ct_table **out, size_t n)
+{
+    ct_table *t = calloc(1, sizeof *t);
+    if (!t)
+        return ct_error_set(CT_ENOMEM, "table: out of memory");
+    t->V = malloc(n * sizeof(double));
+    t->x = malloc(n * sizeof(double));
+    t->e = malloc(n * sizeof(double));
+    t->d = malloc(n * sizeof(double));
+    if (!t->V || !t->x || !t->e || !t->d) {
+        ct_table_free(t);
+        return ct_error_set(CT_ENOMEM, "table of %zu nodes: out of memory", n);
+    }
+    t->n = n;
+    *out = t;
+    return CT_OK;
+}
+
+void ct_table_free(ct_table *t)
+{
+    if (!t)
+        return;
+    free(t->V);
+    free(t->x);
+    free(t->e);
+    free(t->d);
+    free(t);
+}
+
+size_t ct_table_size(const ct_table *t)
+{
+    return t->n;
+}
+const double *ct_table_V_star(const ct_table *t)
+{
+    return t->V;
+}
+const double *ct_table_e(const ct_table *t)
+{
+    return t->e;
+}
+const double *ct_table_slope(const ct_table *t)
+{
+    return t->d;
+}
+ct_interp ct_table_interpolation(const ct_table *t)
+{
+    return t->rule;
+}
+void ct_table_get_info(const ct_table *t, ct_table_info *info)
+{
+    *info = t->info;
+}
+
+int ct_table_from_nodes(ct_table **out, size_t n, const double *V_star, const double *e,
+                        const double *slope, ct_interp rule, double V_star_crit)
+{
+    CT_NEED(out);
+    CT_NEED(V_star);
+    CT_NEED(e);
+    CT_NEED(slope);
+    *out = NULL;
+    if (n < 2)
+        return ct_error_set(CT_EINVAL, "table: %zu nodes: need at least 2", n);
+    if (!ct_interp_name(rule))
+        return ct_error_set(CT_EINVAL, "table: interpolation %d: unknown", (int)rule);
+    if (!(V_star_crit >= 0.0) || !isfinite(V_star_crit))
+        return ct_error_set(CT_EINVAL, "table: V*_c = %g: must be finite and >= 0", V_star_crit);
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(V_star[i]) || !(V_star[i] > 0.0) ||
+            (i && !(log(V_star[i]) > log(V_star[i - 1]))))
+            return ct_error_set(CT_EINVAL,
+                                "table: V*[%zu] = %g: must be finite, > 0 and increasing (in "
+                                "ln V*)",
+                                i, V_star[i]);
+        if (!(e[i] >= 0.0 && e[i] <= 1.0))
+            return ct_error_set(CT_EINVAL, "table: e[%zu] = %g: must be in [0, 1]", i, e[i]);
+        if (!isfinite(slope[i]))
+            return ct_error_set(CT_EINVAL, "table: slope[%zu] = %g: must be finite", i, slope[i]);
+    }
+    ct_table *t;
+    int st;
+    if ((st = table_alloc(&t, n)))
+        return st;
+    for (size_t i = 0; i < n; i++) {
+        t->V[i] = V_star[i];
+        t->x[i] = log(V_star[i]);
+        t->e[i] = e[i];
+        t->d[i] = slope[i];
+    }
+    t->rule = rule;
+    t->info.V_star_crit = V_star_crit;
+    *out = t;
+    return CT_OK;
+}
+
+/* ---- the build ---- */
+
+/* Exact e of the first impact at m speeds, in chunks of rows (a row is ~400 bytes). */
+#define CHUNK 4096
+
+typedef struct {
+    const ct_bundle *b;
+    const ct_table_spec *spec;
+    ct_curve *curve; /* the sweep's workspace, reused */
+    ct_sweep_row *rows;
+    size_t evaluations;
+} exact_ctx;
+
+static int exact_e(exact_ctx *x, const double *V, size_t m, double *e)
+{
+    for (size_t k0 = 0; k0 < m; k0 += CHUNK) {
+        const size_t k1 = k0 + CHUNK < m ? k0 + CHUNK : m;
+        ct_sweep_spec s = {.V_star = V + k0,
+                           .nvel = k1 - k0,
+                           .impacts = 1,
+                           .opts = x->spec->opts,
+                           .stop_on_error = 1,
+                           .path = x->spec->path,
+                           .curve = x->curve};
+        int st = ct_sweep(x->b, &s, x->rows);
+        if (st)
+            return st;
+        for (size_t k = k0; k < k1; k++)
+            e[k] = x->rows[k - k0].r.e;
+        x->evaluations += k1 - k0;
+    }
+    return CT_OK;
+}
+
+/* A growing list of doubles. */
+typedef struct {
+    double *v;
+    size_t n, cap;
+} dlist;
+
+static int dl_push(dlist *l, double v)
+{
+    if (l->n == l->cap) {
+        size_t cap = l->cap ? 2 * l->cap : 64;
+        double *g = realloc(l->v, cap * sizeof(double));
+        if (!g)
+            return ct_error_set(CT_ENOMEM, "table: out of memory");
+        l->v = g;
+        l->cap = cap;
+    }
+    l->v[l->n++] = v;
+    return CT_OK;
+}
+
+/* V* where u_max reaches each breakpoint of P(u) of b's state, strictly inside (lo, hi). */
+static int kink_speeds(const ct_bundle *b, ct_curve *c, double lo, double hi, dlist *out)
+{
+    int st;
+    if ((st = ct_curve_build(c, b)))
+        return st == CT_ENOMEM ? CT_OK : st; /* no room for a curve: splits at middles only */
+    const ct_layer *L = ct_bundle_layer(b);
+    const double scale = L->l0 * L->E * L->h0;
+    const double *x = ct_curve_points(c);
+    for (size_t j = 0; j < ct_curve_size(c); j++) {
+        const double V = sqrt(ct_curve_work(c, x[j]) / scale);
+        if (V > lo && V < hi && (!out->n || log(V) > log(out->v[out->n - 1])))
+            if ((st = dl_push(out, V)))
+                return st;
+    }
+    return CT_OK;
+}
+
+/* Where a failing interval [V0, V1] is split: the kink nearest its middle in ln V* (kinks
+ * sorted), else the middle. 0 when nothing lies strictly between in ln V*. */
+static double split_point(double V0, double V1, const dlist *kinks)
+{
+    const double x0 = log(V0), x1 = log(V1), mid = 0.5 * (x0 + x1);
+    size_t lo = 0, hi = kinks->n; /* first kink > V0 */
+    while (lo < hi) {
+        size_t m = lo + (hi - lo) / 2;
+        if (kinks->v[m] > V0)
+            hi = m;
+        else
+            lo = m + 1;
+    }
+    double best = 0.0, best_dist = INFINITY;
+    for (size_t k = lo; k < kinks->n && kinks->v[k] < V1; k++) {
+        const double xk = log(kinks->v[k]);
+        if (!(xk > x0 && xk < x1))
+            continue;
+        if (fabs(xk - mid) < best_dist) {
+            best_dist = fabs(xk - mid);
+            best = kinks->v[k];
+        } else {
+            break; /* sorted: farther from here on */
+        }
+    }
+    if (best > 0.0)
+        return best;
+    const double V = exp(mid);
+    return log(V) > x0 && log(V) < x1 ? V : 0.0;
+}
+
+/* The check points of [V0, V1]: K equally spaced inside, in ln V*. */
+static void check_speeds(double V0, double V1, size_t K, double *out)
+{
+    const double x0 = log(V0), h = log(V1) - x0;
+    for (size_t k = 0; k < K; k++)
+        out[k] = exp(x0 + h * (double)(k + 1) / (double)(K + 1));
+}
+
+static int check_spec(const ct_table_spec *s)
+{
+    if (!(isfinite(s->V_min) && isfinite(s->V_max) && s->V_min > 0.0 && s->V_max > s->V_min))
+        return ct_error_set(CT_EINVAL, "table: V* range %g .. %g: needs finite 0 < V_min < V_max",
+                            s->V_min, s->V_max);
+    if (!(log(s->V_max) > log(s->V_min)))
+        return ct_error_set(CT_EINVAL, "table: V* range %.17g .. %.17g: too narrow", s->V_min,
+                            s->V_max);
+    if (!(s->tolerance >= 1e-13 && s->tolerance < 1.0))
+        return ct_error_set(CT_EINVAL, "table: tolerance = %g: must satisfy 1e-13 <= tolerance < 1",
+                            s->tolerance);
+    if (!ct_interp_name(s->interpolation))
+        return ct_error_set(CT_EINVAL, "table: interpolation %d: unknown", (int)s->interpolation);
+    if (s->max_nodes < 2)
+        return ct_error_set(CT_EINVAL, "table: max_nodes = %zu: must be >= 2", s->max_nodes);
+    if (s->check_points < 1 || s->check_points > 100000)
+        return ct_error_set(CT_EINVAL,
+                            "table: check_points = %zu: must satisfy 1 <= check_points <= 100000",
+                            s->check_points);
+    return CT_OK;
+}
+
+/* Intervals narrower than this in ln V* are not split further: e's own rounding (~1e-15)
+ * is then what fails the check, and no node can help. */
+#define CT_TABLE_MIN_WIDTH 1e-9
+
+int ct_table_build(ct_table **out, const ct_bundle *b, const ct_table_spec *spec)
+{
+    CT_NEED(out);
+    *out = NULL;
+    CT_NEED(b);
+    CT_NEED(spec);
+    int st;
+    if ((st = check_spec(spec)))
+        return st;
+    const size_t K = spec->check_points;
+    const double tol = spec->tolerance;
+    exact_ctx ex = {.b = b, .spec = spec};
+    dlist kinks = {0}, nodes = {0}, ne = {0}, newV = {0};
+    double *chk = NULL, *nchk = NULL, *vals = NULL, *errs = NULL;
+    ct_table *t = NULL;
+    unsigned char *split = NULL;
+    if (!(ex.rows = malloc(CHUNK * sizeof *ex.rows))) {
+        st = ct_error_set(CT_ENOMEM, "table: out of memory");
+        goto done;
+    }
+    /* V*_c as every sweep reports it (and V_max's impact must be computable at all) */
+    double e_top;
+    if ((st = ct_curve_alloc(&ex.curve)) || (st = exact_e(&ex, &spec->V_max, 1, &e_top)))
+        goto done;
+    const double Vc = ex.rows[0].r.V_star_crit;
+    if ((st = kink_speeds(b, ex.curve, fmax(spec->V_min, Vc), spec->V_max, &kinks)))
+        goto done;
+
+    /* first nodes: the ends, V*_c, two per decade above V*_c */
+    const double lo = fmax(spec->V_min, Vc);
+    if ((st = dl_push(&nodes, spec->V_min)))
+        goto done;
+    if (Vc > spec->V_min && Vc < spec->V_max && log(Vc) > log(spec->V_min) &&
+        (st = dl_push(&nodes, Vc)))
+        goto done;
+    if (lo < spec->V_max) {
+        const double x0 = log(lo), x1 = log(spec->V_max);
+        const size_t m = (size_t)ceil(2.0 * (x1 - x0) / log(10.0));
+        for (size_t k = 1; k < m; k++) {
+            const double V = exp(x0 + (x1 - x0) * (double)k / (double)m);
+            if (log(V) > log(nodes.v[nodes.n - 1]) && log(V) < x1 && (st = dl_push(&nodes, V)))
+                goto done;
+        }
+    }
+    if ((st = dl_push(&nodes, spec->V_max)))
+        goto done;
+    if (nodes.n > spec->max_nodes) {
+        st = ct_error_set(CT_ENOCONV,
+                          "table: max_nodes = %zu is below the %zu first nodes (the ends, V*_c "
+                          "and two per decade)",
+                          spec->max_nodes, nodes.n);
+        goto done;
+    }
+    /* e at the first nodes (e = 1 at and below V*_c: not computed) and at their checks */
+    {
+        const size_t n = nodes.n;
+        if (!(vals = malloc((n + (n - 1) * K) * sizeof(double))) ||
+            !(chk = malloc((n - 1) * K * sizeof(double)))) {
+            st = ct_error_set(CT_ENOMEM, "table: out of memory");
+            goto done;
+        }
+        size_t m = 0;
+        for (size_t i = 0; i < n; i++)
+            if (nodes.v[i] > Vc)
+                vals[m++] = nodes.v[i];
+        for (size_t i = 0; i + 1 < n; i++)
+            if (nodes.v[i] >= Vc) {
+                check_speeds(nodes.v[i], nodes.v[i + 1], K, vals + m);
+                m += K;
+            }
+        double *ev = malloc((m ? m : 1) * sizeof(double));
+        if (!ev) {
+            st = ct_error_set(CT_ENOMEM, "table: out of memory");
+            goto done;
+        }
+        if ((st = exact_e(&ex, vals, m, ev))) {
+            free(ev);
+            goto done;
+        }
+        size_t q = 0;
+        for (size_t i = 0; i < n; i++) {
+            if ((st = dl_push(&ne, nodes.v[i] > Vc ? ev[q++] : 1.0)))
+                break;
+        }
+        for (size_t i = 0; i + 1 < n && !st; i++)
+            for (size_t k = 0; k < K; k++)
+                chk[i * K + k] = nodes.v[i] >= Vc ? ev[q++] : 1.0;
+        free(ev);
+        if (st)
+            goto done;
+    }
+
+    for (size_t round = 1;; round++) {
+        const size_t n = nodes.n;
+        /* the interpolant of this round's nodes */
+        ct_table_free(t);
+        t = NULL;
+        if ((st = table_alloc(&t, n)))
+            goto done;
+        t->rule = spec->interpolation;
+        t->info.V_star_crit = Vc;
+        for (size_t i = 0; i < n; i++) {
+            t->V[i] = nodes.v[i];
+            t->x[i] = log(nodes.v[i]);
+            t->e[i] = ne.v[i];
+        }
+        table_slopes(t);
+        /* every interval above V*_c checked against its cached exact values */
+        free(split);
+        free(errs);
+        split = calloc(n, 1);
+        errs = malloc(n * sizeof(double));
+        if (!split || !errs) {
+            st = ct_error_set(CT_ENOMEM, "table: out of memory");
+            goto done;
+        }
+        double worst = 0.0, worst_V = NAN;
+        size_t nsplit = 0, checked = 0;
+        double *pts = malloc(K * sizeof(double));
+        if (!pts) {
+            st = ct_error_set(CT_ENOMEM, "table: out of memory");
+            goto done;
+        }
+        for (size_t i = 0; i + 1 < n; i++) {
+            errs[i] = 0.0;
+            if (nodes.v[i] < Vc)
+                continue; /* e = 1 exactly there: the rule, not an interpolation */
+            check_speeds(nodes.v[i], nodes.v[i + 1], K, pts);
+            for (size_t k = 0; k < K; k++) {
+                const double err = fabs(ct_table_eval(t, pts[k]) - chk[i * K + k]);
+                checked++;
+                if (!(err <= errs[i]))
+                    errs[i] = err; /* NaN is an error too */
+                if (!(err <= worst)) {
+                    worst = err;
+                    worst_V = pts[k];
+                }
+            }
+            if (!(errs[i] <= tol)) {
+                split[i] = 1;
+                nsplit++;
+            }
+        }
+        free(pts);
+        t->info.worst_error = worst;
+        t->info.worst_V_star = worst_V;
+        t->info.checked = checked;
+        t->info.rounds = round;
+        t->info.evaluations = ex.evaluations;
+        if (!nsplit)
+            break;
+        if (n + nsplit > spec->max_nodes) {
+            st = ct_error_set(CT_ENOCONV,
+                              "table: tolerance %.3g not met with max_nodes = %zu (%zu intervals "
+                              "still fail; worst |e_table - e| = %.3g at V* = %.6g): raise "
+                              "max_nodes or the tolerance",
+                              tol, spec->max_nodes, nsplit, worst, worst_V);
+            goto done;
+        }
+        /* the split points, then their e and the new intervals' checks in one batch */
+        newV.n = 0;
+        for (size_t i = 0; i + 1 < n; i++) {
+            if (!split[i])
+                continue;
+            double s = log(nodes.v[i + 1]) - log(nodes.v[i]) > CT_TABLE_MIN_WIDTH
+                           ? split_point(nodes.v[i], nodes.v[i + 1], &kinks)
+                           : 0.0;
+            if (!(s > 0.0)) {
+                st = ct_error_set(CT_ENOCONV,
+                                  "table: tolerance %.3g not met on [%.17g, %.17g], too short to "
+                                  "split (|e_table - e| = %.3g): below what e's rounding allows",
+                                  tol, nodes.v[i], nodes.v[i + 1], errs[i]);
+                goto done;
+            }
+            if ((st = dl_push(&newV, s)))
+                goto done;
+        }
+        const size_t n2 = n + nsplit, m = nsplit * (1 + 2 * K);
+        free(vals);
+        free(nchk);
+        vals = malloc(m * sizeof(double));
+        nchk = malloc((n2 - 1) * K * sizeof(double));
+        double *ev = malloc(m * sizeof(double));
+        if (!vals || !nchk || !ev) {
+            free(ev);
+            st = ct_error_set(CT_ENOMEM, "table: out of memory");
+            goto done;
+        }
+        for (size_t j = 0, q = 0, i = 0; i + 1 < n; i++) {
+            if (!split[i])
+                continue;
+            vals[q++] = newV.v[j];
+            check_speeds(nodes.v[i], newV.v[j], K, vals + q);
+            q += K;
+            check_speeds(newV.v[j], nodes.v[i + 1], K, vals + q);
+            q += K;
+            j++;
+        }
+        if ((st = exact_e(&ex, vals, m, ev))) {
+            free(ev);
+            goto done;
+        }
+        /* merge: old nodes with the split points after their interval */
+        dlist V2 = {0}, e2 = {0};
+        size_t q = 0, j = 0;
+        for (size_t i = 0; i < n && !st; i++) {
+            st = dl_push(&V2, nodes.v[i]);
+            if (!st)
+                st = dl_push(&e2, ne.v[i]);
+            if (st || i + 1 == n)
+                break;
+            const size_t iv = V2.n - 1; /* the interval that starts at this node */
+            if (!split[i]) {
+                memcpy(nchk + iv * K, chk + i * K, K * sizeof(double));
+                continue;
+            }
+            if ((st = dl_push(&V2, newV.v[j])) || (st = dl_push(&e2, ev[q])))
+                break;
+            memcpy(nchk + iv * K, ev + q + 1, K * sizeof(double));
+            memcpy(nchk + (iv + 1) * K, ev + q + 1 + K, K * sizeof(double));
+            q += 1 + 2 * K;
+            j++;
+        }
+        free(ev);
+        free(nodes.v);
+        free(ne.v);
+        nodes = V2;
+        ne = e2;
+        if (st)
+            goto done;
+        double *tmp = chk;
+        chk = nchk;
+        nchk = tmp;
+    }
+    t->info.kinks = 0;
+    for (size_t i = 0; i < t->n; i++) {
+        size_t lo_k = 0, hi_k = kinks.n;
+        while (lo_k < hi_k) {
+            size_t mk = lo_k + (hi_k - lo_k) / 2;
+            if (kinks.v[mk] < t->V[i])
+                lo_k = mk + 1;
+            else
+                hi_k = mk;
+        }
+        t->info.kinks += lo_k < kinks.n && kinks.v[lo_k] == t->V[i];
+    }
+    *out = t;
+    t = NULL;
+done:
+    ct_table_free(t);
+    ct_curve_free(ex.curve);
+    free(ex.rows);
+    free(kinks.v);
+    free(nodes.v);
+    free(ne.v);
+    free(newV.v);
+    free(chk);
+    free(nchk);
+    free(vals);
+    free(errs);
+    free(split);
+    return st;
+}

@@ -1,0 +1,447 @@
+/* e(V*) tables (src/table.c) and their reader (include/cantact_table.h): a two-rod surface
+ * whose e(V*) is derived by hand below, checked at points of the test's own choosing; the
+ * build's claimed worst error recomputed from its stated check points; V*_c and the kinks as
+ * nodes; the slopes against the Fritsch-Carlson monotonicity conditions; the reader against
+ * the library bit for bit through a file; the default Cantor surface against sweeps at points
+ * the build never checked; bad input. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "assert_rel.h"
+#include "cantact.h"
+#include "cantact_table.h"
+
+/* Two rods, E = 10, sigma_y = 1 (eps_y = 0.1), H* = 2, l0 = h0 = 1, areas 1:
+ *   A: top 0,   L = 2,   k = 5,    yields at 0.2,  plateau 1
+ *   B: top 0.5, L = 1.5, k = 20/3, yields at 0.65, plateau 1
+ * Loading the virgin surface to u, work W and dissipation D (plastic work):
+ *   u <= 0.2:          W = 5 u^2 / 2, D = 0                    (elastic: e = 1)
+ *   0.2 <= u <= 0.5:   W = 0.1 + (u - 0.2), D = u - 0.2        W - D = 0.1
+ *   0.5 <= u <= 0.65:  s = u - 0.5: W = 0.4 + s + (10/3) s^2, D = u - 0.2, W - D = 0.1 + (10/3) s^2
+ *   u >= 0.65:         W = 0.625 + 2 (u - 0.65), W - D = 0.175
+ * e = sqrt((W - D) / W), V* = sqrt(W / (l0 E h0)) = sqrt(W / 10). So V*_c = 0.1 (A yields), a
+ * kink of e's second derivative at V* = 0.2 (B touches) and a kink at V* = 0.25 (B yields). */
+static double two_rod_e(double V)
+{
+    const double W = 10.0 * V * V;
+    if (W <= 0.1)
+        return 1.0;
+    if (W <= 0.4)
+        return sqrt(0.1 / W);
+    if (W <= 0.625) {
+        const double s = (-1.0 + sqrt(1.0 + (40.0 / 3.0) * (W - 0.4))) / (20.0 / 3.0);
+        return sqrt((0.1 + (10.0 / 3.0) * s * s) / W);
+    }
+    return sqrt(0.175 / W);
+}
+
+static ct_bundle *two_rods(void)
+{
+    ct_layer L = {.E = 10.0, .sigma_y = 1.0, .Hstar = 2.0, .l0 = 1.0, .h0 = 1.0};
+    double top[2] = {0.0, 0.5}, area[2] = {1.0, 1.0};
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 2, top, area), CT_OK);
+    return b;
+}
+
+static int has_node(const ct_table *t, double V, double rel)
+{
+    for (size_t i = 0; i < ct_table_size(t); i++)
+        if (close_rel(ct_table_V_star(t)[i], V, rel))
+            return 1;
+    return 0;
+}
+
+/* The claims of a built table against the hand-derived e: nodes exact, V*_c and both kinks
+ * nodes, the worst error recomputed from the stated check points, and no point of the test's
+ * own (a golden-ratio sequence in ln V*) beyond the tolerance. */
+static void check_two_rods(ct_interp rule, double tol)
+{
+    ct_bundle *b = two_rods();
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = 0.01;
+    spec.V_max = 0.5;
+    spec.tolerance = tol;
+    spec.interpolation = rule;
+    ct_table *t;
+    assert_int_equal(ct_table_build(&t, b, &spec), CT_OK);
+    ct_table_info in;
+    ct_table_get_info(t, &in);
+    const size_t n = ct_table_size(t), K = spec.check_points;
+    const double *V = ct_table_V_star(t), *e = ct_table_e(t);
+    assert_rel(in.V_star_crit, 0.1, 1e-15);
+    assert_true(has_node(t, 0.1, 1e-15));
+    assert_true(has_node(t, 0.2, 1e-14));
+    assert_true(has_node(t, 0.25, 1e-14));
+    assert_int_equal(in.kinks, 2);
+    assert_true(V[0] == 0.01 && V[n - 1] == 0.5);
+    for (size_t i = 0; i < n; i++) {
+        assert_true(fabs(e[i] - two_rod_e(V[i])) <= 1e-14);
+        if (i)
+            assert_true(V[i] > V[i - 1]);
+    }
+    /* the claimed worst error is the largest at the stated check points */
+    double worst = 0.0;
+    size_t checked = 0;
+    for (size_t i = 0; i + 1 < n; i++) {
+        if (V[i] < in.V_star_crit)
+            continue;
+        const double x0 = log(V[i]), h = log(V[i + 1]) - x0;
+        for (size_t k = 0; k < K; k++) {
+            const double Vk = exp(x0 + h * (double)(k + 1) / (double)(K + 1));
+            worst = fmax(worst, fabs(ct_table_eval(t, Vk) - two_rod_e(Vk)));
+            checked++;
+        }
+    }
+    assert_int_equal(checked, in.checked);
+    assert_true(in.worst_error <= tol);
+    assert_true(fabs(worst - in.worst_error) <= 1e-14);
+    /* points the build never looked at */
+    const double lo = log(0.01), span = log(0.5) - lo, phi = (sqrt(5.0) - 1.0) / 2.0;
+    double mine = 0.0;
+    for (int k = 1; k <= 20000; k++) {
+        const double Vk = exp(lo + span * fmod(k * phi, 1.0));
+        const double err = fabs(ct_table_eval(t, Vk) - two_rod_e(Vk));
+        mine = fmax(mine, err);
+        if (Vk <= 0.1)
+            assert_true(ct_table_eval(t, Vk) == 1.0); /* the rule, not an interpolation */
+        assert_true(ct_table_eval(t, Vk) <= 1.0);
+    }
+    /* between check points the error may exceed the checked maximum a little; on a smooth
+     * interval with 16 checks, by far less than the tolerance */
+    assert_true(mine <= 1.05 * tol);
+    ct_table_free(t);
+    ct_bundle_free(b);
+}
+
+static void two_rods_cubic(void **state)
+{
+    (void)state;
+    check_two_rods(CT_INTERP_MONOTONE_CUBIC, 1e-8);
+    check_two_rods(CT_INTERP_MONOTONE_CUBIC, 1e-4);
+}
+
+static void two_rods_linear(void **state)
+{
+    (void)state;
+    check_two_rods(CT_INTERP_LINEAR, 1e-6);
+}
+
+/* Fritsch and Carlson (1980): a cubic Hermite piece with secant delta != 0 is monotone when
+ * alpha = d_i/delta and beta = d_i+1/delta lie in [0, 3]; slopes vanish at a local extremum
+ * and on flat pieces. Random data of every shape, and linear data (reproduced exactly). */
+static void pchip_conditions(void **state)
+{
+    (void)state;
+    enum { N = 40 };
+    double x[N], y[N], d[N];
+    uint64_t r = 88172645463325252ull;
+    for (int trial = 0; trial < 200; trial++) {
+        double xx = 0.0;
+        for (int i = 0; i < N; i++) {
+            r ^= r << 13, r ^= r >> 7, r ^= r << 17;
+            xx += 0.01 + (double)(r >> 11) / 9007199254740992.0;
+            x[i] = xx;
+            r ^= r << 13, r ^= r >> 7, r ^= r << 17;
+            const double u = (double)(r >> 11) / 9007199254740992.0;
+            /* monotone runs, plateaus and extrema */
+            y[i] = trial % 3 == 0 ? (i ? y[i - 1] : 0.0) + (u < 0.2 ? 0.0 : u)
+                                  : (trial % 3 == 1 ? sin(3.0 * xx) : (u < 0.3 ? 1.0 : u));
+        }
+        ct_pchip_slopes(N, x, y, d);
+        for (int i = 0; i + 1 < N; i++) {
+            const double delta = (y[i + 1] - y[i]) / (x[i + 1] - x[i]);
+            if (delta == 0.0) {
+                assert_true(d[i] == 0.0 && d[i + 1] == 0.0);
+                continue;
+            }
+            const double alpha = d[i] / delta, beta = d[i + 1] / delta;
+            if (!(alpha >= 0.0 && alpha <= 3.0 + 1e-12 && beta >= 0.0 && beta <= 3.0 + 1e-12))
+                fail_msg("trial %d piece %d: alpha %g, beta %g outside [0, 3]", trial, i, alpha,
+                         beta);
+        }
+        /* and the interpolant is monotone on every piece where the data are */
+        double V[N], ones[N];
+        for (int i = 0; i < N; i++)
+            V[i] = exp(x[i]), ones[i] = fmin(fmax(y[i], 0.0), 1.0);
+        if (trial % 3 != 2)
+            continue; /* values in [0, 1] only: a table holds e */
+        ct_table *t;
+        ct_pchip_slopes(N, x, ones, d);
+        assert_int_equal(ct_table_from_nodes(&t, N, V, ones, d, CT_INTERP_MONOTONE_CUBIC, 0.0),
+                         CT_OK);
+        for (int i = 0; i + 1 < N; i++) {
+            const double lo = fmin(ones[i], ones[i + 1]), hi = fmax(ones[i], ones[i + 1]);
+            double prev = ones[i];
+            for (int k = 1; k < 50; k++) {
+                const double v = ct_table_eval(t, exp(x[i] + (x[i + 1] - x[i]) * k / 50.0));
+                assert_true(v >= lo - 1e-15 && v <= hi + 1e-15);
+                assert_true(ones[i + 1] >= ones[i] ? v >= prev - 1e-15 : v <= prev + 1e-15);
+                prev = v;
+            }
+        }
+        ct_table_free(t);
+    }
+    /* linear data: the slope itself, at the ends too */
+    for (int i = 0; i < N; i++)
+        x[i] = i * i * 0.1, y[i] = 2.0 - 0.5 * x[i];
+    ct_pchip_slopes(N, x, y, d);
+    for (int i = 0; i < N; i++)
+        assert_rel(d[i], -0.5, 1e-13);
+}
+
+/* A table written with %.17g and read back by cantact_table.h evaluates to the same bits as
+ * the library's; the reader refuses broken files with file:line. */
+static void write_table(const char *path, const ct_table *t, const char *rule, double Vc)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fprintf(f, "# a test table\n# interpolation = %s\n# V_star_crit = %.17g (comment)\n", rule, Vc);
+    fprintf(f, "# v_per_V_star = 2.5\nV_star,e,de_dlnV_star\n");
+    for (size_t i = 0; i < ct_table_size(t); i++)
+        fprintf(f, "%.17g,%.17g,%.17g\n", ct_table_V_star(t)[i], ct_table_e(t)[i],
+                ct_table_slope(t)[i]);
+    fclose(f);
+}
+
+static void expect_reader_error(const char *text, const char *message)
+{
+    char path[] = "/tmp/ct_table_bad_XXXXXX", err[256];
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    assert_true(write(fd, text, strlen(text)) == (ssize_t)strlen(text));
+    close(fd);
+    ct_tab t;
+    assert_int_equal(ct_tab_load(&t, path, err, sizeof err), -1);
+    if (!strstr(err, message))
+        fail_msg("reader said '%s', expected '%s'", err, message);
+    assert_true(strncmp(err, path, strlen(path)) == 0);
+    unlink(path);
+}
+
+static void reader_round_trip(void **state)
+{
+    (void)state;
+    for (int rule = 0; rule < 2; rule++) {
+        ct_bundle *b = two_rods();
+        ct_table_spec spec;
+        ct_table_spec_default(&spec);
+        spec.V_min = 0.01;
+        spec.V_max = 0.5;
+        spec.tolerance = 1e-7;
+        spec.interpolation = (ct_interp)rule;
+        ct_table *t;
+        assert_int_equal(ct_table_build(&t, b, &spec), CT_OK);
+        ct_table_info in;
+        ct_table_get_info(t, &in);
+        char path[] = "/tmp/ct_table_XXXXXX", err[256];
+        int fd = mkstemp(path);
+        assert_true(fd >= 0);
+        close(fd);
+        write_table(path, t, ct_interp_name((ct_interp)rule), in.V_star_crit);
+        ct_tab r;
+        if (ct_tab_load(&r, path, err, sizeof err))
+            fail_msg("%s", err);
+        assert_int_equal(r.n, ct_table_size(t));
+        assert_int_equal(r.rule, rule);
+        assert_true(r.v_per_V_star == 2.5);
+        for (int k = 0; k <= 5000; k++) {
+            const double V = 0.005 * pow(0.6 / 0.005, k / 5000.0);
+            const double a = ct_tab_eval(&r, V), c = ct_table_eval(t, V);
+            assert_memory_equal(&a, &c, sizeof a);
+        }
+        assert_true(ct_tab_eval(&r, 0.001) == 1.0);        /* below V*_c */
+        assert_true(ct_tab_eval(&r, 0.6) == r.e[r.n - 1]); /* beyond the last node */
+        assert_false(ct_tab_covers(&r, 0.6));
+        assert_true(ct_tab_covers(&r, 0.3) && ct_tab_covers(&r, 1e-9));
+        assert_true(isnan(ct_tab_eval(&r, -1.0)) && isnan(ct_tab_eval(&r, NAN)));
+        assert_true(ct_tab_e_of_speed(&r, 2.5 * 0.3) == ct_tab_eval(&r, 0.3));
+        ct_tab_free(&r);
+        unlink(path);
+        ct_table_free(t);
+        ct_bundle_free(b);
+    }
+    const char *head = "# interpolation = linear\n# V_star_crit = 0.1\nV_star,e,de_dlnV_star\n";
+    char buf[512];
+    expect_reader_error("V_star,e,de_dlnV_star\n1,1,0\n2,0.5,0\n", "missing # interpolation");
+    expect_reader_error("# interpolation = cubic\n", ":1: interpolation: must be");
+    snprintf(buf, sizeof buf, "%s1,1,0\n", head);
+    expect_reader_error(buf, "1 nodes: a table needs at least 2");
+    snprintf(buf, sizeof buf, "%s1,1,0\n0.5,0.5,0\n", head);
+    expect_reader_error(buf, ":5: V_star = 0.5: must be > 0 and above the previous node");
+    snprintf(buf, sizeof buf, "%s1,1,0\n2,1.5,0\n", head);
+    expect_reader_error(buf, ":5: e = 1.5: must be in [0, 1]");
+    snprintf(buf, sizeof buf, "%s1,1,0\n2,0.5\n", head);
+    expect_reader_error(buf, ":5: expected three numbers");
+    snprintf(buf, sizeof buf, "%s1,1,0\n2,nan,0\n", head);
+    expect_reader_error(buf, ":5: expected three numbers");
+    expect_reader_error("# interpolation = linear\nV,e\n", ":2: expected the header");
+}
+
+/* The default Cantor surface: a table at 1e-6 checked against sweeps at points between the
+ * build's check points (3 per interval, none of them the build's). */
+static void default_cantor(void **state)
+{
+    (void)state;
+    double range[2] = {1e-5, 1e-2};
+    ct_cantor_plan plan = {
+        .params = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1},
+        .depth = CT_DEPTH_AUTO,
+        .representation = CT_REP_STAGES,
+        .depth_tolerance = 1e-12,
+        .V_star = range,
+        .nvel = 2,
+        .impacts = 1};
+    ct_impact_opts_default(&plan.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_plan_build(&plan, &b, NULL), CT_OK);
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = range[0];
+    spec.V_max = range[1];
+    spec.tolerance = 1e-6;
+    ct_table *t;
+    assert_int_equal(ct_table_build(&t, b, &spec), CT_OK);
+    ct_table_info in;
+    ct_table_get_info(t, &in);
+    assert_true(in.worst_error <= 1e-6);
+    /* V*_c a node, bit for bit the one sweeps report, and the first yield's closed form */
+    double Wc, uy;
+    assert_int_equal(ct_critical_energy(b, &Wc, &uy), CT_OK);
+    ct_sweep_row row;
+    ct_sweep_spec one = {.V_star = &range[1], .nvel = 1, .impacts = 1};
+    ct_impact_opts_default(&one.opts);
+    assert_int_equal(ct_sweep(b, &one, &row), CT_OK);
+    assert_true(in.V_star_crit == row.r.V_star_crit);
+    assert_rel(in.V_star_crit, sqrt(Wc / ct_energy_scale(&plan.params)), 1e-14);
+    assert_true(has_node(t, in.V_star_crit, 0.0));
+    const size_t n = ct_table_size(t);
+    const double *V = ct_table_V_star(t);
+    size_t m = 0;
+    double *q = malloc(3 * n * sizeof(double));
+    ct_sweep_row *rows = malloc(3 * n * sizeof *rows);
+    assert_non_null(q);
+    assert_non_null(rows);
+    for (size_t i = 0; i + 1 < n; i++) {
+        const double x0 = log(V[i]), h = log(V[i + 1]) - x0, f[3] = {0.029, 0.5003, 0.971};
+        for (int k = 0; k < 3; k++)
+            q[m++] = exp(x0 + h * f[k]);
+    }
+    ct_sweep_spec s = {.V_star = q, .nvel = m, .impacts = 1};
+    ct_impact_opts_default(&s.opts);
+    assert_int_equal(ct_sweep(b, &s, rows), CT_OK);
+    double worst = 0.0;
+    for (size_t k = 0; k < m; k++) {
+        assert_int_equal(rows[k].status, CT_OK);
+        worst = fmax(worst, fabs(ct_table_eval(t, q[k]) - rows[k].r.e));
+    }
+    if (!(worst <= 1.05e-6))
+        fail_msg("worst error %g at unchecked points", worst);
+    free(q);
+    free(rows);
+    ct_table_free(t);
+    ct_bundle_free(b);
+}
+
+/* The rule of cantact_table.h, written here from the cubic Hermite basis (h00, h10, h01,
+ * h11) and the secant, against the library's evaluation of tables made from given nodes. */
+static void rule_from_the_basis(void **state)
+{
+    (void)state;
+    double V[4] = {0.5, 1.0, 3.0, 4.0}, e[4] = {1.0, 0.8, 0.3, 0.35}, d[4] = {0.0, -0.4, 0.2, 0.1};
+    for (int rule = 0; rule < 2; rule++) {
+        ct_table *t;
+        assert_int_equal(ct_table_from_nodes(&t, 4, V, e, d, (ct_interp)rule, 0.25), CT_OK);
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k <= 40; k++) {
+                const double x0 = log(V[i]), x1 = log(V[i + 1]), h = x1 - x0;
+                const double x = x0 + h * k / 40.0, tt = (x - x0) / h;
+                const double h00 = 2 * tt * tt * tt - 3 * tt * tt + 1,
+                             h10 = tt * tt * tt - 2 * tt * tt + tt,
+                             h01 = -2 * tt * tt * tt + 3 * tt * tt, h11 = tt * tt * tt - tt * tt;
+                const double want =
+                    rule == CT_INTERP_LINEAR
+                        ? e[i] + (e[i + 1] - e[i]) * tt
+                        : h00 * e[i] + h10 * h * d[i] + h01 * e[i + 1] + h11 * h * d[i + 1];
+                assert_true(fabs(ct_table_eval(t, exp(x)) - want) <= 1e-14);
+            }
+        assert_true(ct_table_eval(t, 0.25) == 1.0 && ct_table_eval(t, 0.3) == e[0]);
+        assert_true(ct_table_eval(t, 10.0) == e[3]);
+        ct_table_free(t);
+    }
+}
+
+static void bad_input(void **state)
+{
+    (void)state;
+    ct_bundle *b = two_rods();
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = 0.01;
+    spec.V_max = 0.5;
+    ct_table *t = (ct_table *)&spec;
+    assert_int_equal(ct_table_build(NULL, b, &spec), CT_EINVAL);
+    assert_int_equal(ct_table_build(&t, NULL, &spec), CT_EINVAL);
+    assert_null(t);
+    assert_int_equal(ct_table_build(&t, b, NULL), CT_EINVAL);
+    ct_table_spec bad = spec;
+    bad.V_max = 0.001;
+    assert_int_equal(ct_table_build(&t, b, &bad), CT_EINVAL);
+    bad = spec;
+    bad.V_min = NAN;
+    assert_int_equal(ct_table_build(&t, b, &bad), CT_EINVAL);
+    bad = spec;
+    bad.tolerance = 1e-20;
+    assert_int_equal(ct_table_build(&t, b, &bad), CT_EINVAL);
+    bad = spec;
+    bad.interpolation = (ct_interp)7;
+    assert_int_equal(ct_table_build(&t, b, &bad), CT_EINVAL);
+    bad = spec;
+    bad.check_points = 0;
+    assert_int_equal(ct_table_build(&t, b, &bad), CT_EINVAL);
+    /* too few nodes for the tolerance: refused, with the worst error in the message */
+    bad = spec;
+    bad.max_nodes = 12;
+    bad.tolerance = 1e-10;
+    assert_int_equal(ct_table_build(&t, b, &bad), CT_ENOCONV);
+    assert_non_null(strstr(ct_error_message(), "max_nodes = 12"));
+    assert_null(t);
+    /* a range that crushes the layer (W = 3.325 at u = H*: V* = 0.577) */
+    bad = spec;
+    bad.V_max = 0.6;
+    assert_int_equal(ct_table_build(&t, b, &bad), CT_ERANGE);
+    /* nodes given */
+    double V[3] = {1, 2, 3}, e[3] = {1, 0.5, 0.4}, d[3] = {0, 0, 0};
+    assert_int_equal(ct_table_from_nodes(&t, 3, V, e, d, CT_INTERP_LINEAR, 0.5), CT_OK);
+    assert_rel(ct_table_eval(t, sqrt(2.0)), 0.75, 1e-15); /* half way in ln V* */
+    ct_table_free(t);
+    V[1] = 1;
+    assert_int_equal(ct_table_from_nodes(&t, 3, V, e, d, CT_INTERP_LINEAR, 0.5), CT_EINVAL);
+    V[1] = 2, e[1] = 1.5;
+    assert_int_equal(ct_table_from_nodes(&t, 3, V, e, d, CT_INTERP_LINEAR, 0.5), CT_EINVAL);
+    e[1] = 0.5, d[2] = INFINITY;
+    assert_int_equal(ct_table_from_nodes(&t, 3, V, e, d, CT_INTERP_LINEAR, 0.5), CT_EINVAL);
+    assert_int_equal(ct_table_from_nodes(&t, 3, NULL, e, d, CT_INTERP_LINEAR, 0.5), CT_EINVAL);
+    ct_bundle_free(b);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(two_rods_cubic),   cmocka_unit_test(two_rods_linear),
+        cmocka_unit_test(pchip_conditions), cmocka_unit_test(reader_round_trip),
+        cmocka_unit_test(default_cantor),   cmocka_unit_test(rule_from_the_basis),
+        cmocka_unit_test(bad_input),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
