@@ -620,13 +620,13 @@ typedef enum {
 const char *ct_interp_name(ct_interp rule);
 
 typedef struct {
-    double V_min, V_max;   /* the range of V*, dimensionless, 0 < V_min < V_max */
-    double tolerance;      /* largest |e_table - e| allowed, absolute, 1e-13 <= tolerance < 1 */
+    double V_min, V_max; /* the range of V*, dimensionless, 0 < V_min < V_max */
+    double tolerance;    /* largest |e_table - e| allowed, absolute, 1e-13 <= tolerance < 1 */
     ct_interp interpolation;
-    size_t max_nodes;      /* the build fails (CT_ENOCONV) rather than exceed it; >= 2 */
-    size_t check_points;   /* points checked inside every interval, equally spaced in ln V*,
-                              >= 1 (default 16) */
-    ct_impact_opts opts;   /* how each exact e is computed */
+    size_t max_nodes;    /* the build fails (CT_ENOCONV) rather than exceed it; >= 2 */
+    size_t check_points; /* points checked inside every interval, equally spaced in ln V*,
+                            >= 1 (default 16) */
+    ct_impact_opts opts; /* how each exact e is computed */
     ct_sweep_path path;
 } ct_table_spec;
 
@@ -638,8 +638,8 @@ typedef struct ct_table ct_table;
 
 /* What a build found. */
 typedef struct {
-    double V_star_crit;  /* critical V* of b's state: e = 1 at and below it (a node when in range) */
-    double worst_error;  /* the largest |e_table - e| over every checked point, dimensionless */
+    double V_star_crit; /* critical V* of b's state: e = 1 at and below it (a node when in range) */
+    double worst_error; /* the largest |e_table - e| over every checked point, dimensionless */
     double worst_V_star; /* where it was found */
     size_t checked;      /* points checked: check_points inside each interval (nodes are exact) */
     size_t kinks;        /* nodes at kinks of e: V* where u_max reaches a breakpoint of P(u) */
@@ -662,10 +662,10 @@ int ct_table_build(ct_table **out, const ct_bundle *b, const ct_table_spec *spec
 int ct_table_from_nodes(ct_table **out, size_t n, const double *V_star, const double *e,
                         const double *slope, ct_interp rule, double V_star_crit);
 void ct_table_free(ct_table *t);
-size_t ct_table_size(const ct_table *t);           /* nodes */
-const double *ct_table_V_star(const ct_table *t);  /* nodes, dimensionless, increasing */
-const double *ct_table_e(const ct_table *t);       /* e at the nodes */
-const double *ct_table_slope(const ct_table *t);   /* de/d(ln V*) at the nodes */
+size_t ct_table_size(const ct_table *t);          /* nodes */
+const double *ct_table_V_star(const ct_table *t); /* nodes, dimensionless, increasing */
+const double *ct_table_e(const ct_table *t);      /* e at the nodes */
+const double *ct_table_slope(const ct_table *t);  /* de/d(ln V*) at the nodes */
 ct_interp ct_table_interpolation(const ct_table *t);
 void ct_table_get_info(const ct_table *t, ct_table_info *info);
 /* Returns e at V* by the table's interpolation (cantact_table.h's rule); NaN for V* not > 0.

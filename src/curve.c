@@ -671,4 +671,3 @@ void ct_curve_split_events(const ct_curve *c, double *cx, double *ck, size_t *nc
     *nc = a;
     *ny = b;
 }
-

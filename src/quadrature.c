@@ -133,8 +133,7 @@ int ct_integrate_batch(ct_batch_function f, void *ctx, double a, double b, ct_qu
     }
     if ((rule == CT_QUAD_BREAKPOINTS ? npoints : nodes) > SIZE_MAX / (3 * sizeof(double)) - 2)
         return ct_error_set(CT_ENOMEM, "%s with %zu nodes: cannot be addressed",
-                            ct_quad_rule_name(rule),
-                            rule == CT_QUAD_BREAKPOINTS ? npoints : nodes);
+                            ct_quad_rule_name(rule), rule == CT_QUAD_BREAKPOINTS ? npoints : nodes);
     size_t K = rule == CT_QUAD_BREAKPOINTS ? npoints + 2 : usable_nodes(rule, nodes);
     if (K == 0)
         return ct_error_set(CT_EINVAL, "%s with %zu nodes: needs at least %d nodes",

@@ -280,7 +280,7 @@ static void rod_path_equals_curve_path(void **state)
             assert_rel(r[q].r.V_star_crit, c[q].r.V_star_crit, 1e-13);
         }
         assert_int_equal(c[(NV - 1) * IMP].status, CT_ERANGE); /* V* = 60 crushes */
-        for (int q = (NV - 1) * IMP; q < NV * IMP; q++) /* and says so on both paths */
+        for (int q = (NV - 1) * IMP; q < NV * IMP; q++)        /* and says so on both paths */
             assert_true(strstr(c[q].message, q == (NV - 1) * IMP ? "crushed" : "not run") &&
                         strstr(r[q].message, q == (NV - 1) * IMP ? "crushed" : "not run"));
         ct_bundle_free(b[k]);

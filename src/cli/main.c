@@ -311,7 +311,6 @@ static int write_profile(FILE *f, const ct_bundle *b, const ct_params *p)
     return CT_OK;
 }
 
-
 /* Parses a subcommand's arguments and loads its scene. Returns -1 when the scene is loaded
  * into *sc (the caller goes on), else the exit status to return (help shown, or an error). */
 static int load_scene_args(int argc, char **argv, const char *cmd, const char *help, ct_scene *sc,

@@ -56,7 +56,6 @@ static int status_exit(int st)
     return (st == CT_EINVAL || st == CT_ERANGE || st == CT_EIO) ? EXIT_USAGE : EXIT_FAILED;
 }
 
-
 static void put_value(FILE *f, const char *key, double v)
 {
     fprintf(f, "# %s = ", key);

@@ -371,8 +371,7 @@ static int depth_bound(depth_ctx *c, long N, double *bound)
         *bound = !resolved ? INFINITY : rel_W > rel_P ? rel_W : rel_P;
     } else {
         int resolved; /* u is an upper bound of u_max either way */
-        if (c->u_up < 0.0 &&
-            (st = solve_virgin(p, DEPTH_PROBE, c->W_min, &c->u_up, &P, &resolved)))
+        if (c->u_up < 0.0 && (st = solve_virgin(p, DEPTH_PROBE, c->W_min, &c->u_up, &P, &resolved)))
             return st;
         /* P(u_max) >= W / u_max as P rises with u: dP u_up / W bounds both ratios */
         *bound = dP * c->u_up / c->W_min;
