@@ -106,6 +106,15 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
 int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, double eps_y);
 int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn);
 
+/* ---- measured surfaces (src/surface/profile.c), for the fit ---- */
+
+typedef struct {
+    double t, w; /* a sample's top depth [length] and area */
+} ct_top_weight;
+/* The valid samples' tops below the highest point with their areas, sorted by top (malloc'ed);
+ * *wsum the total area. */
+int ct_profile_sorted_tops(const ct_profile *p, ct_top_weight **out, double *wsum);
+
 /* ---- impacts on a curve (src/impact.c), for the sweep ---- */
 
 /* The impact of energy W from the state c's state reaches when loaded to U (-INFINITY: c's

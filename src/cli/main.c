@@ -2,6 +2,7 @@
 #include "cantact.h"
 #include "ensemble.h"
 #include "history.h"
+#include "measured.h"
 #include "ranks.h"
 #include "number.h"
 #include "output.h"
@@ -28,8 +29,9 @@ static const char *main_help =
     "\n"
     "Subcommands:\n"
     "  run SCENE        compute what the scene's [output] what asks for (e, time, curve,\n"
-    "                   history, profile, compare, bounce, ensemble)\n"
+    "                   history, profile, compare, bounce, ensemble, bearing)\n"
     "  geometry SCENE   print the Cantor geometry of the scene's surface\n"
+    "  fit PROFILE      level a measured profile and fit the Cantor surface it looks like\n"
     "  merge SCENE PART.csv...  combine the realisations of runs with --realisations a:b\n"
     "  table SCENE      e(V*) as a table whose interpolation meets [table] tolerance (for DEM\n"
     "                   codes: include/cantact_table.h reads it)\n"
@@ -67,7 +69,9 @@ static const char *run_help =
     "previous rebound speed, the state carried, until impacts or below stop_speed; what =\n"
     "bounce: bounce,V_star,v_in_m_per_s,e,v_out_m_per_s,u_max_over_h0,elastic,t_contact_s,\n"
     "P_peak_N_per_m,flight_s,height_m,time_s,v_out_constant_e_m_per_s,height_constant_e_m.\n"
-    "\n"
+    "\n";
+/* the rest of run's help (one literal would pass the 4095 characters C99 promises) */
+static const char *run_help_more =
     "With surface.type = random_cantor and [ensemble] realisations = R, every realisation is\n"
     "built, swept and dropped, and what lists:\n"
     "  ensemble:     impact,V_star,realisations, then mean, sd, sem (standard error of the\n"
@@ -76,6 +80,14 @@ static const char *run_help =
     "  realisations: realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,\n"
     "                fz_clipped (every sample, for cantact merge)\n"
     "Under mpirun the ranks share the realisations; the output is the same bytes.\n"
+    "\n"
+    "With surface.type = profile (a measured line profile or X3P grid; E, sigma_y in Pa;\n"
+    "mass per unit depth, or mass for a grid, in kg; velocity in m/s), every sample is a rod,\n"
+    "h0 = Rt and l0 = the length (area) after levelling, V* = v sqrt(m / (2 l0 E h0)), and:\n"
+    "  compare: adds e_cantor_fit,e_asymptotic_fit,V_star_cantor_fit to e rows (the fitted\n"
+    "           Cantor surface, exact rods, and the paper's law with the fitted parameters)\n"
+    "  bearing: d_m,d_over_Rt,phi,phi_fit (the bearing-area curve and its power-law fit)\n"
+    "  profile: x_m,z_m (a grid: x_m,y_m,z_m), the heights after levelling\n"
     "\n"
     "An impact that cannot be computed (a crushed layer, an unresolvable penetration) ends the\n"
     "run with its V* and impact (solver.on_error = stop), or, with solver.on_error = skip,\n"
@@ -89,9 +101,13 @@ static const char *run_help =
     "                            realisations CSV (job arrays; then cantact merge)\n"
     "  -h, --help                this help\n"
     "\n"
-    "Scene keys: [surface] type (cantor|random_cantor) fx fz H h0 l0 depth representation;\n"
+    "Scene keys: [surface] type (cantor|random_cantor|profile) fx fz H h0 l0 depth\n"
+    "representation;\n"
     "random_cantor: distribution (uniform|lognormal) fx_spread fz_spread seed realisation;\n"
     "[ensemble] realisations split (auto|realisations|rods);\n"
+    "type = profile: file unit x_unit z_unit (m|mm|um|nm) spacing detrend\n"
+    "(none|mean|linear|quadratic) trim (none|rq) trim_k, H (x Rt) | Hstar (z unit);\n"
+    "[fit] dimension (variation|structure|spectrum) depth_lo depth_hi lag_lo lag_hi;\n"
     "[material] E sigma_y;\n"
     "[impact] V_star | mass velocity | mass drop_height, impacts, sequence (sweep|bounce)\n"
     "gravity stop_speed; [solver] quadrature nodes tolerance\n"
@@ -385,6 +401,9 @@ static int build_surface(const ct_scene *sc, int keep_all, ct_bundle **b, ct_pla
     switch (sc->surface_type) {
     case CT_SURFACE_RANDOM_CANTOR: /* one realisation (src/cli/ensemble.c): nothing left out */
         return ct_cli_random_surface(sc, b, info);
+    case CT_SURFACE_PROFILE: /* measured (src/cli/measured.c), read by ct_cli_profile_prepare */
+        (void)keep_all;
+        return ct_cli_profile_bundle(sc, b, info);
     case CT_SURFACE_CANTOR:
     default: {
         ct_cantor_plan plan = {
@@ -443,7 +462,8 @@ static void show_progress(size_t done, size_t total, void *ctx)
         ct_progress_step(prog);
 }
 
-static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, int compare)
+static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, int compare,
+                        const double *fitted)
 {
     const ct_params *p = &sc->params;
     const ct_impact_result *r = &row->r;
@@ -474,7 +494,14 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, in
     put_field(f, r->V_star_crit);
     put_field(f, r->u_release / p->h0);
     fprintf(f, ",%d", r->elastic);
-    if (compare && row->impact == 1) {
+    if (compare && fitted) { /* a measured surface: its fitted Cantor surface and law */
+        for (int q = 0; q < 3; q++) {
+            if (isfinite(fitted[q]))
+                put_field(f, fitted[q]);
+            else
+                fputc(',', f);
+        }
+    } else if (compare && row->impact == 1) {
         /* the paper's laws model the first impact on the virgin fractal; where a law does
          * not apply (u_max > h0, e > 1) its field stays empty */
         for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT; law++) {
@@ -533,7 +560,9 @@ static int cmd_run(int argc, char **argv)
     ct_scene sc;
     int quiet, st = CT_OK;
     const char *range = NULL;
-    int rc = load_scene_args(argc, argv, "run", run_help, &sc, &quiet, &range);
+    static char help[8192];
+    snprintf(help, sizeof help, "%s%s", run_help, run_help_more);
+    int rc = load_scene_args(argc, argv, "run", help, &sc, &quiet, &range);
     if (rc >= 0)
         return rc;
     if (sc.realisations) { /* an ensemble of random realisations (src/cli/ensemble.c) */
@@ -555,7 +584,8 @@ static int cmd_run(int argc, char **argv)
         return rc;
     }
     int nitems = !!(sc.what & CT_OUT_E) + !!(sc.what & CT_OUT_CURVE) +
-                 !!(sc.what & CT_OUT_PROFILE) + !!(sc.what & CT_OUT_HISTORY);
+                 !!(sc.what & CT_OUT_PROFILE) + !!(sc.what & CT_OUT_HISTORY) +
+                 !!(sc.what & CT_OUT_BEARING);
     if (nitems > 1 && !strcmp(sc.output, "-")) {
         fail_line("output.what names several outputs: set output.file (or -o FILE) to a path");
         ct_scene_free(&sc);
@@ -580,13 +610,14 @@ static int cmd_run(int argc, char **argv)
     }
 
     /* open every output first: an unwritable path fails before any work is done */
-    ct_out out_e = {0}, out_curve = {0}, out_profile = {0}, out_history = {0};
+    ct_out out_e = {0}, out_curve = {0}, out_profile = {0}, out_history = {0}, out_bearing = {0};
+    double *fitted = NULL; /* a measured surface's compare columns, 3 per row */
     ct_bundle *b = NULL;
     ct_sweep_row *rows = NULL;
     run_observer obs = {0};
     char err[512];
-    int opened_e = 0, opened_c = 0, opened_p = 0, opened_h = 0;
-    char *curve_path = NULL, *profile_path = NULL, *history_path = NULL;
+    int opened_e = 0, opened_c = 0, opened_p = 0, opened_h = 0, opened_b = 0;
+    char *curve_path = NULL, *profile_path = NULL, *history_path = NULL, *bearing_path = NULL;
     rc = EXIT_DONE;
     if (sc.what & CT_OUT_E) {
         if (ct_out_open(&out_e, sc.output, err, sizeof err))
@@ -605,6 +636,12 @@ static int cmd_run(int argc, char **argv)
             goto io_fail;
         opened_p = 1;
     }
+    if (sc.what & CT_OUT_BEARING) {
+        bearing_path = nitems > 1 ? derived_path(sc.output, "bearing") : strdup(sc.output);
+        if (!bearing_path || ct_out_open(&out_bearing, bearing_path, err, sizeof err))
+            goto io_fail;
+        opened_b = 1;
+    }
     if (sc.what & CT_OUT_HISTORY) {
         history_path = nitems > 1 ? derived_path(sc.output, "history") : strdup(sc.output);
         if (!history_path || ct_out_open(&out_history, history_path, err, sizeof err))
@@ -613,6 +650,12 @@ static int cmd_run(int argc, char **argv)
     }
 
     ct_plan_info info;
+    const int measured = sc.surface_type == CT_SURFACE_PROFILE;
+    if (measured && (st = ct_cli_profile_prepare(&sc, quiet))) {
+        fail_line(ct_cli_measured_message());
+        rc = status_exit(st);
+        goto cleanup;
+    }
     if ((st = build_surface(&sc, !!(sc.what & CT_OUT_PROFILE), &b, &info)))
         goto lib_fail;
     if (opened_p && info.depth > 20) {
@@ -631,13 +674,17 @@ static int cmd_run(int argc, char **argv)
         else
             snprintf(how, sizeof how, "%s: truncation bound %.2g",
                      sc.depth == CT_DEPTH_FRACTAL ? "fractal limit" : "auto", info.bound);
-        fprintf(stderr,
-                "cantact: %s, depth %ld (%s), %zu rods, %zu left out as never touched, "
-                "%d thread(s)\n",
-                sc.surface_type == CT_SURFACE_RANDOM_CANTOR ? "random cantor rods"
-                : sc.representation == CT_REP_STAGES        ? "stage rods"
-                                                            : "segment rods",
-                info.depth, how, info.rods, info.omitted, ct_bundle_set_threads(b, sc.threads));
+        if (measured)
+            fprintf(stderr, "cantact: measured surface, %zu rods, %d thread(s)\n", info.rods,
+                    ct_bundle_set_threads(b, sc.threads));
+        else
+            fprintf(stderr,
+                    "cantact: %s, depth %ld (%s), %zu rods, %zu left out as never touched, "
+                    "%d thread(s)\n",
+                    sc.surface_type == CT_SURFACE_RANDOM_CANTOR ? "random cantor rods"
+                    : sc.representation == CT_REP_STAGES        ? "stage rods"
+                                                                : "segment rods",
+                    info.depth, how, info.rods, info.omitted, ct_bundle_set_threads(b, sc.threads));
     }
 
     int compare = !!(sc.what & CT_OUT_COMPARE);
@@ -645,7 +692,11 @@ static int cmd_run(int argc, char **argv)
         fprintf(out_e.f,
                 "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,"
                 "V_star_crit,u_release_over_h0,elastic%s",
-                compare ? ",e_series,e_asymptotic,e_asymptotic_consistent" : "");
+                !compare ? ""
+                : sc.surface_type == CT_SURFACE_PROFILE
+                    ? ",e_cantor_fit,e_asymptotic_fit,"
+                      "V_star_cantor_fit"
+                    : ",e_series,e_asymptotic,e_asymptotic_consistent");
     if (opened_e && (sc.what & CT_OUT_TIME))
         ct_cli_time_header(out_e.f, &sc);
     if (opened_e)
@@ -667,14 +718,16 @@ static int cmd_run(int argc, char **argv)
     }
     obs.sc = &sc;
     obs.curve = opened_c ? out_curve.f : NULL;
-    obs.profile = opened_p ? out_profile.f : NULL;
+    obs.profile = opened_p && !measured ? out_profile.f : NULL;
     obs.history = opened_h ? out_history.f : NULL;
     obs.compare = compare;
     if (opened_c && (st = ct_curve_alloc(&obs.post)))
         goto lib_fail;
-    if (opened_p)
+    if (opened_p && !measured)
         fprintf(out_profile.f,
                 "stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0\n");
+    if (opened_p && measured)
+        ct_cli_write_levelled(out_profile.f, &sc);
     ct_progress prog;
     ct_progress_start(&prog, sc.nvel);
     ct_sweep_spec spec = {
@@ -685,7 +738,7 @@ static int cmd_run(int argc, char **argv)
         .stop_on_error = !sc.skip_failed,
         .progress = show_progress,
         .progress_ctx = &prog,
-        .observe = (opened_c || opened_p || opened_h) ? observe : NULL,
+        .observe = (opened_c || (opened_p && !measured) || opened_h) ? observe : NULL,
         .observe_ctx = &obs,
         .path = sc.path,
         .dynamics = !!(sc.what & CT_OUT_TIME),
@@ -694,6 +747,20 @@ static int cmd_run(int argc, char **argv)
     ct_progress_end(&prog);
     if (st)
         goto lib_fail;
+    if (measured && (st = ct_cli_profile_refit(&sc, rows, nrows, quiet)))
+        goto lib_fail;
+    if (opened_b && (st = ct_cli_write_bearing(out_bearing.f, &sc)))
+        goto lib_fail;
+    if (measured && compare) { /* the fitted Cantor surface and law beside the rods */
+        if (!(fitted = malloc((nrows ? 3 * nrows : 1) * sizeof(double)))) {
+            fail_line("compare: out of memory");
+            rc = EXIT_FAILED;
+            goto cleanup;
+        }
+        if (ct_cli_profile_compare(&sc, rows, nrows, fitted) && !quiet)
+            fprintf(stderr, "cantact: compare: %s (its columns stay empty)\n",
+                    ct_cli_measured_message());
+    }
     size_t failed = 0;
     const ct_sweep_row *first_failed = NULL;
     for (size_t k = 0; k < nrows; k++) {
@@ -712,14 +779,14 @@ static int cmd_run(int argc, char **argv)
         if (rows[k].status && !failed++)
             first_failed = &rows[k];
         if (opened_e)
-            write_e_row(out_e.f, &sc, &rows[k], compare);
+            write_e_row(out_e.f, &sc, &rows[k], compare, fitted ? fitted + 3 * k : NULL);
     }
     if (failed && !quiet)
         fprintf(stderr,
                 "cantact: %zu of %zu impacts failed or not run (first: V* = %g, impact %ld: %s)\n",
                 failed, nrows, first_failed->V_star, first_failed->impact, first_failed->message);
     /* all outputs land together or none does */
-    ct_out *outs[4];
+    ct_out *outs[5];
     size_t nouts = 0;
     if (opened_e)
         outs[nouts++] = &out_e;
@@ -729,7 +796,9 @@ static int cmd_run(int argc, char **argv)
         outs[nouts++] = &out_profile;
     if (opened_h)
         outs[nouts++] = &out_history;
-    opened_e = opened_c = opened_p = opened_h = 0; /* commit publishes or drops every one */
+    if (opened_b)
+        outs[nouts++] = &out_bearing;
+    opened_e = opened_c = opened_p = opened_h = opened_b = 0; /* commit: all or none */
     if (ct_out_commit_all(outs, nouts, err, sizeof err)) {
         fail_line(err);
         rc = EXIT_USAGE;
@@ -752,7 +821,11 @@ cleanup:
         ct_out_abort(&out_profile);
     if (opened_h)
         ct_out_abort(&out_history);
+    if (opened_b)
+        ct_out_abort(&out_bearing);
     free(history_path);
+    free(bearing_path);
+    free(fitted);
     ct_curve_free(obs.post);
     ct_bundle_free(b);
     free(rows);
@@ -823,6 +896,8 @@ static int dispatch(int argc, char **argv)
         return ct_cli_table(argc - 2, argv + 2);
     if (!strcmp(cmd, "geometry"))
         return cmd_geometry(argc - 2, argv + 2);
+    if (!strcmp(cmd, "fit"))
+        return ct_cli_fit_main(argc - 2, argv + 2);
     fprintf(stderr, "cantact: unknown subcommand '%s' (try cantact --help)\n", cmd);
     return EXIT_USAGE;
 }

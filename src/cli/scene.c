@@ -84,6 +84,21 @@ static const key_spec known_keys[] = {
     {"impact", "gravity", 0},
     {"impact", "stop_speed", 0},
     {"output", "history_points", 0},
+    /* type = profile */
+    {"surface", "file", 0},
+    {"surface", "unit", 0},
+    {"surface", "x_unit", 0},
+    {"surface", "z_unit", 0},
+    {"surface", "spacing", 0},
+    {"surface", "detrend", 0},
+    {"surface", "trim", 0},
+    {"surface", "trim_k", 0},
+    {"surface", "Hstar", 0},
+    {"fit", "depth_lo", 0},
+    {"fit", "depth_hi", 0},
+    {"fit", "lag_lo", 0},
+    {"fit", "lag_hi", 0},
+    {"fit", "dimension", 0},
     /* cantact table */
     {"table", "tolerance", 0},
     {"table", "V_star", 0},
@@ -134,11 +149,11 @@ static int store(parse_state *s, const char *section, const char *key, const cha
         if (strcmp(where, "--set"))
             return scene_error(CT_EINVAL,
                                "%s:%d: [%s]: unknown section (known: surface, material, "
-                               "impact, solver, output, ensemble, table)",
+                               "impact, solver, output, ensemble, table, fit)",
                                s->name, s->section_line, section);
         return scene_error(CT_EINVAL,
                            "--set: [%s]: unknown section (known: surface, material, impact, "
-                           "solver, output, ensemble, table)",
+                           "solver, output, ensemble, table, fit)",
                            section);
     }
     int k = find_key(section, key);
@@ -258,7 +273,7 @@ static char *read_string_line(char *buf, int size, void *stream)
         if (!section_known(name))
             return reader_error(s,
                                 "%s:%d: [%s]: unknown section (known: surface, material, "
-                                "impact, solver, output, ensemble, table)",
+                                "impact, solver, output, ensemble, table, fit)",
                                 name);
         s->section_line = s->line;
         snprintf(buf, (size_t)size, "[%s]\n", name);
@@ -505,6 +520,132 @@ static int velocity_list(const entry *e, const char *key, double **out, size_t *
     return CT_OK;
 }
 
+/* A length unit's size in metres. */
+static double unit_of(const char *name)
+{
+    static const struct {
+        const char *name;
+        double metres;
+    } units[] = {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}};
+    for (size_t k = 0; k < sizeof units / sizeof units[0]; k++)
+        if (!strcmp(name, units[k].name))
+            return units[k].metres;
+    return 0.0;
+}
+
+int ct_scene_dimension_of(const char *name)
+{
+    static const char *const names[] = {"variation", "structure", "spectrum"};
+    for (int k = 0; k < 3; k++)
+        if (!strcmp(name, names[k]))
+            return CT_DIM_VARIATION + k;
+    return -1;
+}
+
+/* Keys of type = profile and [fit]: given with another type they are errors that name them,
+ * and the Cantor keys are errors with this type. */
+static int profile_keys(parse_state *s, ct_scene *sc)
+{
+    static const char *const only[] = {"file",    "unit", "x_unit", "z_unit", "spacing",
+                                       "detrend", "trim", "trim_k", "Hstar"};
+    static const char *const fit_keys[] = {"depth_lo", "depth_hi", "lag_lo", "lag_hi", "dimension"};
+    static const char *const not_here[] = {"fx", "fz", "h0", "l0", "depth", "representation"};
+    const int profile = sc->surface_type == CT_SURFACE_PROFILE;
+    entry *e;
+    int st;
+    for (size_t k = 0; k < sizeof only / sizeof only[0]; k++)
+        if (!profile && (e = get(s, "surface", only[k])))
+            return bad(e, "surface", only[k], "only for surface.type = profile");
+    for (size_t k = 0; k < 5; k++)
+        if (!profile && (e = get(s, "fit", fit_keys[k])))
+            return bad(e, "fit", fit_keys[k], "only for surface.type = profile");
+    if (!profile)
+        return CT_OK;
+    for (size_t k = 0; k < sizeof not_here / sizeof not_here[0]; k++)
+        if ((e = get(s, "surface", not_here[k])))
+            return bad(e, "surface", not_here[k],
+                       "not for surface.type = profile (the measured surface gives it)");
+    if (!(e = get(s, "surface", "file")) || !e->value[0])
+        return scene_error(CT_EINVAL, "%s: surface.file: required key missing (type = profile)",
+                           s->name);
+    if (!(sc->profile_file = strdup(e->value)))
+        return scene_error(CT_ENOMEM, "scene: out of memory");
+    if (!get(s, "material", "sigma_y"))
+        return scene_error(CT_EINVAL,
+                           "%s: material.sigma_y: required key missing (type = profile: E and "
+                           "sigma_y in Pa)",
+                           s->name);
+    double xu = 0.0, zu = 0.0; /* 0: the unit the file's column names state */
+    static const char *const unit_keys[] = {"unit", "x_unit", "z_unit"};
+    for (int k = 0; k < 3; k++)
+        if ((e = get(s, "surface", unit_keys[k]))) {
+            double u = unit_of(e->value);
+            if (!(u > 0.0))
+                return bad(e, "surface", unit_keys[k], "must be m, mm, um or nm");
+            if (k != 2)
+                xu = u;
+            if (k != 1)
+                zu = u;
+        }
+    sc->read_opts.x_unit = xu;
+    sc->read_opts.z_unit = zu;
+    sc->read_opts.dx = 0.0;
+    if ((st = number_key(s, "surface", "spacing", 0.0, INFINITY,
+                         "must be > 0 (one column of heights at this spacing, in x_unit)",
+                         &sc->read_opts.dx)))
+        return st;
+    sc->detrend = CT_DETREND_LINEAR;
+    if ((e = get(s, "surface", "detrend"))) {
+        static const char *const names[] = {"none", "mean", "linear", "quadratic"};
+        int found = -1;
+        for (int k = 0; k < 4; k++)
+            if (!strcmp(e->value, names[k]))
+                found = k;
+        if (found < 0)
+            return bad(e, "surface", "detrend", "must be none, mean, linear or quadratic");
+        sc->detrend = (ct_detrend)found;
+    }
+    sc->trim_k = 0.0;
+    if ((e = get(s, "surface", "trim"))) {
+        if (!strcmp(e->value, "rq"))
+            sc->trim_k = 3.0;
+        else if (strcmp(e->value, "none"))
+            return bad(e, "surface", "trim", "must be none or rq (clip at mean + trim_k Rq)");
+    }
+    if ((e = get(s, "surface", "trim_k"))) {
+        if (!(sc->trim_k > 0.0))
+            return bad(e, "surface", "trim_k", "only with surface.trim = rq");
+        if ((st = number_key(s, "surface", "trim_k", 0.0, INFINITY, "must be > 0", &sc->trim_k)))
+            return st;
+    }
+    entry *eh = get(s, "surface", "H"), *es = get(s, "surface", "Hstar");
+    if (!eh == !es)
+        return scene_error(CT_EINVAL,
+                           "%s: type = profile needs one of surface.H (H* as a multiple of the "
+                           "peak-to-valley depth) and surface.Hstar (in z_unit)",
+                           s->name);
+    sc->Hstar_given = sc->H_over_Rt = 0.0;
+    if ((st = number_key(s, "surface", "Hstar", 0.0, INFINITY, "must be > 0", &sc->Hstar_given)) ||
+        (st = number_key(s, "surface", "H", 1.0, INFINITY,
+                         "must satisfy H > 1 (H* = H Rt must exceed the peak-to-valley depth)",
+                         &sc->H_over_Rt)))
+        return st;
+    for (int k = 0; k < 4; k++) {
+        sc->fit_band[k] = 0.0;
+        if ((st = number_key(s, "fit", fit_keys[k], 0.0, INFINITY,
+                             "must be > 0 (in the file's unit)", &sc->fit_band[k])))
+            return st;
+    }
+    sc->fit_dimension = CT_DIM_VARIATION;
+    if ((e = get(s, "fit", "dimension"))) {
+        const int m = ct_scene_dimension_of(e->value);
+        if (m < 0)
+            return bad(e, "fit", "dimension", "must be variation, structure or spectrum");
+        sc->fit_dimension = (ct_dimension_method)m;
+    }
+    return CT_OK;
+}
+
 /* Keys of type = random_cantor and [ensemble]: given with another type they are errors that
  * name them; representation (a cantor key) is one with this type. */
 static int random_cantor_keys(parse_state *s, ct_scene *sc)
@@ -668,10 +809,12 @@ static int interpret(parse_state *s, ct_scene *sc)
             sc->surface_type = CT_SURFACE_CANTOR;
         else if (!strcmp(e->value, "random_cantor"))
             sc->surface_type = CT_SURFACE_RANDOM_CANTOR;
+        else if (!strcmp(e->value, "profile"))
+            sc->surface_type = CT_SURFACE_PROFILE;
         else
-            return bad(e, "surface", "type", "must be cantor or random_cantor");
+            return bad(e, "surface", "type", "must be cantor, random_cantor or profile");
     }
-    if ((st = random_cantor_keys(s, sc)))
+    if ((st = random_cantor_keys(s, sc)) || (st = profile_keys(s, sc)))
         return st;
     for (size_t k = 0; k < NKEYS; k++)
         if (known_keys[k].required && !s->entries[k].set)
@@ -691,21 +834,34 @@ static int interpret(parse_state *s, ct_scene *sc)
     p->h0 = 1.0;
     p->l0 = 1.0;
     p->sigma_y = 1.0;
-    if ((st = number_key(s, "surface", "fx", 1.0, INFINITY, "must satisfy fx > 1", &p->fx)) ||
-        (st = number_key(s, "surface", "fz", 1.0, 2.0, "must satisfy 1 < fz < 2", &p->fz)) ||
-        (st = number_key(s, "surface", "H", 1.0, INFINITY,
-                         "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)", &H)) ||
-        (st = number_key(s, "surface", "h0", 0.0, INFINITY, "must be > 0", &p->h0)) ||
-        (st = number_key(s, "surface", "l0", 0.0, INFINITY, "must be > 0", &p->l0)) ||
-        (st = number_key(s, "material", "sigma_y", 0.0, INFINITY, "must be > 0", &p->sigma_y)) ||
-        (st = number_key(s, "material", "E", 0.0, INFINITY, "must be > 0", &p->E)))
+    if (sc->surface_type == CT_SURFACE_PROFILE) { /* the material; the rest is the file's */
+        if ((st =
+                 number_key(s, "material", "sigma_y", 0.0, INFINITY, "must be > 0", &p->sigma_y)) ||
+            (st = number_key(s, "material", "E", 0.0, INFINITY, "must be > 0", &p->E)))
+            return st;
+        if (!(p->E > p->sigma_y))
+            return bad(get(s, "material", "E"), "material", "E",
+                       "must be > sigma_y (yield strain sigma_y/E < 1)");
+    } else if ((st =
+                    number_key(s, "surface", "fx", 1.0, INFINITY, "must satisfy fx > 1", &p->fx)) ||
+               (st = number_key(s, "surface", "fz", 1.0, 2.0, "must satisfy 1 < fz < 2", &p->fz)) ||
+               (st = number_key(s, "surface", "H", 1.0, INFINITY,
+                                "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)",
+                                &H)) ||
+               (st = number_key(s, "surface", "h0", 0.0, INFINITY, "must be > 0", &p->h0)) ||
+               (st = number_key(s, "surface", "l0", 0.0, INFINITY, "must be > 0", &p->l0)) ||
+               (st = number_key(s, "material", "sigma_y", 0.0, INFINITY, "must be > 0",
+                                &p->sigma_y)) ||
+               (st = number_key(s, "material", "E", 0.0, INFINITY, "must be > 0", &p->E)))
         return st;
-    if (!(p->E > p->sigma_y))
-        return bad(get(s, "material", "E"), "material", "E",
-                   "must be > sigma_y (yield strain sigma_y/E < 1)");
-    p->Hstar = H * p->h0;
-    if ((st = ct_params_validate(p)))
-        return scene_error(st, "%s: %s", s->name, ct_error_message());
+    if (sc->surface_type != CT_SURFACE_PROFILE) {
+        if (!(p->E > p->sigma_y))
+            return bad(get(s, "material", "E"), "material", "E",
+                       "must be > sigma_y (yield strain sigma_y/E < 1)");
+        p->Hstar = H * p->h0;
+        if ((st = ct_params_validate(p)))
+            return scene_error(st, "%s: %s", s->name, ct_error_message());
+    }
 
     sc->depth = CT_DEPTH_AUTO;
     if ((e = get(s, "surface", "depth"))) {
@@ -782,9 +938,10 @@ static int interpret(parse_state *s, ct_scene *sc)
         if ((st = velocity_list(evel, "velocity", &sc->V_star, &sc->nvel)))
             return st;
         sc->mass = m;
-        /* V* = sqrt(m v1^2 / (2 l0 E h0)) */
+        /* V* = sqrt(m v1^2 / (2 l0 E h0)); a measured surface's l0 and h0 come with its file */
         double scale = 2.0 * ct_energy_scale(p);
-        for (size_t k = 0; k < sc->nvel; k++) {
+        sc->speeds_are_velocities = sc->surface_type == CT_SURFACE_PROFILE;
+        for (size_t k = 0; k < sc->nvel && !sc->speeds_are_velocities; k++) {
             sc->V_star[k] = sqrt(m / scale) * sc->V_star[k];
             if (!isfinite(sc->V_star[k]) || !(sc->V_star[k] > 0.0))
                 return bad(evel, "impact", "velocity",
@@ -792,7 +949,7 @@ static int interpret(parse_state *s, ct_scene *sc)
         }
     }
     /* every impact energy V*^2 l0 E h0 must be a number the solver can use */
-    for (size_t k = 0; k < sc->nvel; k++) {
+    for (size_t k = 0; k < sc->nvel && !sc->speeds_are_velocities; k++) {
         double W = sc->V_star[k] * sc->V_star[k] * ct_energy_scale(p);
         if (!isfinite(W) || !(W > 0.0)) {
             char msg[200];
@@ -911,6 +1068,8 @@ static int interpret(parse_state *s, ct_scene *sc)
                 sc->what |= CT_OUT_PROFILE;
             else if (!strcmp(tok, "compare"))
                 sc->what |= CT_OUT_COMPARE;
+            else if (!strcmp(tok, "bearing"))
+                sc->what |= CT_OUT_BEARING;
             else if (!strcmp(tok, "ensemble"))
                 sc->what |= CT_OUT_ENSEMBLE;
             else if (!strcmp(tok, "realisations"))
@@ -925,7 +1084,7 @@ static int interpret(parse_state *s, ct_scene *sc)
                 free(buf);
                 return bad(e, "output", "what",
                            "each item must be e, time, curve, history, profile, compare, "
-                           "bounce, ensemble or realisations");
+                           "bearing, bounce, ensemble or realisations");
             }
         }
         free(buf);
@@ -960,6 +1119,8 @@ static int interpret(parse_state *s, ct_scene *sc)
     if (sc->surface_type == CT_SURFACE_RANDOM_CANTOR && (sc->what & CT_OUT_COMPARE))
         return bad(e, "output", "what",
                    "compare: the paper's laws model the deterministic surface (type = cantor)");
+    if (sc->surface_type != CT_SURFACE_PROFILE && (sc->what & CT_OUT_BEARING))
+        return bad(e, "output", "what", "bearing: only for surface.type = profile");
     return CT_OK;
 }
 
@@ -1102,6 +1263,13 @@ int ct_scene_load(ct_scene *scene, const char *path, const char *const *override
     }
     st = ct_scene_parse(scene, name, text, overrides, noverrides);
     free(text);
+    if (!st && !is_stdin) { /* a measured surface's file is found beside its scene */
+        const char *slash = strrchr(path, '/');
+        if (slash && !(scene->scene_dir = strndup(path, (size_t)(slash - path + 1)))) {
+            ct_scene_free(scene);
+            return scene_error(CT_ENOMEM, "scene: out of memory");
+        }
+    }
     return st;
 }
 void ct_scene_make_dimensionless(ct_scene *sc)
@@ -1121,6 +1289,12 @@ void ct_scene_free(ct_scene *scene)
         return;
     free(scene->V_star);
     free(scene->output);
+    free(scene->profile_file);
+    free(scene->scene_dir);
+    ct_profile_free(scene->profile);
     scene->V_star = NULL;
     scene->output = NULL;
+    scene->profile_file = NULL;
+    scene->scene_dir = NULL;
+    scene->profile = NULL;
 }

@@ -11,9 +11,15 @@ enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
 enum { CT_OUT_ENSEMBLE = 16, CT_OUT_REALISATIONS = 32 };
 /* the impact in time: columns of the e table, histories, a bounce sequence */
 enum { CT_OUT_TIME = 64, CT_OUT_HISTORY = 128, CT_OUT_BOUNCE = 256 };
+/* a measured surface: its bearing-area curve against the fitted one */
+enum { CT_OUT_BEARING = 512 };
 
 /* [surface] type: which kind of surface makes the rods (src/surface/). */
-typedef enum { CT_SURFACE_CANTOR = 0, CT_SURFACE_RANDOM_CANTOR = 1 } ct_surface_type;
+typedef enum {
+    CT_SURFACE_CANTOR = 0,
+    CT_SURFACE_RANDOM_CANTOR = 1,
+    CT_SURFACE_PROFILE = 2 /* a measured line profile or areal topography */
+} ct_surface_type;
 
 typedef struct {
     ct_surface_type surface_type;
@@ -32,10 +38,25 @@ typedef struct {
     char *output;           /* CSV path, "-" for stdout */
     unsigned what;          /* CT_OUT_* bits */
     double mass;            /* [impact] mass per unit depth (0: the scene gave V*) */
-    int bounce;             /* [impact] sequence = bounce */
-    double gravity;         /* [impact] gravity [length/time^2] (bounce flights, drop_height) */
-    double stop_speed;      /* [impact] stop_speed: a bounce sequence ends below it */
-    size_t history_points;  /* [output] history_points: uniform grid points per impact */
+    /* type = profile (src/cli/measured.c) */
+    char *profile_file;             /* [surface] file */
+    ct_profile_read_opts read_opts; /* units [m / file unit], spacing */
+    ct_detrend detrend;             /* [surface] detrend (default linear) */
+    double trim_k;                  /* [surface] trim = rq: clip at mean + trim_k Rq; 0: none */
+    double Hstar_given;             /* [surface] Hstar [file z unit, as m after units]; 0: H * Rt */
+    double H_over_Rt;               /* [surface] H: H* as a multiple of the peak-to-valley depth */
+    int speeds_are_velocities;      /* V_star holds velocities until the profile gives l0, h0 */
+    ct_dimension_method fit_dimension; /* [fit] dimension: the estimator D comes from */
+    double fit_band[4];        /* [fit] depth_lo depth_hi lag_lo lag_hi [m]; 0: the default */
+    ct_profile *profile;       /* the levelled profile, once read (ct_cli_profile_prepare) */
+    ct_profile_fit fit;        /* its Cantor fit (have_fit) */
+    int fit_band_from_impacts; /* the bearing fit is on the depths the impacts reached */
+    int have_fit;
+    char *scene_dir;       /* the scene file's directory with its '/' (NULL: stdin, cwd) */
+    int bounce;            /* [impact] sequence = bounce */
+    double gravity;        /* [impact] gravity [length/time^2] (bounce flights, drop_height) */
+    double stop_speed;     /* [impact] stop_speed: a bounce sequence ends below it */
+    size_t history_points; /* [output] history_points: uniform grid points per impact */
     /* type = random_cantor (params.fx, fz are the centres) and [ensemble] */
     ct_ratio_dist ratio_dist;
     double fx_spread, fz_spread;
@@ -68,5 +89,8 @@ void ct_scene_free(ct_scene *scene);
 void ct_scene_make_dimensionless(ct_scene *scene);
 /* Returns the message of the last scene error in this thread. */
 const char *ct_scene_message(void);
+
+/* The ct_dimension_method named variation, structure or spectrum; -1 for another name. */
+int ct_scene_dimension_of(const char *name);
 
 #endif

@@ -1,0 +1,425 @@
+/* The Cantor surface a measured profile looks like (MODEL.md §9).
+ *
+ * Bearing-area curve: for the Cantor prefractal phi(h0 fz^-i) = fx^-i, a staircase on
+ * phi(d) = (d / h0)^alpha, alpha = ln fx / ln fz: ln phi = alpha ln d - alpha ln h0 is fitted
+ * by least squares at log-spaced depths of the band (so that every decade weighs the same).
+ * Structure function S(tau) = <(z(x + tau) - z(x))^2> ~ tau^(2 (2 - D)) of a self-affine
+ * profile, on integer lags of the (uniform) sampling, log-spaced; the power spectrum
+ * C(q) ~ q^-(5 - 2D) as a cross-check (GSL's mixed-radix real FFT of each row, a Hann window,
+ * the periodogram averaged over rows, then averaged in log-spaced bins of q). Eq. 3 inverted
+ * with alpha and D: ln fz = ln 2 (2 - D) / (1 + alpha (D - 1)), ln fx = alpha ln fz. */
+#include "internal.h"
+
+#include <gsl/gsl_fft_real.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Least squares y = a x + b over the points with x in [lo, hi] (lo, hi in ln units). */
+static int fit_line(const double *x, const double *y, size_t n, double lo, double hi,
+                    ct_fit_line *f, const char *what)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, xmin = INFINITY, xmax = -INFINITY;
+    size_t m = 0;
+    for (size_t k = 0; k < n; k++)
+        if (x[k] >= lo && x[k] <= hi && isfinite(y[k])) {
+            sx += x[k], sy += y[k], sxx += x[k] * x[k], sxy += x[k] * y[k];
+            xmin = fmin(xmin, x[k]);
+            xmax = fmax(xmax, x[k]);
+            m++;
+        }
+    if (m < 3)
+        return ct_error_set(CT_EINVAL, "fit of the %s: %zu points in its band: needs at least 3",
+                            what, m);
+    double mx = sx / m, my = sy / m, vx = sxx / m - mx * mx;
+    if (!(vx > 0.0))
+        return ct_error_set(CT_EINVAL, "fit of the %s: its band holds one abscissa", what);
+    double a = (sxy / m - mx * my) / vx, b = my - a * mx, ss = 0, st = 0;
+    for (size_t k = 0; k < n; k++)
+        if (x[k] >= lo && x[k] <= hi && isfinite(y[k])) {
+            double r = y[k] - (a * x[k] + b), d = y[k] - my;
+            ss += r * r;
+            st += d * d;
+        }
+    f->n = m;
+    f->slope = a;
+    f->intercept = b;
+    f->r2 = st > 0.0 ? 1.0 - ss / st : 1.0;
+    f->residual = sqrt(ss / m);
+    f->lo = exp(xmin); /* the band its points span */
+    f->hi = exp(xmax);
+    return CT_OK;
+}
+
+/* The heights on a uniform grid along x, row by row: a non-uniform line is interpolated
+ * linearly onto its median spacing. */
+typedef struct {
+    double *z; /* rows of nx, NaN where invalid */
+    size_t nx, ny;
+    double dx;
+} rows;
+
+static int rows_of(const ct_profile *p, rows *r)
+{
+    r->ny = p->ny;
+    if (p->ny > 1 || !p->x) {
+        r->nx = p->nx;
+        r->dx = p->dx;
+        r->z = malloc(p->nx * p->ny * sizeof(double));
+        if (!r->z)
+            return ct_error_set(CT_ENOMEM, "fit: out of memory");
+        memcpy(r->z, p->z, p->nx * p->ny * sizeof(double));
+        return CT_OK;
+    }
+    double *gaps = malloc((p->nx - 1) * sizeof(double));
+    if (!gaps)
+        return ct_error_set(CT_ENOMEM, "fit: out of memory");
+    for (size_t k = 0; k + 1 < p->nx; k++)
+        gaps[k] = p->x[k + 1] - p->x[k];
+    size_t h = (p->nx - 1) / 2; /* the median gap (selection by sort: a profile is small) */
+    for (size_t i = 0; i <= h; i++)
+        for (size_t j = i + 1; j < p->nx - 1; j++)
+            if (gaps[j] < gaps[i]) {
+                double t = gaps[i];
+                gaps[i] = gaps[j];
+                gaps[j] = t;
+            }
+    r->dx = gaps[h];
+    free(gaps);
+    r->nx = (size_t)floor((p->x[p->nx - 1] - p->x[0]) / r->dx) + 1;
+    r->z = malloc(r->nx * sizeof(double));
+    if (!r->z)
+        return ct_error_set(CT_ENOMEM, "fit: out of memory");
+    size_t j = 0;
+    for (size_t k = 0; k < r->nx; k++) {
+        double x = p->x[0] + (double)k * r->dx;
+        while (j + 2 < p->nx && p->x[j + 1] < x)
+            j++;
+        double t = (x - p->x[j]) / (p->x[j + 1] - p->x[j]);
+        t = t < 0.0 ? 0.0 : t > 1.0 ? 1.0 : t;
+        r->z[k] = p->z[j] + t * (p->z[j + 1] - p->z[j]);
+    }
+    return CT_OK;
+}
+
+/* S at integer lag k along x: the mean of (z(x + k dx) - z(x))^2 over valid pairs. */
+static double structure(const rows *r, size_t k)
+{
+    double s = 0.0;
+    size_t m = 0;
+    for (size_t y = 0; y < r->ny; y++) {
+        const double *z = r->z + y * r->nx;
+        for (size_t i = 0; i + k < r->nx; i++) {
+            double d = z[i + k] - z[i];
+            if (!isnan(d)) {
+                s += d * d;
+                m++;
+            }
+        }
+    }
+    return m ? s / (double)m : NAN;
+}
+
+/* The variation method (Dubuc et al. 1989): the mean oscillation (max - min) of z over windows
+ * of half-width k samples, averaged along every row; the area of the eps-neighbourhood of the
+ * graph scales as eps^(2 - D) with D its box-counting dimension, which is Eq. 3's D for the
+ * Cantor profile (its 2^i pieces of stage i step by h_i - h_{i+1} over widths (2 fx)^-i), while
+ * a step profile's structure function is pinned at D = 1.5 by its jumps. Sliding maxima and
+ * minima by monotone deques: O(n) per window. */
+static double variation(const rows *r, size_t k, size_t *dq_max, size_t *dq_min)
+{
+    double total = 0.0;
+    size_t m = 0;
+    const size_t w = 2 * k + 1, n = r->nx;
+    if (w > n)
+        return NAN;
+    for (size_t y = 0; y < r->ny; y++) {
+        const double *z = r->z + y * n;
+        size_t hmax = 0, tmax = 0, hmin = 0, tmin = 0;
+        int bad = 0;
+        for (size_t i = 0; i < n && !bad; i++)
+            bad = isnan(z[i]);
+        if (bad) /* a row with an invalid point is left out */
+            continue;
+        for (size_t i = 0; i < n; i++) {
+            while (tmax > hmax && z[dq_max[tmax - 1]] <= z[i])
+                tmax--;
+            dq_max[tmax++] = i;
+            while (tmin > hmin && z[dq_min[tmin - 1]] >= z[i])
+                tmin--;
+            dq_min[tmin++] = i;
+            if (i + 1 < w)
+                continue;
+            const size_t start = i + 1 - w;
+            while (dq_max[hmax] < start)
+                hmax++;
+            while (dq_min[hmin] < start)
+                hmin++;
+            total += z[dq_max[hmax]] - z[dq_min[hmin]];
+            m++;
+        }
+    }
+    return m ? total / (double)m : NAN;
+}
+
+/* The periodogram averaged over rows (rows with an invalid point are left out), at
+ * q_j = 2 pi j / (nx dx), j = 1 .. nx / 2; *rows_used the rows it holds. */
+static int spectrum(const rows *r, double *C, size_t *rows_used)
+{
+    const size_t n = r->nx;
+    gsl_fft_real_wavetable *wt = gsl_fft_real_wavetable_alloc(n);
+    gsl_fft_real_workspace *ws = gsl_fft_real_workspace_alloc(n);
+    double *buf = malloc(n * sizeof(double));
+    if (!wt || !ws || !buf) {
+        gsl_fft_real_wavetable_free(wt);
+        gsl_fft_real_workspace_free(ws);
+        free(buf);
+        return ct_error_set(CT_ENOMEM, "fit: spectrum of %zu points: out of memory", n);
+    }
+    size_t used = 0;
+    for (size_t j = 0; j <= n / 2; j++)
+        C[j] = 0.0;
+    for (size_t y = 0; y < r->ny; y++) {
+        const double *z = r->z + y * n;
+        double mean = 0.0;
+        int bad = 0;
+        for (size_t i = 0; i < n && !bad; i++) {
+            bad = isnan(z[i]);
+            mean += z[i];
+        }
+        if (bad)
+            continue;
+        mean /= (double)n;
+        for (size_t i = 0; i < n; i++) /* Hann window */
+            buf[i] = (z[i] - mean) * (0.5 - 0.5 * cos(6.283185307179586 * (double)i / (double)n));
+        if (gsl_fft_real_transform(buf, 1, n, wt, ws) != 0)
+            continue;
+        /* halfcomplex: buf[2j - 1] = Re, buf[2j] = Im for 0 < j < n/2 */
+        for (size_t j = 1; j <= n / 2; j++) {
+            double re = buf[2 * j - 1], im = 2 * j < n ? buf[2 * j] : 0.0;
+            C[j] += re * re + im * im;
+        }
+        used++;
+    }
+    gsl_fft_real_wavetable_free(wt);
+    gsl_fft_real_workspace_free(ws);
+    free(buf);
+    *rows_used = used;
+    return CT_OK;
+}
+
+/* alpha and h0 from the bearing-area curve on [d_lo, d_hi] (0: the defaults) */
+static int fit_bearing(const ct_profile *p, double d_lo, double d_hi, ct_profile_fit *fit)
+{
+    int st;
+    /* the bearing-area curve */
+    ct_top_weight *tw;
+    double W;
+    if ((st = ct_profile_sorted_tops(p, &tw, &W)))
+        return st;
+    if (d_lo == 0.0)
+        d_lo = tw[p->n > 20 ? 19 : p->n - 1].t;
+    if (d_hi == 0.0) {
+        double acc = 0.0;
+        size_t i = 0;
+        while (i < p->n && (acc += tw[i].w) < 0.1 * W)
+            i++;
+        d_hi = tw[i < p->n ? i : p->n - 1].t;
+    }
+    /* the curve's corners: every distinct depth with the area fraction at and above it (a
+     * staircase bearing curve, the prefractal's, touches the power law at its corners), thinned
+     * to about NB log-spaced ones so that every decade of the band weighs the same */
+    enum { NB = 400 };
+    double lx[NB + 1], ly[NB + 1];
+    size_t nb = 0;
+    if (d_lo > 0.0 && d_hi > d_lo) {
+        const double step = log(d_hi / d_lo) / NB;
+        double acc = 0.0, last = -INFINITY;
+        for (size_t i = 0; i < p->n; i++) {
+            acc += tw[i].w;
+            if (i + 1 < p->n && tw[i + 1].t == tw[i].t)
+                continue; /* the corner is after the last sample of this depth */
+            if (tw[i].t < d_lo || tw[i].t > d_hi || nb > NB)
+                continue;
+            const double lt = log(tw[i].t);
+            if (lt < last + step)
+                continue;
+            lx[nb] = lt;
+            ly[nb++] = log(acc / W);
+            last = lt;
+        }
+    }
+    free(tw);
+    if (nb == 0)
+        return ct_error_set(CT_EINVAL,
+                            "fit of the bearing curve: depth band [%g, %g] empty (too few "
+                            "distinct heights near the top?)",
+                            d_lo, d_hi);
+    if ((st = fit_line(lx, ly, nb, log(d_lo) - 1e-12, log(d_hi) + 1e-12, &fit->bearing,
+                       "bearing-area curve")))
+        return st;
+    fit->alpha = fit->bearing.slope;
+    fit->h0 = exp(-fit->bearing.intercept / fit->alpha);
+    return CT_OK;
+}
+
+/* Eq. 3 inverted with alpha and the D of the method asked for */
+static void fit_eq3(const ct_profile *p, ct_profile_fit *fit)
+{
+    fit->D = fit->dimension == CT_DIM_STRUCTURE  ? fit->D_structure
+             : fit->dimension == CT_DIM_SPECTRUM ? fit->D_spectrum
+                                                 : fit->D_variation;
+    const double a = fit->alpha, D = fit->D;
+    const double ln_fz = log(2.0) * (2.0 - D) / (1.0 + a * (D - 1.0));
+    fit->fz = exp(ln_fz);
+    fit->fx = exp(a * ln_fz);
+    fit->l0 = p->ny > 1 ? (double)p->nx * p->dx : fit->stats.length;
+}
+
+int ct_profile_fit_of(const ct_profile *p, double d_lo, double d_hi, double tau_lo, double tau_hi,
+                      ct_profile_fit *fit)
+{
+    CT_NEED(p);
+    CT_NEED(fit);
+    const ct_dimension_method method = fit->dimension;
+    if (method < CT_DIM_VARIATION || method > CT_DIM_SPECTRUM)
+        return ct_error_set(CT_EINVAL, "fit: dimension method %d unknown", (int)method);
+    memset(fit, 0, sizeof *fit);
+    fit->dimension = method;
+    int st;
+    if ((st = ct_profile_stats_of(p, &fit->stats)))
+        return st;
+    if (!(fit->stats.Rt > 0.0))
+        return ct_error_set(CT_EINVAL, "fit: all heights are equal: there is no roughness to fit");
+    if (!(d_lo >= 0.0 && d_hi >= 0.0 && tau_lo >= 0.0 && tau_hi >= 0.0))
+        return ct_error_set(CT_EINVAL, "fit: bands must be >= 0 (0: the default)");
+    if ((st = fit_bearing(p, d_lo, d_hi, fit)))
+        return st;
+    /* the structure function and the spectrum, along x */
+    rows r = {0};
+    if ((st = rows_of(p, &r)))
+        return st;
+    if (r.nx < 8) {
+        free(r.z);
+        return ct_error_set(CT_EINVAL,
+                            "fit: rows of %zu points: too short for a structure "
+                            "function",
+                            r.nx);
+    }
+    const double L = (double)r.nx * r.dx;
+    if (tau_lo == 0.0)
+        tau_lo = 2.0 * r.dx;
+    if (tau_hi == 0.0)
+        tau_hi = 0.1 * L;
+    if (!(tau_hi > tau_lo)) {
+        free(r.z);
+        return ct_error_set(CT_EINVAL, "fit: lag band [%g, %g] is empty", tau_lo, tau_hi);
+    }
+    size_t k_lo = (size_t)ceil(tau_lo / r.dx), k_hi = (size_t)floor(tau_hi / r.dx);
+    k_lo = k_lo < 1 ? 1 : k_lo;
+    k_hi = k_hi > r.nx - 1 ? r.nx - 1 : k_hi;
+    enum { NL = 40 };
+    double sx[NL], sy[NL];
+    size_t ns = 0, last = 0;
+    for (int q = 0; q < NL && k_hi >= k_lo; q++) {
+        size_t k =
+            (size_t)llround((double)k_lo * pow((double)k_hi / (double)k_lo, (double)q / (NL - 1)));
+        if (k == last)
+            continue;
+        last = k;
+        double S = structure(&r, k);
+        sx[ns] = log((double)k * r.dx);
+        sy[ns++] = S > 0.0 ? log(S) : NAN;
+    }
+    st = fit_line(sx, sy, ns, log(k_lo * r.dx) - 1e-12, log(k_hi * r.dx) + 1e-12, &fit->structure,
+                  "structure function");
+    if (!st) { /* the variation method on the same windows: 2 k + 1 samples wide */
+        size_t *dq = malloc(2 * r.nx * sizeof(size_t));
+        double vx[NL], vy[NL];
+        size_t nv = 0;
+        last = 0;
+        if (!dq)
+            st = ct_error_set(CT_ENOMEM, "fit: out of memory");
+        for (int q = 0; q < NL && !st; q++) {
+            size_t k = (size_t)llround((double)k_lo *
+                                       pow((double)k_hi / (double)k_lo, (double)q / (NL - 1)));
+            if (k == last || 2 * k + 1 > r.nx)
+                continue;
+            last = k;
+            double V = variation(&r, k, dq, dq + r.nx);
+            vx[nv] = log((double)(2 * k) * r.dx);
+            vy[nv++] = V > 0.0 ? log(V) : NAN;
+        }
+        free(dq);
+        if (!st)
+            st = fit_line(vx, vy, nv, -INFINITY, INFINITY, &fit->variation,
+                          "variation (box-counting) function");
+        if (!st)
+            fit->D_variation = 2.0 - fit->variation.slope;
+    }
+    if (!st) {
+        fit->D_structure = 2.0 - 0.5 * fit->structure.slope;
+        double *C = malloc((r.nx / 2 + 1) * sizeof(double));
+        size_t used = 0;
+        st = C ? spectrum(&r, C, &used) : ct_error_set(CT_ENOMEM, "fit: out of memory");
+        if (!st && used == 0)
+            st = ct_error_set(CT_EINVAL, "fit: every row holds an invalid point: no spectrum");
+        if (!st) {
+            /* log-spaced bins of q inside [2 pi / tau_hi, 2 pi / tau_lo]: the power in each bin
+             * over its width, at the bin's mean ln q. A density: right for the continuous
+             * spectra of measured (random) surfaces; a line spectrum with lines further apart
+             * than a bin (a Weierstrass function's, a Cantor profile's) leaves bins empty of
+             * lines, and the variation or structure estimate is the one to use there */
+            const double q0 = 6.283185307179586 / L, q_lo = 6.283185307179586 / tau_hi,
+                         q_hi = 6.283185307179586 / tau_lo;
+            double bx[NL] = {0}, bs[NL] = {0};
+            size_t bn[NL] = {0};
+            for (size_t j = 1; j <= r.nx / 2; j++) {
+                double q = q0 * (double)j;
+                if (q < q_lo || q > q_hi)
+                    continue;
+                int b = (int)floor(NL * log(q / q_lo) / log(q_hi / q_lo));
+                b = b < 0 ? 0 : b >= NL ? NL - 1 : b;
+                bs[b] += C[j];
+                bx[b] += log(q);
+                bn[b]++;
+            }
+            double fx_[NL], fy_[NL];
+            size_t nf = 0;
+            for (int b = 0; b < NL; b++)
+                if (bn[b] && bs[b] > 0.0) {
+                    double width = q0 * (double)bn[b]; /* the bin's wavenumbers, q0 apart */
+                    fx_[nf] = bx[b] / (double)bn[b];
+                    fy_[nf++] = log(bs[b] / width);
+                }
+            st = fit_line(fx_, fy_, nf, log(q_lo) - 1e-12, log(q_hi) + 1e-12, &fit->spectrum,
+                          "power spectrum");
+            if (!st)
+                fit->D_spectrum = 0.5 * (5.0 + fit->spectrum.slope); /* C ~ q^-(5 - 2D) */
+        }
+        free(C);
+    }
+    free(r.z);
+    if (st)
+        return st;
+    /* Eq. 3 inverted, with the dimension asked for */
+    fit_eq3(p, fit);
+    return CT_OK;
+}
+
+int ct_profile_fit_bearing(const ct_profile *p, double d_lo, double d_hi, ct_profile_fit *fit)
+{
+    CT_NEED(p);
+    CT_NEED(fit);
+    if (!(fit->stats.Rt > 0.0) || !(fit->D > 0.0))
+        return ct_error_set(CT_EINVAL, "fit: refit of the bearing curve before a whole fit");
+    if (!(d_lo >= 0.0 && d_hi >= 0.0))
+        return ct_error_set(CT_EINVAL, "fit: bands must be >= 0 (0: the default)");
+    ct_profile_fit f = *fit;
+    int st = fit_bearing(p, d_lo, d_hi, &f);
+    if (st)
+        return st;
+    fit_eq3(p, &f);
+    *fit = f;
+    return CT_OK;
+}

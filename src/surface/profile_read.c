@@ -1,0 +1,533 @@
+/* Reading measured surfaces: text/CSV line profiles, Dektak stylus exports, and ISO 25178-72
+ * X3P areal topographies (a zip holding main.xml and a binary height grid; libzip, libxml2).
+ * Every file is read once, as a stream: memory holds the points, never the file twice. */
+#define _DEFAULT_SOURCE /* getline, strcasecmp */
+#include "internal.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <locale.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+
+#include <libxml/parser.h>
+#include <libxml/tree.h>
+#include <zip.h>
+
+/* ---- text and Dektak ---- */
+
+typedef struct {
+    double *x, *z;
+    size_t n, cap;
+} points;
+
+static int push(points *p, double x, double z)
+{
+    if (p->n == p->cap) {
+        size_t cap = p->cap ? 2 * p->cap : 4096;
+        double *a = realloc(p->x, cap * sizeof(double));
+        if (a)
+            p->x = a;
+        double *b = a ? realloc(p->z, cap * sizeof(double)) : NULL;
+        if (b)
+            p->z = b;
+        if (!b)
+            return -1;
+        p->cap = cap;
+    }
+    p->x[p->n] = x;
+    p->z[p->n] = z;
+    p->n++;
+    return 0;
+}
+
+/* The numbers of a row: separated by commas (when the row has one) or by blanks, tabs and
+ * semicolons; empty trailing fields (Dektak's "x,z,,") ignored. Returns the count (at most
+ * max), or -1 when a field is not a number. */
+static int row_numbers(char *line, double *v, int max)
+{
+    const int commas = strchr(line, ',') != NULL;
+    int n = 0;
+    char *s = line;
+    for (;;) {
+        while (*s == ' ' || *s == '\t' || (!commas && *s == ';'))
+            s++;
+        if (!*s || *s == '\n' || *s == '\r')
+            break;
+        char *end;
+        if (commas && *s == ',') { /* an empty field: only trailing ones are allowed */
+            for (char *t = s; *t; t++)
+                if (!(*t == ',' || isspace((unsigned char)*t)))
+                    return -1;
+            break;
+        }
+        errno = 0;
+        double x = strtod(s, &end);
+        if (end == s || !isfinite(x))
+            return -1;
+        if (n < max)
+            v[n] = x;
+        n++;
+        s = end;
+        if (!commas && *s && !isspace((unsigned char)*s) && *s != ';')
+            return -1; /* "1x": a number runs into other characters */
+        while (*s == ' ' || *s == '\t')
+            s++;
+        if (commas) {
+            if (*s == ',')
+                s++;
+            else if (*s && *s != '\n' && *s != '\r')
+                return -1;
+        }
+    }
+    return n;
+}
+
+static int is_blank_or_comment(const char *s)
+{
+    while (isspace((unsigned char)*s))
+        s++;
+    return !*s || *s == '#' || *s == ';';
+}
+
+/* An inline comment: from a '#' on. */
+static void strip_comment(char *line)
+{
+    char *c = strchr(line, '#');
+    if (c)
+        *c = '\0';
+}
+
+/* The length unit a column name carries ("Lateral um", "Raw Micrometer", "z (nm)", "x [mm]"):
+ * metres per unit, 0 when it names none. */
+static double unit_in_name(const char *s, const char *end)
+{
+    static const struct {
+        const char *word;
+        double metres;
+    } units[] = {
+        {"m", 1.0},           {"meter", 1.0},        {"meters", 1.0},      {"metre", 1.0},
+        {"metres", 1.0},      {"mm", 1e-3},          {"millimeter", 1e-3}, {"millimeters", 1e-3},
+        {"millimetre", 1e-3}, {"millimetres", 1e-3}, {"um", 1e-6},         {"\xb5m", 1e-6},
+        {"\xc2\xb5m", 1e-6},  {"\xce\xbcm", 1e-6},   {"micrometer", 1e-6}, {"micrometers", 1e-6},
+        {"micrometre", 1e-6}, {"micrometres", 1e-6}, {"micron", 1e-6},     {"microns", 1e-6},
+        {"nm", 1e-9},         {"nanometer", 1e-9},   {"nanometers", 1e-9}, {"nanometre", 1e-9},
+        {"nanometres", 1e-9}};
+    double found = 0.0;
+    while (s < end) {
+        /* words: runs of letters and the bytes of a micro sign */
+        while (s < end && !(isalpha((unsigned char)*s) || (unsigned char)*s >= 0x80))
+            s++;
+        const char *w = s;
+        while (s < end && (isalpha((unsigned char)*s) || (unsigned char)*s >= 0x80))
+            s++;
+        const size_t len = (size_t)(s - w);
+        for (size_t k = 0; len && k < sizeof units / sizeof units[0]; k++)
+            if (strlen(units[k].word) == len && !strncasecmp(w, units[k].word, len)) {
+                if (found != 0.0 && found != units[k].metres)
+                    return 0.0; /* two different units: none trusted */
+                found = units[k].metres;
+            }
+    }
+    return found;
+}
+
+/* The units the column names of a header line carry, into xu, zu (only the ones still 0);
+ * one column (heights at a given spacing): its name gives zu. */
+static void header_units(const char *line, int one_column, double *xu, double *zu)
+{
+    const char sep = strchr(line, ',')    ? ','
+                     : strchr(line, '\t') ? '\t'
+                     : strchr(line, ';')  ? ';'
+                                          : ' ';
+    double u[2] = {0.0, 0.0};
+    int n = 0;
+    const char *s = line;
+    while (n < 2 && *s) {
+        while (sep == ' ' && *s == ' ')
+            s++;
+        const char *e = strchr(s, sep);
+        if (!e)
+            e = s + strlen(s);
+        u[n++] = unit_in_name(s, e);
+        s = *e ? e + 1 : e;
+    }
+    if (one_column) {
+        if (*zu == 0.0)
+            *zu = u[0];
+    } else if (u[0] > 0.0 && u[1] > 0.0) {
+        if (*xu == 0.0)
+            *xu = u[0];
+        if (*zu == 0.0)
+            *zu = u[1];
+    }
+}
+
+static int read_text(const char *path, FILE *f, const ct_profile_read_opts *given, ct_profile **out)
+{
+    ct_profile_read_opts opts = *given, *o = &opts;
+    char *header = NULL; /* the last line before the data: the column names */
+    points pts = {0};
+    char *line = NULL;
+    size_t cap = 0;
+    long lineno = 0, data_from = 0;
+    int st = CT_OK, dektak = 0, in_header = 1, headers = 0;
+    const int one_column = o->dx > 0.0;
+    ssize_t len;
+    while ((len = getline(&line, &cap, f)) >= 0) {
+        lineno++;
+        if (is_blank_or_comment(line))
+            continue;
+        strip_comment(line);
+        char *t = line;
+        while (isspace((unsigned char)*t))
+            t++;
+        if (in_header && lineno == 1 && !strncmp(t, "Scan Parameters", 15))
+            dektak = 1; /* a Dektak export: its header block runs to "Scan Data" */
+        double v[3];
+        int n = row_numbers(line, v, 3);
+        if (in_header && n < 0) {
+            /* before the data: a Dektak header block, or one line of column names */
+            if (dektak || headers++ == 0) {
+                free(header);
+                if (!(header = strdup(line))) {
+                    st = ct_error_set(CT_ENOMEM, "%s: out of memory at line %ld", path, lineno);
+                    break;
+                }
+                continue;
+            }
+            st = ct_error_set(CT_EINVAL,
+                              "%s:%ld: not a row of numbers (and a column header came "
+                              "already at line %ld)",
+                              path, lineno, data_from);
+            break;
+        }
+        if (in_header) {
+            in_header = 0;
+            data_from = lineno;
+            if (header && (o->x_unit == 0.0 || o->z_unit == 0.0))
+                header_units(header, one_column, &o->x_unit, &o->z_unit);
+            if ((o->x_unit == 0.0 && !one_column) || o->z_unit == 0.0 ||
+                (one_column && o->x_unit == 0.0)) {
+                st = ct_error_set(CT_EINVAL,
+                                  "%s: the length unit of %s is not given and its column "
+                                  "names state none: give it (m, mm, um or nm)",
+                                  path,
+                                  o->z_unit == 0.0 ? (one_column ? "the heights" : "x and z")
+                                                   : "x (the spacing)");
+                break;
+            }
+        }
+        if (n != (one_column ? 1 : 2)) {
+            st = ct_error_set(CT_EINVAL, "%s:%ld: %s: expected %s", path, lineno,
+                              n < 0 ? "not a row of numbers" : "wrong number of columns",
+                              one_column ? "one column, the height (spacing given)"
+                                         : "two columns, x and z");
+            break;
+        }
+        double x = one_column ? (double)pts.n * o->dx * o->x_unit : v[0] * o->x_unit;
+        double z = (one_column ? v[0] : v[1]) * o->z_unit;
+        if (!isfinite(x) || !isfinite(z)) {
+            st = ct_error_set(CT_EINVAL, "%s:%ld: a value overflows in the units given", path,
+                              lineno);
+            break;
+        }
+        if (pts.n && !(x > pts.x[pts.n - 1])) {
+            st = ct_error_set(CT_EINVAL,
+                              "%s:%ld: x = %g is not above the previous %g: x must "
+                              "increase",
+                              path, lineno, x, pts.x[pts.n - 1]);
+            break;
+        }
+        if (push(&pts, x, z)) {
+            st = ct_error_set(CT_ENOMEM, "%s: out of memory at line %ld", path, lineno);
+            break;
+        }
+    }
+    free(line);
+    free(header);
+    if (!st && ferror(f))
+        st = ct_error_set(CT_EIO, "%s: read error: %s", path, strerror(errno));
+    if (!st && pts.n < 3)
+        st = ct_error_set(CT_EINVAL, "%s: %zu points: a profile needs at least 3", path, pts.n);
+    if (!st) {
+        st = one_column ? ct_profile_from_line(out, pts.n, NULL, o->dx * o->x_unit, pts.z)
+                        : ct_profile_from_line(out, pts.n, pts.x, 0.0, pts.z);
+        if (!st) {
+            snprintf((*out)->source, sizeof(*out)->source, "%s", dektak ? "dektak" : "text");
+            (*out)->x_unit = o->x_unit;
+            (*out)->z_unit = o->z_unit;
+        }
+    }
+    free(pts.x);
+    free(pts.z);
+    return st;
+}
+
+/* ---- X3P (ISO 25178-72) ---- */
+
+/* The first element named `name` (local name) below node, depth first. */
+static xmlNode *find(xmlNode *node, const char *name)
+{
+    for (xmlNode *c = node ? node->children : NULL; c; c = c->next) {
+        if (c->type != XML_ELEMENT_NODE)
+            continue;
+        if (!strcmp((const char *)c->name, name))
+            return c;
+        xmlNode *d = find(c, name);
+        if (d)
+            return d;
+    }
+    return NULL;
+}
+
+/* The text of the element at a path of local names below node, or NULL. */
+static const char *text_at(xmlNode *node, const char *const *path, int n, char *buf, size_t size)
+{
+    for (int k = 0; k < n && node; k++)
+        node = find(node, path[k]);
+    if (!node)
+        return NULL;
+    xmlChar *t = xmlNodeGetContent(node);
+    if (!t)
+        return NULL;
+    const char *s = (const char *)t;
+    while (isspace((unsigned char)*s))
+        s++;
+    snprintf(buf, size, "%s", s);
+    for (size_t k = strlen(buf); k > 0 && isspace((unsigned char)buf[k - 1]); k--)
+        buf[k - 1] = '\0';
+    xmlFree(t);
+    return buf;
+}
+
+static int x3p_number(const char *path, xmlNode *root, const char *a, const char *b, const char *c,
+                      double *out, int required)
+{
+    const char *p3[] = {a, b, c};
+    char buf[128];
+    const char *t = text_at(root, p3, c ? 3 : 2, buf, sizeof buf);
+    if (!t) {
+        if (!required)
+            return CT_OK;
+        return ct_error_set(CT_EINVAL, "%s: main.xml: %s/%s%s%s missing", path, a, b, c ? "/" : "",
+                            c ? c : "");
+    }
+    char *end;
+    double v = strtod(t, &end);
+    if (end == t || *end || !isfinite(v))
+        return ct_error_set(CT_EINVAL, "%s: main.xml: %s/%s%s%s = '%s': not a number", path, a, b,
+                            c ? "/" : "", c ? c : "", t);
+    *out = v;
+    return CT_OK;
+}
+
+/* Reads a whole zip entry into memory (*size bytes); CT_EINVAL naming it when absent. */
+static int zip_entry(const char *path, zip_t *z, const char *name, char **data, zip_uint64_t *size)
+{
+    zip_stat_t zs;
+    zip_stat_init(&zs);
+    if (zip_stat(z, name, 0, &zs) != 0 || !(zs.valid & ZIP_STAT_SIZE))
+        return ct_error_set(CT_EINVAL, "%s: X3P entry %s missing", path, name);
+    zip_file_t *f = zip_fopen(z, name, 0);
+    if (!f)
+        return ct_error_set(CT_EINVAL, "%s: X3P entry %s: %s", path, name, zip_strerror(z));
+    char *buf = malloc(zs.size + 1);
+    if (!buf) {
+        zip_fclose(f);
+        return ct_error_set(CT_ENOMEM, "%s: X3P entry %s of %llu bytes: out of memory", path, name,
+                            (unsigned long long)zs.size);
+    }
+    zip_int64_t got = zip_fread(f, buf, zs.size);
+    zip_fclose(f);
+    if (got < 0 || (zip_uint64_t)got != zs.size) {
+        free(buf);
+        return ct_error_set(CT_EIO, "%s: X3P entry %s: short read", path, name);
+    }
+    buf[zs.size] = '\0';
+    *data = buf;
+    *size = zs.size;
+    return CT_OK;
+}
+
+static double le_value(const unsigned char *p, char type)
+{
+    union {
+        unsigned char b[8];
+        double d;
+        float f;
+        int16_t i16;
+        int32_t i32;
+    } u;
+    int n = type == 'D' ? 8 : type == 'F' || type == 'L' ? 4 : 2;
+    for (int k = 0; k < n; k++) /* X3P is little-endian */
+        u.b[k] = p[k];
+    return type == 'D'   ? u.d
+           : type == 'F' ? (double)u.f
+           : type == 'L' ? (double)u.i32
+                         : (double)u.i16;
+}
+
+static int read_x3p(const char *path, ct_profile **out)
+{
+    int err = 0, st = CT_OK;
+    zip_t *z = zip_open(path, ZIP_RDONLY, &err);
+    if (!z) {
+        zip_error_t ze;
+        zip_error_init_with_code(&ze, err);
+        st = ct_error_set(CT_EINVAL, "%s: not a readable X3P (zip) file: %s", path,
+                          zip_error_strerror(&ze));
+        zip_error_fini(&ze);
+        return st;
+    }
+    char *xml = NULL, *bin = NULL, *mask = NULL;
+    zip_uint64_t xml_size, bin_size = 0, mask_size = 0;
+    xmlDoc *doc = NULL;
+    double *zz = NULL;
+    if ((st = zip_entry(path, z, "main.xml", &xml, &xml_size)))
+        goto done;
+    doc = xmlReadMemory(xml, (int)xml_size, "main.xml", NULL,
+                        XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    if (!doc) {
+        st = ct_error_set(CT_EINVAL, "%s: X3P entry main.xml is not well-formed XML", path);
+        goto done;
+    }
+    xmlNode *root = xmlDocGetRootElement(doc);
+    double sx = 0, sy = 0, sz = 0, dx = 0, dy = 0, zinc = 1.0, zoff = 0.0;
+    if ((st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeX", &sx, 1)) ||
+        (st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeY", &sy, 1)) ||
+        (st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeZ", &sz, 1)) ||
+        (st = x3p_number(path, root, "CX", "Increment", NULL, &dx, 1)) ||
+        (st = x3p_number(path, root, "CY", "Increment", NULL, &dy, 0)) ||
+        (st = x3p_number(path, root, "CZ", "Increment", NULL, &zinc, 0)) ||
+        (st = x3p_number(path, root, "CZ", "Offset", NULL, &zoff, 0)))
+        goto done;
+    if (!(sx >= 1 && sy >= 1 && sz == 1 && sx == floor(sx) && sy == floor(sy) && sx * sy <= 1e10)) {
+        st = ct_error_set(CT_EINVAL,
+                          "%s: main.xml: MatrixDimension %g x %g x %g: expected a grid, SizeZ = 1",
+                          path, sx, sy, sz);
+        goto done;
+    }
+    if (!(dx > 0.0) || (sy > 1 && !(dy > 0.0))) {
+        st = ct_error_set(CT_EINVAL, "%s: main.xml: increments CX %g, CY %g: must be > 0", path, dx,
+                          dy);
+        goto done;
+    }
+    char type_buf[16], link_buf[256], mask_buf[256];
+    const char *tp[] = {"CZ", "DataType"}, *lp[] = {"DataLink", "PointDataLink"},
+               *mp[] = {"DataLink", "ValidPointsLink"};
+    const char *type = text_at(root, tp, 2, type_buf, sizeof type_buf);
+    const char *link = text_at(root, lp, 2, link_buf, sizeof link_buf);
+    const char *mlink = text_at(root, mp, 2, mask_buf, sizeof mask_buf);
+    if (!type || strlen(type) != 1 || !strchr("DFIL", type[0])) {
+        st = ct_error_set(CT_EINVAL, "%s: main.xml: CZ/DataType = %s: expected D, F, I or L", path,
+                          type ? type : "(missing)");
+        goto done;
+    }
+    if (!link) {
+        st = ct_error_set(CT_EINVAL,
+                          "%s: main.xml: DataLink/PointDataLink missing (only binary "
+                          "point data is read)",
+                          path);
+        goto done;
+    }
+    if ((st = zip_entry(path, z, link, &bin, &bin_size)))
+        goto done;
+    const size_t nx = (size_t)sx, ny = (size_t)sy, npts = nx * ny;
+    const int width = type[0] == 'D' ? 8 : type[0] == 'F' || type[0] == 'L' ? 4 : 2;
+    if (bin_size != (zip_uint64_t)npts * (zip_uint64_t)width) {
+        st = ct_error_set(
+            CT_EINVAL,
+            "%s: X3P entry %s holds %llu bytes; the header's %zu x %zu grid of type %s "
+            "needs %llu",
+            path, link, (unsigned long long)bin_size, nx, ny, type,
+            (unsigned long long)npts * (unsigned long long)width);
+        goto done;
+    }
+    if (mlink && (st = zip_entry(path, z, mlink, &mask, &mask_size)))
+        goto done;
+    if (mask && mask_size < (npts + 7) / 8) {
+        st = ct_error_set(CT_EINVAL,
+                          "%s: X3P entry %s holds %llu bytes; the mask of %zu points "
+                          "needs %zu",
+                          path, mlink, (unsigned long long)mask_size, npts, (npts + 7) / 8);
+        goto done;
+    }
+    if (!(zz = malloc(npts * sizeof(double)))) {
+        st = ct_error_set(CT_ENOMEM, "%s: grid of %zu points: out of memory", path, npts);
+        goto done;
+    }
+    for (size_t k = 0; k < npts; k++) {
+        double v = le_value((const unsigned char *)bin + k * (size_t)width, type[0]);
+        if (type[0] == 'I' || type[0] == 'L')
+            v = zoff + zinc * v; /* integer heights carry the axis' scale */
+        if (mask && !((unsigned char)mask[k / 8] >> (k % 8) & 1u))
+            v = NAN; /* the mask's bit 0: an invalid point */
+        zz[k] = v;
+    }
+    if (ny == 1)
+        st = ct_profile_from_line(out, nx, NULL, dx, zz);
+    else
+        st = ct_profile_from_grid(out, nx, ny, dx, dy, zz);
+    if (!st)
+        snprintf((*out)->source, sizeof(*out)->source, "x3p");
+done:
+    free(zz);
+    free(xml);
+    free(bin);
+    free(mask);
+    if (doc)
+        xmlFreeDoc(doc);
+    zip_close(z);
+    return st;
+}
+
+int ct_profile_read(const char *path, const ct_profile_read_opts *opts, ct_profile **out)
+{
+    CT_NEED(path);
+    CT_NEED(out);
+    *out = NULL;
+    ct_profile_read_opts o = {0.0, 0.0, 0.0};
+    if (opts)
+        o = *opts;
+    if (!(isfinite(o.x_unit) && o.x_unit >= 0.0 && isfinite(o.z_unit) && o.z_unit >= 0.0) ||
+        !(isfinite(o.dx) && o.dx >= 0.0))
+        return ct_error_set(CT_EINVAL,
+                            "profile: units %g, %g and spacing %g must be finite and >= 0 (a "
+                            "unit 0: the file's)",
+                            o.x_unit, o.z_unit, o.dx);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return ct_error_set(CT_EIO, "%s: cannot open: %s", path, strerror(errno));
+    unsigned char magic[4] = {0};
+    size_t got = fread(magic, 1, 4, f);
+    if (got == 4 && !memcmp(magic, "PK\x03\x04", 4)) {
+        fclose(f);
+        if (o.x_unit != 0.0 || o.z_unit != 0.0 || o.dx != 0.0)
+            return ct_error_set(CT_EINVAL,
+                                "%s: an X3P file states its lengths (in metres) and its "
+                                "spacing: give no unit or spacing for it",
+                                path);
+        return read_x3p(path, out); /* X3P: lengths in metres (ISO 25178-72) */
+    }
+    if (fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        return ct_error_set(CT_EIO,
+                            "%s: cannot read it from its start again (a pipe?): give a "
+                            "file",
+                            path);
+    }
+    /* numbers in the C locale whatever the caller's (per thread) */
+    locale_t c = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    locale_t before = c ? uselocale(c) : (locale_t)0;
+    int st = read_text(path, f, &o, out);
+    if (c) {
+        uselocale(before);
+        freelocale(c);
+    }
+    fclose(f);
+    return st;
+}
