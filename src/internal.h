@@ -114,6 +114,10 @@ typedef struct {
 /* The valid samples' tops below the highest point with their areas, sorted by top (malloc'ed);
  * *wsum the total area. */
 int ct_profile_sorted_tops(const ct_profile *p, ct_top_weight **out, double *wsum);
+/* ct_profile_from_line and _from_grid without the copy: on success the profile owns x (may be
+ * NULL with dx > 0) and z; on error they stay the caller's. */
+int ct_profile_adopt_line(ct_profile **out, size_t n, double *x, double dx, double *z);
+int ct_profile_adopt_grid(ct_profile **out, size_t nx, size_t ny, double dx, double dy, double *z);
 
 /* ---- impacts on a curve (src/impact.c), for the sweep ---- */
 

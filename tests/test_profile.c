@@ -356,6 +356,19 @@ static void x3p_reader(void **state)
     assert_true(isnan(p->z[2]) && isnan(p->z[9]));
     assert_rel(p->z[10], 7 * 5e-9, 1e-15);
     ct_profile_free(p);
+    /* one row: a line profile, the invalid point dropped and the others at their x */
+    double row[NX];
+    memcpy(row, bin, sizeof row);
+    put_le((unsigned char *)row + 8 * 2, &(double){NAN}, 8);
+    write_x3p("row.x3p", x3p_xml(NX, 1, "D", 1.0, 0), row, sizeof row, "bindata/data.bin", NULL, 0);
+    assert_int_equal(ct_profile_read(path_of("row.x3p"), NULL, &p), CT_OK);
+    assert_int_equal(p->ny, 1);
+    assert_int_equal(p->n, NX - 1);
+    assert_int_equal(p->invalid, 1);
+    assert_non_null(p->x);
+    assert_rel(p->x[2], 3 * 2e-6, 1e-15); /* point 3 at 3 dx */
+    assert_rel(p->z[2], 3e-7, 1e-15);
+    ct_profile_free(p);
     /* errors naming the entry */
     write_x3p("nomain.x3p", NULL, bin, sizeof bin, "bindata/data.bin", NULL, 0);
     expect_read_error("nomain.x3p", NULL, "main.xml missing");

@@ -30,11 +30,8 @@ static int check_heights(const ct_profile *p)
     return CT_OK;
 }
 
-int ct_profile_from_line(ct_profile **out, size_t n, const double *x, double dx, const double *z)
+static int check_line(size_t n, const double *x, double dx, const double *z)
 {
-    CT_NEED(out);
-    CT_NEED(z);
-    *out = NULL;
     if (n < 3)
         return ct_error_set(CT_EINVAL, "profile: %zu points: needs at least 3", n);
     if (!x && !(isfinite(dx) && dx > 0.0))
@@ -46,17 +43,79 @@ int ct_profile_from_line(ct_profile **out, size_t n, const double *x, double dx,
             return ct_error_set(
                 CT_EINVAL, "profile: point %zu: x = %g is not finite or not increasing", j, x[j]);
     }
+    return CT_OK;
+}
+
+int ct_profile_adopt_line(ct_profile **out, size_t n, double *x, double dx, double *z)
+{
+    *out = NULL;
+    int st = check_line(n, x, dx, z);
+    if (st)
+        return st;
     ct_profile *p = calloc(1, sizeof *p);
-    if (!p || !(p->z = malloc(n * sizeof(double))) || (x && !(p->x = malloc(n * sizeof(double))))) {
-        ct_profile_free(p);
+    if (!p)
         return ct_error_set(CT_ENOMEM, "profile of %zu points: out of memory", n);
-    }
-    memcpy(p->z, z, n * sizeof(double));
-    if (x)
-        memcpy(p->x, x, n * sizeof(double));
+    p->z = z;
+    p->x = x;
     p->n = p->nx = n;
     p->ny = 1;
     p->dx = x ? 0.0 : dx;
+    snprintf(p->source, sizeof p->source, "arrays");
+    p->x_unit = p->z_unit = 1.0;
+    *out = p;
+    return CT_OK;
+}
+
+int ct_profile_from_line(ct_profile **out, size_t n, const double *x, double dx, const double *z)
+{
+    CT_NEED(out);
+    CT_NEED(z);
+    *out = NULL;
+    int st = check_line(n, x, dx, z);
+    if (st)
+        return st;
+    double *zc = malloc(n * sizeof(double)), *xc = x ? malloc(n * sizeof(double)) : NULL;
+    if (!zc || (x && !xc)) {
+        free(zc);
+        free(xc);
+        return ct_error_set(CT_ENOMEM, "profile of %zu points: out of memory", n);
+    }
+    memcpy(zc, z, n * sizeof(double));
+    if (x)
+        memcpy(xc, x, n * sizeof(double));
+    if ((st = ct_profile_adopt_line(out, n, xc, dx, zc))) {
+        free(zc);
+        free(xc);
+    }
+    return st;
+}
+
+int ct_profile_adopt_grid(ct_profile **out, size_t nx, size_t ny, double dx, double dy, double *z)
+{
+    *out = NULL;
+    if (!(isfinite(dx) && dx > 0.0 && isfinite(dy) && dy > 0.0))
+        return ct_error_set(CT_EINVAL, "grid: spacings %g, %g: must be finite and > 0", dx, dy);
+    if (nx < 1 || ny < 1 || nx > SIZE_MAX / ny / sizeof(double))
+        return ct_error_set(CT_EINVAL, "grid of %zu x %zu points: not a size", nx, ny);
+    size_t invalid = 0;
+    for (size_t k = 0; k < nx * ny; k++)
+        invalid += !isfinite(z[k]);
+    if (nx * ny - invalid < 3)
+        return ct_error_set(CT_EINVAL, "profile: %zu valid points: needs at least 3",
+                            nx * ny - invalid);
+    ct_profile *p = calloc(1, sizeof *p);
+    if (!p)
+        return ct_error_set(CT_ENOMEM, "grid of %zu x %zu points: out of memory", nx, ny);
+    for (size_t k = 0; k < nx * ny; k++)
+        if (!isfinite(z[k]))
+            z[k] = NAN;
+    p->z = z;
+    p->nx = nx;
+    p->ny = ny;
+    p->dx = dx;
+    p->dy = dy;
+    p->invalid = invalid;
+    p->n = nx * ny - invalid;
     snprintf(p->source, sizeof p->source, "arrays");
     p->x_unit = p->z_unit = 1.0;
     *out = p;
@@ -69,36 +128,16 @@ int ct_profile_from_grid(ct_profile **out, size_t nx, size_t ny, double dx, doub
     CT_NEED(out);
     CT_NEED(z);
     *out = NULL;
-    if (!(isfinite(dx) && dx > 0.0 && isfinite(dy) && dy > 0.0))
-        return ct_error_set(CT_EINVAL, "grid: spacings %g, %g: must be finite and > 0", dx, dy);
     if (nx < 1 || ny < 1 || nx > SIZE_MAX / ny / sizeof(double))
         return ct_error_set(CT_EINVAL, "grid of %zu x %zu points: not a size", nx, ny);
-    ct_profile *p = calloc(1, sizeof *p);
-    if (!p || !(p->z = malloc(nx * ny * sizeof(double)))) {
-        ct_profile_free(p);
+    double *zc = malloc(nx * ny * sizeof(double));
+    if (!zc)
         return ct_error_set(CT_ENOMEM, "grid of %zu x %zu points: out of memory", nx, ny);
-    }
-    memcpy(p->z, z, nx * ny * sizeof(double));
-    p->nx = nx;
-    p->ny = ny;
-    p->dx = dx;
-    p->dy = dy;
-    for (size_t k = 0; k < nx * ny; k++) {
-        if (!isfinite(p->z[k]))
-            p->z[k] = NAN;
-        if (isnan(p->z[k]))
-            p->invalid++;
-    }
-    p->n = nx * ny - p->invalid;
-    snprintf(p->source, sizeof p->source, "arrays");
-    p->x_unit = p->z_unit = 1.0;
-    int st = check_heights(p);
-    if (st) {
-        ct_profile_free(p);
-        return st;
-    }
-    *out = p;
-    return CT_OK;
+    memcpy(zc, z, nx * ny * sizeof(double));
+    int st = ct_profile_adopt_grid(out, nx, ny, dx, dy, zc);
+    if (st)
+        free(zc);
+    return st;
 }
 
 /* Sample j's area [length or length^2] (MODEL.md §9). */

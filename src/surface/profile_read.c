@@ -254,9 +254,19 @@ static int read_text(const char *path, FILE *f, const ct_profile_read_opts *give
     if (!st && pts.n < 3)
         st = ct_error_set(CT_EINVAL, "%s: %zu points: a profile needs at least 3", path, pts.n);
     if (!st) {
-        st = one_column ? ct_profile_from_line(out, pts.n, NULL, o->dx * o->x_unit, pts.z)
-                        : ct_profile_from_line(out, pts.n, pts.x, 0.0, pts.z);
+        /* the arrays become the profile's (trimmed to their size): no second copy */
+        double *x = one_column ? NULL : realloc(pts.x, pts.n * sizeof(double)),
+               *z = realloc(pts.z, pts.n * sizeof(double));
+        if (x)
+            pts.x = x;
+        if (z)
+            pts.z = z;
+        st = one_column ? ct_profile_adopt_line(out, pts.n, NULL, o->dx * o->x_unit, pts.z)
+                        : ct_profile_adopt_line(out, pts.n, pts.x, 0.0, pts.z);
         if (!st) {
+            if (!one_column)
+                pts.x = NULL;
+            pts.z = NULL;
             snprintf((*out)->source, sizeof(*out)->source, "%s", dektak ? "dektak" : "text");
             (*out)->x_unit = o->x_unit;
             (*out)->z_unit = o->z_unit;
@@ -468,10 +478,31 @@ static int read_x3p(const char *path, ct_profile **out)
             v = NAN; /* the mask's bit 0: an invalid point */
         zz[k] = v;
     }
-    if (ny == 1)
-        st = ct_profile_from_line(out, nx, NULL, dx, zz);
-    else
-        st = ct_profile_from_grid(out, nx, ny, dx, dy, zz);
+    free(bin); /* the heights are in zz now */
+    bin = NULL;
+    if (ny == 1) { /* a line: invalid points dropped, the rest at their x */
+        size_t m = 0;
+        for (size_t k = 0; k < nx; k++)
+            m += !isnan(zz[k]);
+        double *xs = m < nx ? malloc((m ? m : 1) * sizeof(double)) : NULL;
+        if (m < nx && !xs) {
+            st = ct_error_set(CT_ENOMEM, "%s: profile of %zu points: out of memory", path, nx);
+            goto done;
+        }
+        for (size_t k = 0, j = 0; xs && k < nx; k++)
+            if (!isnan(zz[k])) {
+                xs[j] = (double)k * dx;
+                zz[j++] = zz[k];
+            }
+        st = ct_profile_adopt_line(out, m, xs, dx, zz);
+        if (st)
+            free(xs);
+        else
+            (*out)->invalid = nx - m;
+    } else
+        st = ct_profile_adopt_grid(out, nx, ny, dx, dy, zz);
+    if (!st)
+        zz = NULL; /* the profile's now */
     if (!st)
         snprintf((*out)->source, sizeof(*out)->source, "x3p");
 done:
