@@ -252,15 +252,6 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
         for (size_t k = 0; k < nopen; k++) {
             size_t j = open_[k];
             ct_impact_result *res = &r[j]->r;
-            if (it == 0 && u[j] == Hstar && !(W[j] < Wl[k])) {
-                r[j]->status = ct_error_set(CT_ERANGE,
-                                            "impact energy %.6g reaches u_max >= H* = %g (the "
-                                            "layer would be crushed, strains >= 1): outside the "
-                                            "model; lower V* or raise H",
-                                            W[j], Hstar);
-                fail_row(r[j], CT_ERANGE, ct_error_message());
-                continue;
-            }
             double resid = Wl[k] - W[j];
             double floor = 8.0 * DBL_EPSILON * fabs(u[j]) * P[k];
             double next = P[k] > 0.0 ? u[j] - resid / P[k] : u[j];
@@ -276,7 +267,8 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
                 res->W_unload = res->W_unload_closed = res->elastic ? Wl[k] : Wu[k];
                 res->e_closed = res->quad_error = NAN;
                 r[j]->status = CT_OK;
-                if (!(u[j] < Hstar)) /* the root rounds onto H*: strains of 1 */
+                if (!(u[j] < Hstar)) /* W(H*) <= W (Newton stays at H*), or the root rounds
+                                      * onto H*: strains of 1, a crushed layer */
                     r[j]->status = ct_error_set(CT_ERANGE,
                                                 "impact energy %.6g reaches u_max >= H* = %g (the "
                                                 "layer would be crushed, strains >= 1): outside "

@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include <cmocka.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -404,6 +405,40 @@ static void tiny_speed_is_elastic_not_an_error(void **state)
         }
 }
 
+/* An elastic impact whose penetration is below the resolution of u (rods whose first contact
+ * is at u = 1, not 0: a penetration of 1e-20 rounds to nothing) is still e = 1 exactly: there
+ * is no dissipation to resolve. One rod, top 1, area 1, L = H* - 1 = 9, E = 500: u_max =
+ * 1 + sqrt(2 W L / E) = 1 + 6e-21, which is 1 in double precision (to the 16 ulps of u the
+ * solves resolve). Both sweep paths and ct_impact agree. */
+static void tiny_speed_on_offset_rods_is_elastic(void **state)
+{
+    (void)state;
+    ct_layer L = {.E = 500.0, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 1.0};
+    const double top[1] = {1.0}, area[1] = {1.0};
+    const double W = 1e-39, V = sqrt(W / 500.0);
+    assert_true(sqrt(2.0 * W * 9.0 / 500.0) < 0.5 * DBL_EPSILON); /* below the resolution */
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 1, top, area), CT_OK);
+    for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++) {
+        ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 2, .path = (ct_sweep_path)path};
+        ct_impact_opts_default(&spec.opts);
+        ct_sweep_row rows[2];
+        assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+        for (int k = 0; k < 2; k++) {
+            if (rows[k].status)
+                fail_msg("path %d, impact %d: %s", path, k + 1, rows[k].message);
+            assert_true(rows[k].r.elastic && rows[k].r.e == 1.0);
+            /* the root, 1 + 6e-21, to the resolution of u the solve claims (16 ulps) */
+            if (!(fabs(rows[k].r.u_max - 1.0) <= 16.0 * DBL_EPSILON))
+                fail_msg("path %d: u_max - 1 = %g", path, rows[k].r.u_max - 1.0);
+        }
+    }
+    ct_impact_result r;
+    assert_int_equal(ct_impact(b, W, NULL, &r), CT_OK);
+    assert_true(r.elastic && r.e == 1.0 && fabs(r.u_max - 1.0) <= 16.0 * DBL_EPSILON);
+    ct_bundle_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -415,6 +450,7 @@ int main(void)
         cmocka_unit_test(rod_path_equals_curve_path),
         cmocka_unit_test(two_rods_five_impacts_on_paper),
         cmocka_unit_test(tiny_speed_is_elastic_not_an_error),
+        cmocka_unit_test(tiny_speed_on_offset_rods_is_elastic),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }

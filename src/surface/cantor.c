@@ -27,25 +27,10 @@ int ct_params_validate(const ct_params *p)
         return st;
     if (!isfinite(p->Hstar) || !(p->Hstar > p->h0))
         return ct_error_set(CT_EINVAL, "H* = %g: must be finite and > h0 = %g", p->Hstar, p->h0);
-    if ((st = check_positive("E", p->E)) || (st = check_positive("sigma_y", p->sigma_y)))
-        return st;
-    if (!(p->sigma_y < p->E))
-        return ct_error_set(CT_EINVAL,
-                            "sigma_y = %g: yield strain sigma_y/E must satisfy 0 < eps_y < 1 "
-                            "(E = %g)",
-                            p->sigma_y, p->E);
-    /* The energy scale l0 E h0 and the forces E l0 must stay finite. */
-    if (!isfinite(p->l0 * p->E * p->h0) || !(p->l0 * p->E * p->h0 > 0.0))
-        return ct_error_set(CT_EINVAL, "l0 E h0 = %g: must be a finite positive number",
-                            p->l0 * p->E * p->h0);
-    /* E s L (a rod's stiffness times its length) bounds every work term: it must be finite,
-     * else energies overflow (E l0 H* in units of sigma_y l0 h0 is E/sigma_y times H* / h0) */
-    if (!isfinite(p->E * p->l0 * p->Hstar))
-        return ct_error_set(CT_EINVAL,
-                            "E l0 H* = %g * %g * %g overflows double precision: energies of this "
-                            "layer cannot be represented (lower E/sigma_y or H*/h0)",
-                            p->E, p->l0, p->Hstar);
-    return CT_OK;
+    /* E, sigma_y and the energy scales: the checks every rod set's layer passes */
+    const ct_layer L = {
+        .E = p->E, .sigma_y = p->sigma_y, .Hstar = p->Hstar, .l0 = p->l0, .h0 = p->h0};
+    return ct_layer_validate(&L);
 }
 
 /* exp(-i log f), which is 0 (not NaN) for huge i and exact for f -> 1 via log1p. */
