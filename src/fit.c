@@ -11,6 +11,7 @@
 #include "internal.h"
 
 #include <gsl/gsl_fft_real.h>
+#include <gsl/gsl_statistics_double.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -76,15 +77,8 @@ static int rows_of(const ct_profile *p, rows *r)
         return ct_error_set(CT_ENOMEM, "fit: out of memory");
     for (size_t k = 0; k + 1 < p->nx; k++)
         gaps[k] = p->x[k + 1] - p->x[k];
-    size_t h = (p->nx - 1) / 2; /* the median gap (selection by sort: a profile is small) */
-    for (size_t i = 0; i <= h; i++)
-        for (size_t j = i + 1; j < p->nx - 1; j++)
-            if (gaps[j] < gaps[i]) {
-                double t = gaps[i];
-                gaps[i] = gaps[j];
-                gaps[j] = t;
-            }
-    r->dx = gaps[h];
+    /* the median gap (the upper one of an even count): GSL's quickselect, O(n) */
+    r->dx = gsl_stats_select(gaps, 1, p->nx - 1, (p->nx - 1) / 2);
     free(gaps);
     r->nx = (size_t)floor((p->x[p->nx - 1] - p->x[0]) / r->dx) + 1;
     r->z = malloc(r->nx * sizeof(double));
