@@ -149,6 +149,15 @@ umax=$(awk -F, 'NR > 1 && $3 > m { m = $3 } END { printf "%.17g", m }' "$tmp/c.c
 awk -v u="$umax" -v rt="$rt" '/^# bearing fit/ { match($0, /on d in \[[^]]*\]/); split(substr($0, RSTART + 9, RLENGTH - 10), b, ", ");
     hi = b[2] + 0; want = u * rt; if (want > rt) want = rt; if (hi > want * (1 + 1e-3) || hi < want * 0.9) exit 1; found = 1 }
     END { if (!found) exit 1 }' "$tmp/c_bearing.csv" && ok || bad "bearing band ends at the deepest u_max"
+# ... and from no shallower than the default band's start (the 20th highest point: above it a
+# few samples decide alpha; the band is printed to 4 digits), though the slowest impact here
+# stops above it
+lo_default=$(awk -F, '$1 == "alpha" { print $3 }' "$tmp/fit.csv")
+awk -F, -v rt="$rt" -v lo="$lo_default" 'NR > 1 && (m == "" || $3 < m) { m = $3 }
+    END { if (!(m * rt < lo)) exit 1 }' "$tmp/c.csv" && ok || bad "the slowest impact stops above the default band"
+awk -v lo="$lo_default" '/^# bearing fit/ { match($0, /on d in \[[^]]*\]/); split(substr($0, RSTART + 9, RLENGTH - 10), b, ", ");
+    if (b[1] + 0 < lo * (1 - 1e-3)) exit 1; found = 1 } END { if (!found) exit 1 }' "$tmp/c_bearing.csv" &&
+    ok || bad "bearing band starts no shallower than the default band"
 # the fitted parameters of the run (its bearing file), then a Cantor run of them gives e_cantor_fit
 cf() { sed -n "s/^# Cantor fit.* $1 = \([^ ,]*\).*/\1/p" "$tmp/c_bearing.csv"; }
 fx=$(cf fx)
@@ -221,6 +230,20 @@ has err "g.x3p (x3p): 4095 points on a grid" "x3p summary"
 has err "4.095e-09 m^2" "x3p area"
 has err "1 invalid points left out" "x3p mask"
 [ "$(grep -c '^1,' "$tmp/g.csv")" -eq 3 ] && ok || bad "x3p: 3 rows"
+# the fitted Cantor surface of a grid gets the energy per unit depth of the grid's extent:
+# V*_fit = sqrt(m v^2 / 2 / (l0 E h0_fit) / depth), l0 = depth = 64 um, from the scene's m, v, E
+expect 0 "x3p compare" -- "$ct" run -q "$tmp/g.ini" --set output.what=e,compare,bearing -o "$tmp/gc.csv"
+h0g=$(sed -n "s/^# Cantor fit.* h0 = \([^ ,]*\).*/\1/p" "$tmp/gc_bearing.csv")
+$py - "$tmp/gc.csv" "$h0g" <<'PY' && ok || bad "x3p: V*_fit from the energy per unit depth"
+import csv, math, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+h0 = float(sys.argv[2])
+assert [float(r["V_star"]) > 0 for r in rows] == [True] * 3
+for r, v in zip(rows, (0.01, 0.1, 1.0)):
+    want = math.sqrt(1e-9 * v * v / 2 / (64e-6 * 2e11 * h0) / 64e-6)
+    got = float(r["V_star_cantor_fit"])
+    assert abs(got - want) <= 1e-12 * want, (got, want)
+PY
 expect 0 "x3p fit" -- "$ct" fit "$tmp/g.x3p" -o "$tmp/gfit.csv"
 has gfit.csv "^# x3p: 4095 points" "x3p fit header"
 OMP_NUM_THREADS=1 "$ct" run -q "$tmp/g.ini" -o "$tmp/g1.csv"
