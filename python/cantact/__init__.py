@@ -1,5 +1,5 @@
 """cantact: the coefficient of restitution of a rough surface of elastic-perfectly-plastic
-rods (Cantor-fractal, random Cantor or your own rods), through libcantact.
+rods (Cantor-fractal, random Cantor, a measured profile or your own rods), through libcantact.
 
     import cantact
     s = cantact.Cantor(fx=1.5, fz=1.3, H=10, E=500)          # E/sigma_y = 500, H*/h0 = 10
@@ -14,13 +14,13 @@ cantact.Error subclasses carrying the library's status and message. See README.m
 from ._errors import (Error, InvalidInput, IOFailure, NoConvergence, NotRun, OutOfMemory,
                       OutsideModel, strerror)
 from ._ffi import LIBRARY_PATH, ffi, lib
-from ._surfaces import Cantor, RandomCantor, Rods
+from ._surfaces import Cantor, Profile, RandomCantor, Rods
 from ._api import (ROW_FIELDS, Ensemble, LoadCurve, Restitution, Table, asym_load,
                    asym_unload, ensemble, law_restitution, load_curve, read_table, restitution,
                    series_load, series_unload, table)
 
 __all__ = [
-    "Cantor", "RandomCantor", "Rods", "restitution", "Restitution", "ensemble", "Ensemble",
+    "Cantor", "RandomCantor", "Rods", "Profile", "restitution", "Restitution", "ensemble", "Ensemble",
     "load_curve", "LoadCurve", "series_load", "series_unload", "asym_load", "asym_unload",
     "law_restitution", "table", "Table", "read_table", "Error", "InvalidInput", "OutOfMemory",
     "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS",

@@ -316,6 +316,66 @@ ct_interp ct_table_interpolation(const ct_table *t);
 void ct_table_get_info(const ct_table *t, ct_table_info *info);
 double ct_table_eval(const ct_table *t, double V_star);
 void ct_pchip_slopes(size_t n, const double *x, const double *y, double *d);
+typedef struct {
+    size_t n;
+    size_t nx, ny;
+    double *x;
+    double *z;
+    double dx, dy;
+    size_t invalid;
+    char source[128];
+    double x_unit, z_unit;
+} ct_profile;
+typedef enum {
+    CT_DETREND_NONE = 0,
+    CT_DETREND_MEAN = 1,
+    CT_DETREND_LINEAR = 2,
+    CT_DETREND_QUADRATIC = 3,
+} ct_detrend;
+typedef struct {
+    double x_unit, z_unit;
+    double dx;
+} ct_profile_read_opts;
+int ct_profile_read(const char *path, const ct_profile_read_opts *opts, ct_profile **out);
+int ct_profile_from_line(ct_profile **out, size_t n, const double *x, double dx, const double *z);
+int ct_profile_from_grid(ct_profile **out, size_t nx, size_t ny, double dx, double dy,
+                         const double *z);
+void ct_profile_free(ct_profile *p);
+int ct_profile_level(ct_profile *p, ct_detrend how);
+int ct_profile_trim(ct_profile *p, double k, size_t *clipped);
+typedef struct {
+    double mean, Ra, Rq;
+    double Rt;
+    double length;
+} ct_profile_stats;
+int ct_profile_stats_of(const ct_profile *p, ct_profile_stats *s);
+int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sigma_y, double Hstar);
+int ct_profile_bearing(const ct_profile *p, size_t n, const double *d, double *phi);
+typedef struct {
+    double lo, hi;
+    size_t n;
+    double slope, intercept, r2, residual;
+} ct_fit_line;
+typedef enum {
+    CT_DIM_VARIATION = 0,
+    CT_DIM_STRUCTURE = 1,
+    CT_DIM_SPECTRUM = 2,
+} ct_dimension_method;
+typedef struct {
+    ct_dimension_method dimension;
+    ct_fit_line bearing;
+    double alpha, h0;
+    ct_fit_line variation;
+    ct_fit_line structure;
+    ct_fit_line spectrum;
+    double D_variation, D_structure, D_spectrum;
+    double D;
+    double fx, fz, l0;
+    ct_profile_stats stats;
+} ct_profile_fit;
+int ct_profile_fit_of(const ct_profile *p, double d_lo, double d_hi, double tau_lo, double tau_hi,
+                      ct_profile_fit *fit);
+int ct_profile_fit_bearing(const ct_profile *p, double d_lo, double d_hi, ct_profile_fit *fit);
 """
 
 ffi = cffi.FFI()

@@ -6,6 +6,8 @@ groups alone, and the results (u/h0, P/P_Y, V*) are the same bits as `cantact ru
 (Rods) is computed in the units given; its results are made dimensionless by its h0, sigma_y
 and l0. A new kind of surface is a class with the same four members: kind, _params (or None),
 _physical_energy_scale(), _build()."""
+import os
+
 import numpy as np
 
 from . import _check as chk
@@ -217,12 +219,187 @@ class Rods:
         return f"Rods({self.top.size} rods, E={L.E!r}, sigma_y={L.sigma_y!r}, Hstar={L.Hstar!r})"
 
 
-SURFACES = (Cantor, RandomCantor, Rods)
+DETRENDS = {"none": lib.CT_DETREND_NONE, "mean": lib.CT_DETREND_MEAN,
+            "linear": lib.CT_DETREND_LINEAR, "quadratic": lib.CT_DETREND_QUADRATIC}
+UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}
+DIMENSIONS = {"variation": lib.CT_DIM_VARIATION, "structure": lib.CT_DIM_STRUCTURE,
+              "spectrum": lib.CT_DIM_SPECTRUM}
+
+
+def _band(name, band):
+    if band is None:
+        return 0.0, 0.0
+    try:
+        lo, hi = band
+    except (TypeError, ValueError):
+        raise invalid(f"{name} = {band!r}: must be None or a pair (lo, hi)") from None
+    lo, hi = chk.real(f"{name}[0]", lo, 0.0), chk.real(f"{name}[1]", hi, 0.0)
+    if not hi > lo:
+        raise invalid(f"{name} = ({lo!r}, {hi!r}): must have lo < hi")
+    return lo, hi
+
+
+def _line(f):
+    return {"lo": f.lo, "hi": f.hi, "points": int(f.n), "slope": f.slope,
+            "intercept": f.intercept, "r2": f.r2, "rms_residual_ln": f.residual}
+
+
+class Profile:
+    """A measured surface (MODEL.md §9) as one rod per sample, as `surface.type = profile` of
+    the cantact program: a line profile or an X3P grid read from `file` (text/CSV, a Dektak
+    export, X3P; lengths converted to metres: `unit` (or x_unit, z_unit) "m", "mm", "um",
+    "nm", default what the file's column names state; `spacing` for a file of one column of
+    heights, in its x unit), or arrays: `z` 1-D with `x` (increasing) or `dx`, or `z` 2-D
+    (rows along x, z[j, i] at x = i dx, y = j dy; NaN: invalid) with `dx` and `dy`, in
+    lengths of your choice (E and sigma_y in matching units). Levelled by `detrend` ("none",
+    "mean", "linear", "quadratic"), optionally trimmed (`trim` = k: heights above mean + k Rq
+    cut there), in a layer of thickness `H` times Rt or `Hstar`. Its h0 is Rt and its l0 the
+    length (a grid: the area), so mass and speed give V* = v sqrt(m / (2 l0 E h0)) with m per
+    unit depth (a grid: the mass). Computed in the units given; results dimensionless by h0,
+    sigma_y and l0 as for Rods."""
+
+    kind = "profile"
+    _params = None
+
+    def __init__(self, file=None, *, E, sigma_y, H=None, Hstar=None, x=None, z=None, dx=None,
+                 dy=None, unit=None, x_unit=None, z_unit=None, spacing=None, detrend="linear",
+                 trim=None, threads=0):
+        E = chk.real("E", E, 0.0)
+        sigma_y = chk.real("sigma_y", sigma_y, 0.0)
+        how = chk.choice("detrend", detrend, DETRENDS)
+        if (H is None) == (Hstar is None):
+            raise invalid("H (a multiple of Rt) or Hstar (a length): give exactly one")
+        out = ffi.new("ct_profile **")
+        if file is not None:
+            if z is not None or x is not None or dx is not None or dy is not None:
+                raise invalid("file, or x/z/dx/dy arrays: give one of them")
+            if unit is not None and (x_unit is not None or z_unit is not None):
+                raise invalid("unit, or x_unit and z_unit: give one of them")
+            opts = ffi.new("ct_profile_read_opts *")
+            opts.x_unit = chk.choice("x_unit", x_unit or unit, UNITS) if (x_unit or unit) else 0.0
+            opts.z_unit = chk.choice("z_unit", z_unit or unit, UNITS) if (z_unit or unit) else 0.0
+            opts.dx = 0.0 if spacing is None else chk.real("spacing", spacing, 0.0)
+            check(lib.ct_profile_read(os.fsencode(file), opts, out))
+        else:
+            if z is None:
+                raise invalid("a profile needs a file or heights z")
+            if unit is not None or x_unit is not None or z_unit is not None or spacing is not None:
+                raise invalid("unit, x_unit, z_unit, spacing: for files only (arrays are read "
+                              "in their own units)")
+            zz = np.ascontiguousarray(z, dtype=np.float64)
+            if zz.ndim == 1:
+                if dy is not None or (x is None) == (dx is None):
+                    raise invalid("a line profile z: give x (positions) or dx (spacing), not dy")
+                if x is not None:
+                    xx = np.ascontiguousarray(x, dtype=np.float64)
+                    if xx.shape != zz.shape:
+                        raise invalid(f"x and z: {xx.size} and {zz.size} points: must be as many")
+                    check(lib.ct_profile_from_line(out, zz.size, ffi.from_buffer("double[]", xx),
+                                                   0.0, ffi.from_buffer("double[]", zz)))
+                else:
+                    check(lib.ct_profile_from_line(out, zz.size, ffi.NULL,
+                                                   chk.real("dx", dx, 0.0),
+                                                   ffi.from_buffer("double[]", zz)))
+            elif zz.ndim == 2:
+                if x is not None or dx is None or dy is None:
+                    raise invalid("a grid z (2-D): give dx and dy, not x")
+                check(lib.ct_profile_from_grid(out, zz.shape[1], zz.shape[0],
+                                               chk.real("dx", dx, 0.0), chk.real("dy", dy, 0.0),
+                                               ffi.from_buffer("double[]", zz)))
+            else:
+                raise invalid(f"z: {zz.ndim} dimensions: must be 1 (a line) or 2 (a grid)")
+        self._profile = ffi.gc(out[0], lib.ct_profile_free)
+        check(lib.ct_profile_level(self._profile, how))
+        self.clipped = 0
+        if trim is not None:
+            clipped = ffi.new("size_t *")
+            check(lib.ct_profile_trim(self._profile, chk.real("trim", trim, 0.0), clipped))
+            self.clipped = int(clipped[0])
+        st = ffi.new("ct_profile_stats *")
+        check(lib.ct_profile_stats_of(self._profile, st))
+        self.stats = {k: getattr(st, k) for k in ("mean", "Ra", "Rq", "Rt", "length")}
+        hs = chk.real("H", H, 1.0) * st.Rt if H is not None else chk.real("Hstar", Hstar, 0.0)
+        b = ffi.new("ct_bundle **")
+        check(lib.ct_profile_bundle(b, self._profile, E, sigma_y, hs))
+        self._bundle = ffi.gc(b[0], lib.ct_bundle_free)
+        self.threads = _threads(threads)
+        lib.ct_bundle_set_threads(self._bundle, self.threads)
+        self.detrend = detrend
+
+    @property
+    def layer(self):
+        """E, sigma_y, Hstar, l0 (the length or area) and h0 (= Rt) of the rods."""
+        L = lib.ct_bundle_layer(self._bundle)
+        return {k: getattr(L, k) for k in ("E", "sigma_y", "Hstar", "l0", "h0")}
+
+    @property
+    def source(self):
+        """What was read: "text", "dektak", "x3p", or "arrays"."""
+        return ffi.string(self._profile.source).decode("utf-8", "replace")
+
+    @property
+    def invalid(self):
+        """Grid points left out (the X3P mask, or NaN)."""
+        return int(self._profile.invalid)
+
+    @property
+    def heights(self):
+        """The heights after levelling (a copy): 1-D for a line, (ny, nx) for a grid."""
+        p = self._profile
+        n = p.nx * p.ny
+        z = np.frombuffer(ffi.buffer(p.z, n * 8), dtype=np.float64).copy()
+        return z if p.ny == 1 else z.reshape(p.ny, p.nx)
+
+    def bearing(self, d):
+        """phi(d): the fraction of the area whose top lies within depth d of the highest point
+        (d ascending, in the profile's length unit)."""
+        d = chk.array("d", d, nonnegative=True)
+        if (np.diff(d) < 0).any():
+            raise invalid("d: must be ascending")
+        phi = np.empty_like(d)
+        check(lib.ct_profile_bearing(self._profile, d.size, ffi.from_buffer("double[]", d),
+                                     ffi.from_buffer("double[]", phi)))
+        return phi
+
+    def fit(self, dimension="variation", depths=None, lags=None):
+        """The Cantor surface the profile looks like (as `cantact fit`): alpha and h0 from the
+        bearing curve on `depths` (lo, hi) (default: the 20th highest point to phi = 0.1), D
+        three ways on `lags` (lo, hi) (default: 2 spacings to a tenth of the length), the one
+        `dimension` names in Eq. 3, then fx, fz and l0. A dict; the fits' bands, point counts,
+        r2 and rms residuals under "bearing", "variation", "structure", "spectrum"."""
+        f = ffi.new("ct_profile_fit *")
+        f.dimension = chk.choice("dimension", dimension, DIMENSIONS)
+        d_lo, d_hi = _band("depths", depths)
+        t_lo, t_hi = _band("lags", lags)
+        check(lib.ct_profile_fit_of(self._profile, d_lo, d_hi, t_lo, t_hi, f))
+        r = {k: getattr(f, k) for k in ("alpha", "h0", "D_variation", "D_structure",
+                                         "D_spectrum", "D", "fx", "fz", "l0")}
+        r["dimension"] = dimension
+        for k in ("bearing", "variation", "structure", "spectrum"):
+            r[k] = _line(getattr(f, k))
+        r.update({k: getattr(f.stats, k) for k in ("Rq", "Ra", "Rt")})
+        return r
+
+    def _physical_energy_scale(self):
+        L = lib.ct_bundle_layer(self._bundle)
+        return L.l0 * L.E * L.h0  # as the sweep computes it
+
+    def _build(self, V_star, impacts, opts, keep_all=False):
+        return self._bundle, _info(self._bundle)
+
+    def __repr__(self):
+        p, L = self._profile, lib.ct_bundle_layer(self._bundle)
+        shape = f"{p.nx} points" if p.ny == 1 else f"{p.nx} x {p.ny} grid"
+        return (f"Profile({self.source}, {shape}, {int(p.n)} rods, Rt={L.h0!r}, "
+                f"E={L.E!r}, sigma_y={L.sigma_y!r}, Hstar={L.Hstar!r})")
+
+
+SURFACES = (Cantor, RandomCantor, Rods, Profile)
 
 
 def surface_of(name, value):
     """value, checked to be a surface."""
     if not isinstance(value, SURFACES):
-        raise invalid(f"{name}: must be a cantact surface (Cantor, RandomCantor or Rods), got "
+        raise invalid(f"{name}: must be a cantact surface (Cantor, RandomCantor, Rods or Profile), got "
                       f"{type(value).__name__}")
     return value
