@@ -286,6 +286,9 @@ BAD
 expect 2 "fit of a flat profile" -- "$ct" fit "$tmp/flat.csv" -o "$tmp/none.csv"
 has err "all heights are equal" "fit of a flat profile"
 [ -e "$tmp/none.csv" ] && bad "fit of a flat profile: a file was left" || ok
+# a zip whose main.xml states 2.7 GB (found by the fuzzer): refused before any allocation
+expect 2 "forged zip entry size" -- "$ct" fit "$src/tests/fuzz_corpus_profile/forged_size.x3p"
+has err "X3P entry main.xml holds 2667577856 bytes: more than the 67108864 it may hold" "forged size named"
 expect 2 "fit of a flat grid" -- "$ct" fit "$tmp/flat.x3p"
 expect 2 "profile keys with a Cantor surface" -- "$ct" run "$tmp/cantor.ini" --set surface.detrend=mean
 has err "surface.detrend = mean: only for surface.type = profile" "profile key with cantor"

@@ -335,13 +335,30 @@ static int x3p_number(const char *path, xmlNode *root, const char *a, const char
     return CT_OK;
 }
 
-/* Reads a whole zip entry into memory (*size bytes); CT_EINVAL naming it when absent. */
-static int zip_entry(const char *path, zip_t *z, const char *name, char **data, zip_uint64_t *size)
+/* Reads a whole zip entry into memory (*size bytes); CT_EINVAL naming it when absent, when
+ * it holds more than max bytes, or when its stated size cannot come from its compressed size
+ * (deflate expands at most 1032:1; a stored entry not at all): a forged size is refused
+ * before anything is allocated for it. */
+static int zip_entry(const char *path, zip_t *z, const char *name, zip_uint64_t max, char **data,
+                     zip_uint64_t *size)
 {
     zip_stat_t zs;
     zip_stat_init(&zs);
     if (zip_stat(z, name, 0, &zs) != 0 || !(zs.valid & ZIP_STAT_SIZE))
         return ct_error_set(CT_EINVAL, "%s: X3P entry %s missing", path, name);
+    if (zs.size > max)
+        return ct_error_set(CT_EINVAL,
+                            "%s: X3P entry %s holds %llu bytes: more than the %llu it may "
+                            "hold",
+                            path, name, (unsigned long long)zs.size, (unsigned long long)max);
+    if ((zs.valid & ZIP_STAT_COMP_SIZE) && (zs.valid & ZIP_STAT_COMP_METHOD) &&
+        ((zs.comp_method == ZIP_CM_STORE && zs.size != zs.comp_size) ||
+         (zs.comp_method == ZIP_CM_DEFLATE && zs.size / 1032 > zs.comp_size + 1)))
+        return ct_error_set(CT_EINVAL,
+                            "%s: X3P entry %s states %llu bytes from %llu compressed: a corrupt "
+                            "zip",
+                            path, name, (unsigned long long)zs.size,
+                            (unsigned long long)zs.comp_size);
     zip_file_t *f = zip_fopen(z, name, 0);
     if (!f)
         return ct_error_set(CT_EINVAL, "%s: X3P entry %s: %s", path, name, zip_strerror(z));
@@ -397,7 +414,7 @@ static int read_x3p(const char *path, ct_profile **out)
     zip_uint64_t xml_size, bin_size = 0, mask_size = 0;
     xmlDoc *doc = NULL;
     double *zz = NULL;
-    if ((st = zip_entry(path, z, "main.xml", &xml, &xml_size)))
+    if ((st = zip_entry(path, z, "main.xml", 64 << 20, &xml, &xml_size)))
         goto done;
     doc = xmlReadMemory(xml, (int)xml_size, "main.xml", NULL,
                         XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
@@ -444,10 +461,10 @@ static int read_x3p(const char *path, ct_profile **out)
                           path);
         goto done;
     }
-    if ((st = zip_entry(path, z, link, &bin, &bin_size)))
-        goto done;
     const size_t nx = (size_t)sx, ny = (size_t)sy, npts = nx * ny;
     const int width = type[0] == 'D' ? 8 : type[0] == 'F' || type[0] == 'L' ? 4 : 2;
+    if ((st = zip_entry(path, z, link, (zip_uint64_t)npts * (zip_uint64_t)width, &bin, &bin_size)))
+        goto done;
     if (bin_size != (zip_uint64_t)npts * (zip_uint64_t)width) {
         st = ct_error_set(
             CT_EINVAL,
@@ -457,7 +474,8 @@ static int read_x3p(const char *path, ct_profile **out)
             (unsigned long long)npts * (unsigned long long)width);
         goto done;
     }
-    if (mlink && (st = zip_entry(path, z, mlink, &mask, &mask_size)))
+    if (mlink &&
+        (st = zip_entry(path, z, mlink, (zip_uint64_t)(npts + 7) / 8 + 1024, &mask, &mask_size)))
         goto done;
     if (mask && mask_size < (npts + 7) / 8) {
         st = ct_error_set(CT_EINVAL,
