@@ -137,6 +137,12 @@ printf '[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n[impact]\nV_
 expect 2 "[ensemble] with type = cantor" -- "$ct" run "$tmp/c.ini"
 grep -q "c.ini:10: ensemble.realisations = 3: only for surface.type = random_cantor" "$tmp/err" && ok || bad "ensemble message: $(cat "$tmp/err")"
 
+# started by a launcher (its environment) with no MPI module to load: one line, exit 1, no
+# output (never every rank writing the whole file); MPI is loaded only under a launcher
+expect 1 "launcher without the MPI module" -- env OMPI_COMM_WORLD_SIZE=2 \
+    CANTACT_MPI_MODULE=/nonexistent/cantact-mpi.so "$ct" run -q "$tmp/r.ini" -o "$tmp/nompi.csv"
+grep -q "started by an MPI launcher" "$tmp/err" && [ ! -e "$tmp/nompi.csv" ] && ok ||
+    bad "launcher without the module: $(cat "$tmp/err")"
 if [ -n "$mpirun" ]; then
     mpiopts=(--oversubscribe)
     [ "$(id -u)" -eq 0 ] && mpiopts+=(--allow-run-as-root)

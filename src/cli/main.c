@@ -885,7 +885,8 @@ static int dispatch(int argc, char **argv)
         return EXIT_DONE;
     }
     if (!strcmp(cmd, "run")) {
-        ct_mpi_init(&argc, &argv); /* only under an MPI launcher */
+        if (ct_mpi_init(&argc, &argv)) /* only under an MPI launcher */
+            return EXIT_FAILED;
         int rc = cmd_run(argc - 2, argv + 2);
         ct_mpi_finalize();
         return rc;

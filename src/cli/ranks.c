@@ -1,200 +1,118 @@
-/* MPI for the CLI (see mpi.h). The library knows nothing of MPI: a realisation is a pure
+/* MPI for the CLI (see ranks.h). The library knows nothing of MPI: a realisation is a pure
  * function of (seed, realisation), so ranks only need to agree on who builds which ones and
  * to send rank 0 the samples, whose statistics it computes in realisation order exactly as a
- * single process would: the output is the same bytes for any number of ranks. */
+ * single process would: the output is the same bytes for any number of ranks.
+ *
+ * This file is the front: without a launcher (or a module) everything is one process of rank 0,
+ * and cantact does not load MPI at all; under a launcher it loads the module cantact-mpi
+ * (ranks_mpi.c), which links libmpi, and forwards every call to it. */
+#define _POSIX_C_SOURCE 200809L /* readlink, dlopen */
 #include "ranks.h"
 
-#include <math.h>
+#include <dlfcn.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
+
+static const ct_mpi_module *mod; /* the loaded module, NULL: one process */
+
+static int launched(void)
+{
+    return getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE") || getenv("PMIX_RANK");
+}
 
 #ifdef CT_HAVE_MPI
-#include <mpi.h>
-#include <limits.h>
-
-static int mpi_on; /* MPI_Init was called (the CLI's process state, not the library's) */
-
-void ct_mpi_init(int *argc, char ***argv)
+/* dlopen one candidate; RTLD_GLOBAL because OpenMPI's own components, loaded by MPI_Init,
+ * resolve symbols of libmpi and libopen-pal from the global scope */
+static const ct_mpi_module *try_load(const char *path, char *why, size_t len)
 {
-    if (getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE") || getenv("PMIX_RANK")) {
-        MPI_Init(argc, argv);
-        mpi_on = 1;
+    void *h = dlopen(path, RTLD_NOW | RTLD_GLOBAL);
+    if (!h) {
+        snprintf(why, len, "%s", dlerror());
+        return NULL;
     }
+    const ct_mpi_module *m = dlsym(h, "ct_mpi_module_v1");
+    if (!m) {
+        snprintf(why, len, "%s has no ct_mpi_module_v1", path);
+        dlclose(h);
+    }
+    return m;
+}
+#endif
+
+int ct_mpi_init(int *argc, char ***argv)
+{
+    if (!launched())
+        return 0;
+#ifdef CT_HAVE_MPI
+    char why[PATH_MAX + 200] = "";
+    const char *env = getenv("CANTACT_MPI_MODULE");
+    if (env && *env) {
+        mod = try_load(env, why, sizeof why);
+    } else {
+        /* beside the executable (the build tree), then the installed module */
+        char exe[PATH_MAX];
+        ssize_t n = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        if (n > 0) {
+            exe[n] = '\0';
+            char *slash = strrchr(exe, '/');
+            if (slash && (size_t)(slash - exe) + sizeof "/cantact-mpi.so" < sizeof exe) {
+                strcpy(slash, "/cantact-mpi.so");
+                if (access(exe, R_OK) == 0)
+                    mod = try_load(exe, why, sizeof why);
+            }
+        }
+        if (!mod && !why[0])
+            mod = try_load(CT_MPI_MODULE_DIR "/cantact-mpi.so", why, sizeof why);
+    }
+    if (!mod) {
+        fprintf(stderr,
+                "cantact: started by an MPI launcher, but the MPI module cannot be "
+                "loaded: %s\n",
+                why);
+        return -1;
+    }
+    mod->init(argc, argv);
+    return 0;
+#else
+    (void)argc, (void)argv;
+    fputs("cantact: started by an MPI launcher, but built without MPI (meson option mpi): every "
+          "rank would compute and write the whole output\n",
+          stderr);
+    return -1;
+#endif
 }
 
 void ct_mpi_finalize(void)
 {
-    if (mpi_on)
-        MPI_Finalize();
-    mpi_on = 0;
+    if (mod)
+        mod->finalize();
 }
 
 int ct_mpi_rank(void)
 {
-    int r = 0;
-    if (mpi_on)
-        MPI_Comm_rank(MPI_COMM_WORLD, &r);
-    return r;
+    return mod ? mod->rank() : 0;
 }
 
 int ct_mpi_size(void)
 {
-    int n = 1;
-    if (mpi_on)
-        MPI_Comm_size(MPI_COMM_WORLD, &n);
-    return n;
+    return mod ? mod->size() : 1;
 }
 
 int ct_mpi_bcast_int(int v)
 {
-    if (mpi_on)
-        MPI_Bcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD);
-    return v;
-}
-
-/* What every rank sends besides the arrays. */
-typedef struct {
-    int status;
-    char message[300];
-    uint64_t failed_realisation;
-    uint64_t failed_row;
-    double quad_error_max;
-    char failed_message[240];
-} rank_report;
-
-/* MPI_Gatherv of `per` elements per realisation of one array. */
-static int gather_array(const void *mine, uint64_t my_count, void *all, const int *counts,
-                        const int *displs, MPI_Datatype type, int rank)
-{
-    (void)rank;
-    return MPI_Gatherv(mine, (int)my_count, type, all, counts, displs, type, 0, MPI_COMM_WORLD);
+    return mod ? mod->bcast_int(v) : v;
 }
 
 int ct_mpi_gather(const ct_ensemble_samples *mine, int status, const char *message, uint64_t first,
                   uint64_t count, size_t nrows, ct_ensemble_samples **all, char *err, size_t errlen)
 {
-    const int rank = ct_mpi_rank(), size = ct_mpi_size();
-    rank_report rep;
-    memset(&rep, 0, sizeof rep);
-    rep.status = status;
-    snprintf(rep.message, sizeof rep.message, "%s", message ? message : "");
-    rep.failed_realisation = UINT64_MAX;
-    rep.quad_error_max = NAN;
-    if (mine) {
-        rep.failed_realisation = mine->failed_realisation;
-        rep.failed_row = mine->failed_row;
-        rep.quad_error_max = mine->quad_error_max;
-        snprintf(rep.failed_message, sizeof rep.failed_message, "%s", mine->message);
-    }
-    rank_report *reps = rank == 0 ? calloc((size_t)size, sizeof *reps) : NULL;
-    MPI_Gather(&rep, (int)sizeof rep, MPI_BYTE, reps, (int)sizeof rep, MPI_BYTE, 0, MPI_COMM_WORLD);
-    /* from here every rank knows whether the gather goes on: rank 0 decides */
-    int st = CT_OK;
-    if (rank == 0) {
-        for (int k = 0; k < size && !st; k++)
-            if (reps[k].status) {
-                st = reps[k].status;
-                snprintf(err, errlen, "%s", reps[k].message);
-            }
-        if (!st && (double)count * (double)nrows > INT_MAX) {
-            st = CT_EINVAL;
-            snprintf(err, errlen,
-                     "MPI: %llu realisations x %zu rows exceed what one gather carries (2^31 - 1 "
-                     "values): use fewer realisations per run and cantact merge",
-                     (unsigned long long)count, nrows);
-        }
-        if (!st && (st = ct_ensemble_samples_alloc(all, first, count, nrows)))
-            snprintf(err, errlen, "%s", ct_error_message());
-    }
-    st = ct_mpi_bcast_int(st);
-    if (st) {
-        free(reps);
-        return rank == 0 ? st : CT_OK;
-    }
-    /* every rank's block: the same split as the caller's */
-    int *counts = NULL, *displs = NULL, *counts_r = NULL, *displs_r = NULL;
-    if (rank == 0) {
-        counts = malloc(4 * (size_t)size * sizeof(int));
-        displs = counts + size;
-        counts_r = displs + size;
-        displs_r = counts_r + size;
-        for (int k = 0; k < size; k++) {
-            uint64_t a = first + count * (uint64_t)k / (uint64_t)size;
-            uint64_t b = first + count * (uint64_t)(k + 1) / (uint64_t)size;
-            counts_r[k] = (int)(b - a);
-            displs_r[k] = (int)(a - first);
-            counts[k] = (int)((b - a) * nrows);
-            displs[k] = (int)((a - first) * nrows);
-        }
-    }
-    const uint64_t my_n = mine ? mine->count * mine->nrows : 0, my_r = mine ? mine->count : 0;
-    ct_ensemble_samples *A = rank == 0 ? *all : NULL;
-    gather_array(mine ? mine->e : NULL, my_n, A ? A->e : NULL, counts, displs, MPI_DOUBLE, rank);
-    gather_array(mine ? mine->u_max : NULL, my_n, A ? A->u_max : NULL, counts, displs, MPI_DOUBLE,
-                 rank);
-    gather_array(mine ? mine->V_star_crit : NULL, my_n, A ? A->V_star_crit : NULL, counts, displs,
-                 MPI_DOUBLE, rank);
-    gather_array(mine ? mine->status : NULL, my_n, A ? A->status : NULL, counts, displs, MPI_INT,
-                 rank);
-    gather_array(mine ? mine->fx_clipped : NULL, my_r, A ? A->fx_clipped : NULL, counts_r, displs_r,
-                 MPI_UINT64_T, rank);
-    gather_array(mine ? mine->fz_clipped : NULL, my_r, A ? A->fz_clipped : NULL, counts_r, displs_r,
-                 MPI_UINT64_T, rank);
-    if (rank == 0) {
-        /* the lowest failure of all: ranks hold increasing realisations, so the first rank
-         * that failed has it; the largest quadrature error: a maximum, exact in any order */
-        A->failed_realisation = UINT64_MAX;
-        A->quad_error_max = NAN;
-        A->message[0] = '\0';
-        for (int k = 0; k < size; k++) {
-            const rank_report *r = &reps[k];
-            if (r->quad_error_max > A->quad_error_max ||
-                (isnan(A->quad_error_max) && !isnan(r->quad_error_max)))
-                A->quad_error_max = r->quad_error_max;
-            if (r->failed_realisation < A->failed_realisation) {
-                A->failed_realisation = r->failed_realisation;
-                A->failed_row = (size_t)r->failed_row;
-                snprintf(A->message, sizeof A->message, "%s", r->failed_message);
-            }
-        }
-    }
-    free(counts);
-    free(reps);
-    return CT_OK;
-}
-
-#else /* no MPI: one process of rank 0 */
-
-void ct_mpi_init(int *argc, char ***argv)
-{
-    (void)argc, (void)argv;
-}
-
-void ct_mpi_finalize(void) {}
-
-int ct_mpi_rank(void)
-{
-    return 0;
-}
-
-int ct_mpi_size(void)
-{
-    return 1;
-}
-
-int ct_mpi_bcast_int(int v)
-{
-    return v;
-}
-
-int ct_mpi_gather(const ct_ensemble_samples *mine, int status, const char *message, uint64_t first,
-                  uint64_t count, size_t nrows, ct_ensemble_samples **all, char *err, size_t errlen)
-{
+    if (mod)
+        return mod->gather(mine, status, message, first, count, nrows, all, err, errlen);
     (void)mine, (void)first, (void)count, (void)nrows, (void)all;
     if (status)
         snprintf(err, errlen, "%s", message ? message : "");
     return status;
 }
-
-#endif

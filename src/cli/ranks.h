@@ -7,8 +7,12 @@
 #include "cantact.h"
 
 /* MPI_Init when the process was started by an MPI launcher (mpirun sets OMPI_COMM_WORLD_SIZE,
- * PMI_SIZE or PMIX_RANK), nothing otherwise. */
-void ct_mpi_init(int *argc, char ***argv);
+ * PMI_SIZE or PMIX_RANK), nothing otherwise. MPI lives in the module cantact-mpi.so, loaded here
+ * only then (beside the executable in the build tree, in <libdir>/cantact once installed; the
+ * environment variable CANTACT_MPI_MODULE names another file). Returns 0, or -1 with a
+ * one-line message on stderr when a launcher started the process but the module cannot be
+ * loaded (or cantact was built without MPI: then every rank would write the whole output). */
+int ct_mpi_init(int *argc, char ***argv);
 void ct_mpi_finalize(void);
 int ct_mpi_rank(void);
 int ct_mpi_size(void);
@@ -22,5 +26,17 @@ int ct_mpi_bcast_int(int v);
 int ct_mpi_gather(const ct_ensemble_samples *mine, int status, const char *message, uint64_t first,
                   uint64_t count, size_t nrows, ct_ensemble_samples **all, char *err,
                   size_t errlen);
+
+/* The module's table (ranks_mpi.c exports it as ct_mpi_module_v1). */
+typedef struct {
+    void (*init)(int *argc, char ***argv);
+    void (*finalize)(void);
+    int (*rank)(void);
+    int (*size)(void);
+    int (*bcast_int)(int v);
+    int (*gather)(const ct_ensemble_samples *mine, int status, const char *message, uint64_t first,
+                  uint64_t count, size_t nrows, ct_ensemble_samples **all, char *err,
+                  size_t errlen);
+} ct_mpi_module;
 
 #endif

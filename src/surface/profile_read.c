@@ -1,6 +1,9 @@
 /* Reading measured surfaces: text/CSV line profiles, Dektak stylus exports, and ISO 25178-72
  * X3P areal topographies (a zip holding main.xml and a binary height grid; libzip, libxml2).
- * Every file is read once, as a stream: memory holds the points, never the file twice. */
+ * Every file is read once, as a stream: memory holds the points, never the file twice.
+ * libzip and libxml2 are loaded (dlopen) the first time an X3P file is read: linked, they and
+ * what they pull in (ICU, libstdc++, OpenSSL's libcrypto, liblzma) were loaded and relocated at
+ * every start of every program using cantact, about 2 ms, most of a short run's time. */
 #define _DEFAULT_SOURCE /* getline, strcasecmp */
 #include "internal.h"
 
@@ -12,6 +15,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+
+#include <dlfcn.h>
+#include <pthread.h>
 
 #include <libxml/parser.h>
 #include <libxml/tree.h>
@@ -279,6 +285,81 @@ static int read_text(const char *path, FILE *f, const ct_profile_read_opts *give
 
 /* ---- X3P (ISO 25178-72) ---- */
 
+/* The functions of libzip and libxml2 used below, resolved once per process (pthread_once: the
+ * library stays reentrant). The sonames are the ones linked against at build time (meson reads
+ * them from the libraries), so the headers compiled against and the code loaded agree. */
+static struct {
+    zip_t *(*zip_open)(const char *, int, int *);
+    void (*zip_error_init_with_code)(zip_error_t *, int);
+    const char *(*zip_error_strerror)(zip_error_t *);
+    void (*zip_error_fini)(zip_error_t *);
+    void (*zip_stat_init)(zip_stat_t *);
+    int (*zip_stat)(zip_t *, const char *, zip_flags_t, zip_stat_t *);
+    zip_file_t *(*zip_fopen)(zip_t *, const char *, zip_flags_t);
+    const char *(*zip_strerror)(zip_t *);
+    zip_int64_t (*zip_fread)(zip_file_t *, void *, zip_uint64_t);
+    int (*zip_fclose)(zip_file_t *);
+    int (*zip_close)(zip_t *);
+    void (*xmlInitParser)(void);
+    xmlDocPtr (*xmlReadMemory)(const char *, int, const char *, const char *, int);
+    xmlNodePtr (*xmlDocGetRootElement)(const xmlDoc *);
+    xmlChar *(*xmlNodeGetContent)(const xmlNode *);
+    xmlFreeFunc *xmlFree; /* a variable of libxml2: the deallocator in use */
+    void (*xmlFreeDoc)(xmlDocPtr);
+    char why[512]; /* empty when loaded */
+} X;
+static pthread_once_t x3p_once = PTHREAD_ONCE_INIT;
+
+static void *sym(void *lib, const char *name)
+{
+    void *p = lib ? dlsym(lib, name) : NULL;
+    if (!p && lib && !X.why[0])
+        snprintf(X.why, sizeof X.why, "%s has no %s",
+                 name[0] == 'z' ? CT_ZIP_SONAME : CT_XML_SONAME, name);
+    return p;
+}
+
+static void x3p_load(void)
+{
+    void *z = dlopen(CT_ZIP_SONAME, RTLD_NOW | RTLD_LOCAL);
+    if (!z)
+        snprintf(X.why, sizeof X.why, "%s", dlerror());
+    void *x = z ? dlopen(CT_XML_SONAME, RTLD_NOW | RTLD_LOCAL) : NULL;
+    if (z && !x)
+        snprintf(X.why, sizeof X.why, "%s", dlerror());
+        /* object pointers from dlsym, converted as POSIX requires of the implementation */
+#define GET(lib, f) *(void **)&X.f = sym(lib, #f)
+    GET(z, zip_open);
+    GET(z, zip_error_init_with_code);
+    GET(z, zip_error_strerror);
+    GET(z, zip_error_fini);
+    GET(z, zip_stat_init);
+    GET(z, zip_stat);
+    GET(z, zip_fopen);
+    GET(z, zip_strerror);
+    GET(z, zip_fread);
+    GET(z, zip_fclose);
+    GET(z, zip_close);
+    GET(x, xmlInitParser);
+    GET(x, xmlReadMemory);
+    GET(x, xmlDocGetRootElement);
+    GET(x, xmlNodeGetContent);
+    GET(x, xmlFree);
+    GET(x, xmlFreeDoc);
+#undef GET
+    if (!X.why[0])
+        X.xmlInitParser(); /* once, here: libxml2's own initialisation is not thread-safe */
+}
+
+/* CT_OK with X filled, or the reason the X3P libraries cannot be loaded. */
+static int x3p_libraries(const char *path)
+{
+    pthread_once(&x3p_once, x3p_load);
+    if (X.why[0])
+        return ct_error_set(CT_EIO, "%s: reading X3P needs libzip and libxml2: %s", path, X.why);
+    return CT_OK;
+}
+
 /* The first element named `name` (local name) below node, depth first. */
 static xmlNode *find(xmlNode *node, const char *name)
 {
@@ -301,7 +382,7 @@ static const char *text_at(xmlNode *node, const char *const *path, int n, char *
         node = find(node, path[k]);
     if (!node)
         return NULL;
-    xmlChar *t = xmlNodeGetContent(node);
+    xmlChar *t = X.xmlNodeGetContent(node);
     if (!t)
         return NULL;
     const char *s = (const char *)t;
@@ -310,7 +391,7 @@ static const char *text_at(xmlNode *node, const char *const *path, int n, char *
     snprintf(buf, size, "%s", s);
     for (size_t k = strlen(buf); k > 0 && isspace((unsigned char)buf[k - 1]); k--)
         buf[k - 1] = '\0';
-    xmlFree(t);
+    (*X.xmlFree)(t);
     return buf;
 }
 
@@ -343,8 +424,8 @@ static int zip_entry(const char *path, zip_t *z, const char *name, zip_uint64_t 
                      zip_uint64_t *size)
 {
     zip_stat_t zs;
-    zip_stat_init(&zs);
-    if (zip_stat(z, name, 0, &zs) != 0 || !(zs.valid & ZIP_STAT_SIZE))
+    X.zip_stat_init(&zs);
+    if (X.zip_stat(z, name, 0, &zs) != 0 || !(zs.valid & ZIP_STAT_SIZE))
         return ct_error_set(CT_EINVAL, "%s: X3P entry %s missing", path, name);
     if (zs.size > max)
         return ct_error_set(CT_EINVAL,
@@ -359,17 +440,17 @@ static int zip_entry(const char *path, zip_t *z, const char *name, zip_uint64_t 
                             "zip",
                             path, name, (unsigned long long)zs.size,
                             (unsigned long long)zs.comp_size);
-    zip_file_t *f = zip_fopen(z, name, 0);
+    zip_file_t *f = X.zip_fopen(z, name, 0);
     if (!f)
-        return ct_error_set(CT_EINVAL, "%s: X3P entry %s: %s", path, name, zip_strerror(z));
+        return ct_error_set(CT_EINVAL, "%s: X3P entry %s: %s", path, name, X.zip_strerror(z));
     char *buf = malloc(zs.size + 1);
     if (!buf) {
-        zip_fclose(f);
+        X.zip_fclose(f);
         return ct_error_set(CT_ENOMEM, "%s: X3P entry %s of %llu bytes: out of memory", path, name,
                             (unsigned long long)zs.size);
     }
-    zip_int64_t got = zip_fread(f, buf, zs.size);
-    zip_fclose(f);
+    zip_int64_t got = X.zip_fread(f, buf, zs.size);
+    X.zip_fclose(f);
     if (got < 0 || (zip_uint64_t)got != zs.size) {
         free(buf);
         return ct_error_set(CT_EIO, "%s: X3P entry %s: short read", path, name);
@@ -400,14 +481,16 @@ static double le_value(const unsigned char *p, char type)
 
 static int read_x3p(const char *path, ct_profile **out)
 {
-    int err = 0, st = CT_OK;
-    zip_t *z = zip_open(path, ZIP_RDONLY, &err);
+    int err = 0, st = x3p_libraries(path);
+    if (st)
+        return st;
+    zip_t *z = X.zip_open(path, ZIP_RDONLY, &err);
     if (!z) {
         zip_error_t ze;
-        zip_error_init_with_code(&ze, err);
+        X.zip_error_init_with_code(&ze, err);
         st = ct_error_set(CT_EINVAL, "%s: not a readable X3P (zip) file: %s", path,
-                          zip_error_strerror(&ze));
-        zip_error_fini(&ze);
+                          X.zip_error_strerror(&ze));
+        X.zip_error_fini(&ze);
         return st;
     }
     char *xml = NULL, *bin = NULL, *mask = NULL;
@@ -416,13 +499,13 @@ static int read_x3p(const char *path, ct_profile **out)
     double *zz = NULL;
     if ((st = zip_entry(path, z, "main.xml", 64 << 20, &xml, &xml_size)))
         goto done;
-    doc = xmlReadMemory(xml, (int)xml_size, "main.xml", NULL,
-                        XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
+    doc = X.xmlReadMemory(xml, (int)xml_size, "main.xml", NULL,
+                          XML_PARSE_NONET | XML_PARSE_NOERROR | XML_PARSE_NOWARNING);
     if (!doc) {
         st = ct_error_set(CT_EINVAL, "%s: X3P entry main.xml is not well-formed XML", path);
         goto done;
     }
-    xmlNode *root = xmlDocGetRootElement(doc);
+    xmlNode *root = X.xmlDocGetRootElement(doc);
     double sx = 0, sy = 0, sz = 0, dx = 0, dy = 0, zinc = 1.0, zoff = 0.0;
     if ((st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeX", &sx, 1)) ||
         (st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeY", &sy, 1)) ||
@@ -529,8 +612,8 @@ done:
     free(bin);
     free(mask);
     if (doc)
-        xmlFreeDoc(doc);
-    zip_close(z);
+        X.xmlFreeDoc(doc);
+    X.zip_close(z);
     return st;
 }
 
