@@ -114,6 +114,17 @@ static FILE *spool(void)
     return f;
 }
 
+/* A large buffer for o->f (stdio's is 4 KiB: a system call per 4 KiB of rows); without
+ * memory for it, stdio's own. */
+static void big_buffer(ct_out *o)
+{
+    enum { SIZE = 1 << 20 };
+    if (o->f && (o->buf = malloc(SIZE)) && setvbuf(o->f, o->buf, _IOFBF, SIZE) != 0) {
+        free(o->buf);
+        o->buf = NULL;
+    }
+}
+
 int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
@@ -123,6 +134,7 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
         o->spooled = 1;
         if (!(o->f = spool()))
             return fail(o, err, errlen, NULL, errno);
+        big_buffer(o);
         return 0;
     }
     if (!*path)
@@ -155,6 +167,7 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
             o->spooled = 1;
             if (!(o->f = spool()))
                 return fail(o, err, errlen, NULL, errno);
+            big_buffer(o);
             return 0;
         }
         o->mode = st.st_mode & 07777;
@@ -182,6 +195,7 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
         close(fd);
         return fail(o, err, errlen, NULL, e);
     }
+    big_buffer(o);
     return 0;
 }
 
@@ -197,6 +211,8 @@ static int finish(ct_out *o, char *err, size_t errlen)
         if (fclose(o->f) != 0)
             bad = 1;
         o->f = NULL;
+        free(o->buf);
+        o->buf = NULL;
     }
     if (bad)
         snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
@@ -273,6 +289,8 @@ void ct_out_abort(ct_out *o)
     if (o->f)
         fclose(o->f);
     o->f = NULL;
+    free(o->buf);
+    o->buf = NULL;
     if (o->tmp_path) {
         unlink(o->tmp_path);
         live_remove(o->tmp_path);

@@ -20,6 +20,7 @@ typedef struct {
     FILE *f;        /* where rows go */
     int spooled;    /* stdout or a special file: f is an unlinked spool, copied at commit */
     mode_t mode;    /* the mode the committed file gets */
+    char *buf;      /* f's buffer (1 MiB: a 2000-row CSV in one write, not 67) */
 } ct_out;
 
 /* Opens an output: "-" for standard output, else a path (checked now: a directory, an
