@@ -517,6 +517,8 @@ static void many_kernel(const ct_bundle *b, const void *args, size_t i0, size_t 
 typedef void (*block_kernel)(const ct_bundle *b, const void *args, size_t i0, size_t mc, size_t k0,
                              size_t k1, double *out);
 
+enum { NODE_WORK_FACTOR = 2048 };
+
 /* Runs kernel over all blocks for m nodes and combines the block results in the fixed tree;
  * out[j * m + i] gets output j of node i. */
 static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *args, size_t m,
@@ -527,11 +529,15 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
     const size_t width = (size_t)per_node * CT_NODE_CHUNK;
     double *ws = team > 1 && nb > 0 ? malloc((size_t)nb * width * sizeof(double)) : NULL;
     /* Below the parallel threshold in rods the chunks of nodes are independent sums, each
-     * computed whole by one thread: with many nodes (a sweep's closed-form check: 2000 impacts
-     * on 145 rods) they are shared among the threads, bitwise the same for any count. */
+     * computed whole by one thread: with very many nodes they are shared among the threads,
+     * bitwise the same for any count. Only from NODE_WORK_FACTOR times the rod threshold in
+     * rod-node terms (8.4 M, some 20 ms of work): a team's start and its spinning cost the
+     * rest of a short run more than it saves (the 2000-impact sweep of the default scene,
+     * 145 rods: 7.4 ms whole process on one thread, 10.7 ms with two, 2026-11-23). */
     const size_t nchunks = (m + CT_NODE_CHUNK - 1) / CT_NODE_CHUNK;
     int node_team = 1;
-    if (!ws && nchunks > 1 && (double)b->n * (double)m >= (double)b->parallel_min) {
+    if (!ws && nchunks > 1 &&
+        (double)b->n * (double)m >= (double)b->parallel_min * NODE_WORK_FACTOR) {
 #ifdef _OPENMP
         node_team = b->threads ? b->threads : omp_get_max_threads();
 #endif

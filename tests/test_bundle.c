@@ -238,6 +238,47 @@ static void many_nodes_match_single_nodes(void **state)
     }
 }
 
+/* Fewer rods than the parallel threshold but very many nodes (a long sweep's closed-form
+ * check): the chunks of nodes are shared among the threads, and every node keeps the bits of
+ * its single-node sum for 1, 2 and 3 threads. */
+static void many_nodes_shared_among_threads(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 40, INFINITY), CT_OK);
+    ct_bundle_advance(b, 0.33);
+    const size_t n = ct_bundle_size(b);
+    /* one thread per sum of rods, and nodes x rods above the node threshold (2048 times the
+     * rod threshold) */
+    ct_bundle_set_parallel_min(b, n + 1);
+    enum { M = 5003 };
+    const size_t m = (size_t)M > 2048 * (n + 1) / n + 1 ? (size_t)M : 2048 * (n + 1) / n + 1;
+    double *u = malloc(m * sizeof(double)), *P = malloc(m * sizeof(double)),
+           *W = malloc(m * sizeof(double));
+    assert_non_null(u);
+    assert_non_null(P);
+    assert_non_null(W);
+    for (size_t i = 0; i < m; i++)
+        u[i] = -0.05 + 1.1 * fmod(0.6180339887498949 * (double)i, 1.0);
+    for (int threads = 1; threads <= 3; threads++) {
+        ct_bundle_set_threads(b, threads);
+        memset(P, 0, m * sizeof(double));
+        memset(W, 0, m * sizeof(double));
+        assert_int_equal(ct_bundle_force_many(b, u, m, P), CT_OK);
+        assert_int_equal(ct_bundle_work_many(b, 0.01, u, m, W), CT_OK);
+        for (size_t i = 0; i < m; i++) {
+            double Pi = ct_bundle_force(b, u[i]), Wi = ct_bundle_work(b, 0.01, u[i]);
+            assert_memory_equal(&P[i], &Pi, sizeof Pi);
+            assert_memory_equal(&W[i], &Wi, sizeof Wi);
+        }
+    }
+    free(u);
+    free(P);
+    free(W);
+    ct_bundle_free(b);
+}
+
 /* Relative change of W and P at u between a depth-d prefractal and a much deeper one. */
 static double truncation_error(const ct_params *p, long d, const ct_bundle *deep, double u)
 {
@@ -474,6 +515,7 @@ int main(void)
         cmocka_unit_test(elastic_force_against_long_double_sum),
         cmocka_unit_test(work_against_gsl_quadrature),
         cmocka_unit_test(bitwise_identical_for_any_thread_count),
+        cmocka_unit_test(many_nodes_shared_among_threads),
         cmocka_unit_test(many_nodes_match_single_nodes),
         cmocka_unit_test(truncation_bound_holds),
         cmocka_unit_test(advance_follows_the_history),

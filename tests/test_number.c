@@ -7,6 +7,7 @@
 
 #include <cmocka.h>
 #include <float.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -20,6 +21,10 @@ static void check(double x)
     snprintf(b, sizeof b, "%.17g", x);
     if (strcmp(a, b) || n != strlen(b))
         fail_msg("%a: got %s, printf gives %s", x, a, b);
+    n = ct_format_g3(a, x);
+    snprintf(b, sizeof b, "%.3g", x);
+    if (strcmp(a, b) || n != strlen(b))
+        fail_msg("%a: got %s, printf(\"%%.3g\") gives %s", x, a, b);
 }
 
 static void agrees_with_printf(void **state)
@@ -33,8 +38,8 @@ static void agrees_with_printf(void **state)
         double x;
         if (i % 2) { /* any bit pattern: NaN, infinities, subnormals, everything */
             memcpy(&x, &s, sizeof x);
-        } else { /* the range results live in, where the fast path works */
-            x = pow(10.0, (double)(int)(s % 30) - 10.0) * (double)(s >> 11) / 9007199254740992.0;
+        } else { /* the range results live in, where the fast path works, and beyond it */
+            x = pow(10.0, (double)(int)(s % 45) - 25.0) * (double)(s >> 11) / 9007199254740992.0;
             if (s & 1)
                 x = -x;
         }
@@ -60,6 +65,21 @@ static void edges(void **state)
                         1e17,
                         9.999999999999999e16,
                         123.456,
+                        999.5,
+                        999.49999999999989,
+                        0.0012345,
+                        0.00012345,
+                        1.125e-16,
+                        1.135e-16,
+                        9.995e-5,
+                        0.1005,
+                        12.25,
+                        12.35,
+                        1e-22,
+                        1e-23,
+                        9.9999999999999997e-23,
+                        1.1102230246251565e-16,
+                        2.2204460492503131e-16,
                         1e-300,
                         DBL_MIN,
                         DBL_MAX,
@@ -74,7 +94,7 @@ static void edges(void **state)
         check(nextafter(v[k], INFINITY));
         check(nextafter(v[k], -INFINITY));
     }
-    for (int e = -7; e <= 17; e++) { /* powers of ten and their neighbours */
+    for (int e = -24; e <= 17; e++) { /* powers of ten and their neighbours */
         double x = pow(10.0, e);
         check(x);
         check(nextafter(x, 0.0));
@@ -82,11 +102,34 @@ static void edges(void **state)
     }
 }
 
+/* ct_put_long against printf("%ld"), through a stream */
+static void longs_agree_with_printf(void **state)
+{
+    (void)state;
+    FILE *f = tmpfile();
+    assert_non_null(f);
+    char ref[64 * 28] = "", *r = ref;
+    const long v[] = {0,   1,         -1,         9,        10,       -10,          99,
+                      100, 123456789, -987654321, LONG_MAX, LONG_MIN, LONG_MAX - 1, LONG_MIN + 1};
+    for (size_t k = 0; k < sizeof v / sizeof v[0]; k++) {
+        ct_put_long(f, v[k]);
+        fputc(';', f);
+        r += sprintf(r, "%ld;", v[k]);
+    }
+    char got[sizeof ref] = "";
+    rewind(f);
+    size_t n = fread(got, 1, sizeof got - 1, f);
+    got[n] = '\0';
+    fclose(f);
+    assert_string_equal(got, ref);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(agrees_with_printf),
         cmocka_unit_test(edges),
+        cmocka_unit_test(longs_agree_with_printf),
     };
     return cmocka_run_group_tests_name("number", tests, NULL, NULL);
 }

@@ -481,19 +481,22 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, in
         fputs("\"\n", f);
         return;
     }
-    fprintf(f, "%ld,", row->impact);
+    ct_put_long(f, row->impact);
+    fputc(',', f);
     ct_put_double(f, row->V_star);
     put_field(f, r->u_max / p->h0);
     put_field(f, r->e);
     if (isfinite(r->e_closed)) {
         put_field(f, r->e_closed);
-        fprintf(f, ",%.3g", r->quad_error);
+        fputc(',', f);
+        ct_put_g3(f, r->quad_error);
     } else {
         fputs(",,", f); /* solver.check = none */
     }
     put_field(f, r->V_star_crit);
     put_field(f, r->u_release / p->h0);
-    fprintf(f, ",%d", r->elastic);
+    fputc(',', f);
+    ct_put_long(f, r->elastic);
     if (compare && fitted) { /* a measured surface: its fitted Cantor surface and law */
         for (int q = 0; q < 3; q++) {
             if (isfinite(fitted[q]))
