@@ -103,6 +103,13 @@ int ct_bundle_team(const ct_bundle *b)
 #endif
 }
 
+int ct_bundle_team_from(const ct_bundle *b, size_t factor)
+{
+    if ((double)b->n < (double)b->parallel_min * (double)factor)
+        return 1;
+    return ct_bundle_team(b);
+}
+
 size_t ct_available_memory(void)
 {
     /* MemAvailable is what the kernel can give without swapping. */

@@ -57,6 +57,9 @@ double ct_curve_bytes(size_t events);
 size_t ct_available_memory(void);
 /* The thread count a sum over b's rods uses (1 below the parallel threshold). */
 int ct_bundle_team(const ct_bundle *b);
+/* The same from factor times the bundle's rod threshold: for work whose team pays only on
+ * larger bundles (the curve's event sort). */
+int ct_bundle_team_from(const ct_bundle *b, size_t factor);
 
 /* Runs fn(ctx, c, i0, i1) on the chunks c = 0, 1, ... of [0, count) (chunk indices each, the
  * last one shorter), by b's thread team when count reaches b's parallel threshold. For

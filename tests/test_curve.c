@@ -227,6 +227,8 @@ static void bitwise_identical_for_any_thread_count(void **state)
 static void compare_threads(ct_bundle *b)
 {
     ct_curve *c[2];
+    /* a team from 64 rods: the curve's parallel passes and merges run on these bundles */
+    ct_bundle_set_parallel_min(b, 1);
     for (int t = 0; t < 2; t++) {
         ct_bundle_set_threads(b, t + 1);
         assert_int_equal(ct_curve_alloc(&c[t]), CT_OK);
