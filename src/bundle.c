@@ -532,23 +532,29 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
                          int per_node, double *out)
 {
     const ptrdiff_t nb = (ptrdiff_t)b->nblocks;
-    const int team = ct_bundle_team(b);
     const size_t width = (size_t)per_node * CT_NODE_CHUNK;
-    double *ws = team > 1 && nb > 0 ? malloc((size_t)nb * width * sizeof(double)) : NULL;
-    /* Below the parallel threshold in rods the chunks of nodes are independent sums, each
-     * computed whole by one thread: with very many nodes they are shared among the threads,
-     * bitwise the same for any count. Only from NODE_WORK_FACTOR times the rod threshold in
-     * rod-node terms (8.4 M, some 20 ms of work): a team's start and its spinning cost the
-     * rest of a short run more than it saves (the 2000-impact sweep of the default scene,
-     * 145 rods: 7.4 ms whole process on one thread, 10.7 ms with two, 2026-11-23). */
+    /* Two ways to share the work, bitwise the same (the same tree of blocks for every node):
+     * with many nodes (a sweep's closed-form check) the chunks of nodes are independent
+     * sums, each computed whole by one thread, in one parallel region; with few nodes (the
+     * quadrature and u_max search on a deep bundle) the rod blocks of each chunk are shared.
+     * Nodes are shared from two chunks per thread and NODE_WORK_FACTOR times the rod
+     * threshold in rod-node terms (8.4 M, some 20 ms of work): below, a team's start and its
+     * spinning cost the rest of a short run more than it saves (the 2000-impact sweep of the
+     * default scene, 145 rods: 7.4 ms whole process on one thread, 10.7 ms with two); and the
+     * rod blocks of a 9600-rod profile (5 blocks, 32 chunks of 2000 speeds) shared 3:2 in 32
+     * regions took 138 ms whole process against 92 ms on one thread (2026-11-23). */
     const size_t nchunks = (m + CT_NODE_CHUNK - 1) / CT_NODE_CHUNK;
-    int node_team = 1;
-    if (!ws && nchunks > 1 &&
-        (double)b->n * (double)m >= (double)b->parallel_min * NODE_WORK_FACTOR) {
+    int avail = 1;
 #ifdef _OPENMP
-        node_team = b->threads ? b->threads : omp_get_max_threads();
+    avail = b->threads ? b->threads : omp_get_max_threads();
 #endif
-    }
+    const int node_team =
+        avail > 1 && nchunks >= 2 * (size_t)avail &&
+                (double)b->n * (double)m >= (double)b->parallel_min * NODE_WORK_FACTOR
+            ? avail
+            : 1;
+    const int team = node_team > 1 ? 1 : ct_bundle_team(b);
+    double *ws = team > 1 && nb > 0 ? malloc((size_t)nb * width * sizeof(double)) : NULL;
     (void)node_team;
 #pragma omp parallel for schedule(static) num_threads(node_team) if (node_team > 1)
     for (ptrdiff_t c = 0; c < (ptrdiff_t)nchunks; c++) {
