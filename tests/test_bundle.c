@@ -182,6 +182,29 @@ static void bitwise_identical_for_any_thread_count(void **state)
     ct_bundle_free(b);
 }
 
+/* P and W at m nodes in one pass, for 1 ... max_threads threads: node by node the very bits
+ * of the single-node sums. */
+static void many_match_single(ct_bundle *b, const double *u, size_t m, int max_threads)
+{
+    double *P = malloc(m * sizeof(double)), *W = malloc(m * sizeof(double));
+    assert_non_null(P);
+    assert_non_null(W);
+    for (int threads = 1; threads <= max_threads; threads++) {
+        ct_bundle_set_threads(b, threads);
+        memset(P, 0, m * sizeof(double));
+        memset(W, 0, m * sizeof(double));
+        assert_int_equal(ct_bundle_force_many(b, u, m, P), CT_OK);
+        assert_int_equal(ct_bundle_work_many(b, 0.01, u, m, W), CT_OK);
+        for (size_t i = 0; i < m; i++) {
+            double Pi = ct_bundle_force(b, u[i]), Wi = ct_bundle_work(b, 0.01, u[i]);
+            assert_memory_equal(&P[i], &Pi, sizeof Pi);
+            assert_memory_equal(&W[i], &Wi, sizeof Wi);
+        }
+    }
+    free(P);
+    free(W);
+}
+
 /* One pass for many nodes must give, node by node, the very bits of the single-node sums:
  * the quadrature and the u_max search use the former, the closed forms the latter. 150
  * nodes cross two chunk boundaries; they include points below contact, on the plateau and
@@ -220,20 +243,11 @@ static void many_nodes_match_single_nodes(void **state)
             }
         }
         enum { M = 150 };
-        double u[M], P[M], W[M];
+        double u[M];
         for (size_t i = 0; i < M; i++)
             u[i] = i < nbp ? bp[i] : -0.1 + 1.2 * (double)i / M;
         free(bp);
-        for (int threads = 1; threads <= 2; threads++) {
-            ct_bundle_set_threads(b, threads);
-            assert_int_equal(ct_bundle_force_many(b, u, M, P), CT_OK);
-            assert_int_equal(ct_bundle_work_many(b, 0.01, u, M, W), CT_OK);
-            for (size_t i = 0; i < M; i++) {
-                double Pi = ct_bundle_force(b, u[i]), Wi = ct_bundle_work(b, 0.01, u[i]);
-                assert_memory_equal(&P[i], &Pi, sizeof Pi);
-                assert_memory_equal(&W[i], &Wi, sizeof Wi);
-            }
-        }
+        many_match_single(b, u, M, 2);
         ct_bundle_free(b);
     }
 }
@@ -254,28 +268,12 @@ static void many_nodes_shared_among_threads(void **state)
     ct_bundle_set_parallel_min(b, n + 1);
     enum { M = 5003 };
     const size_t m = (size_t)M > 2048 * (n + 1) / n + 1 ? (size_t)M : 2048 * (n + 1) / n + 1;
-    double *u = malloc(m * sizeof(double)), *P = malloc(m * sizeof(double)),
-           *W = malloc(m * sizeof(double));
+    double *u = malloc(m * sizeof(double));
     assert_non_null(u);
-    assert_non_null(P);
-    assert_non_null(W);
     for (size_t i = 0; i < m; i++)
         u[i] = -0.05 + 1.1 * fmod(0.6180339887498949 * (double)i, 1.0);
-    for (int threads = 1; threads <= 3; threads++) {
-        ct_bundle_set_threads(b, threads);
-        memset(P, 0, m * sizeof(double));
-        memset(W, 0, m * sizeof(double));
-        assert_int_equal(ct_bundle_force_many(b, u, m, P), CT_OK);
-        assert_int_equal(ct_bundle_work_many(b, 0.01, u, m, W), CT_OK);
-        for (size_t i = 0; i < m; i++) {
-            double Pi = ct_bundle_force(b, u[i]), Wi = ct_bundle_work(b, 0.01, u[i]);
-            assert_memory_equal(&P[i], &Pi, sizeof Pi);
-            assert_memory_equal(&W[i], &Wi, sizeof Wi);
-        }
-    }
+    many_match_single(b, u, m, 3);
     free(u);
-    free(P);
-    free(W);
     ct_bundle_free(b);
 }
 

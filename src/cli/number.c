@@ -179,28 +179,27 @@ static size_t zero(char *buf, double x)
     return (size_t)(o - buf);
 }
 
-size_t ct_format_double(char *buf, double x)
+/* x as "%.<P>g" writes it: zero and the exact path here, the rest by snprintf */
+static size_t format_g(char *buf, double x, int P)
 {
     if (x == 0.0)
         return zero(buf, x);
 #if defined(__SIZEOF_INT128__)
-    size_t n = fast_g(buf, x, 17);
+    size_t n = fast_g(buf, x, P);
     if (n)
         return n;
 #endif
-    return (size_t)snprintf(buf, CT_NUMBER_MAX, "%.17g", x);
+    return (size_t)snprintf(buf, CT_NUMBER_MAX, "%.*g", P, x);
+}
+
+size_t ct_format_double(char *buf, double x)
+{
+    return format_g(buf, x, 17);
 }
 
 size_t ct_format_g3(char *buf, double x)
 {
-    if (x == 0.0)
-        return zero(buf, x);
-#if defined(__SIZEOF_INT128__)
-    size_t n = fast_g(buf, x, 3);
-    if (n)
-        return n;
-#endif
-    return (size_t)snprintf(buf, CT_NUMBER_MAX, "%.3g", x);
+    return format_g(buf, x, 3);
 }
 
 /* the CLI writes from one thread: no stream lock per number */
