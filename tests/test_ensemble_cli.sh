@@ -12,7 +12,12 @@ trap 'rm -rf "$tmp"' EXIT
 pass=0
 failn=0
 ok() { pass=$((pass + 1)); }
-bad() { failn=$((failn + 1)); echo "FAIL: $*"; }
+# CT_FAIL_FAST (set by the mutation check): stop at the first failed check
+bad() {
+    failn=$((failn + 1))
+    echo "FAIL: $*"
+    [ -z "${CT_FAIL_FAST:-}" ] || exit 1
+}
 
 # expect CODE DESCRIPTION -- command...: the exit code, and one line on stderr on failure
 expect() {
