@@ -27,6 +27,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -111,6 +112,10 @@ typedef struct {
 
 /* Returns CT_OK if every field is finite and in range, else CT_EINVAL with a message. */
 int ct_layer_validate(const ct_layer *layer);
+
+/* Returns the bytes of memory the kernel can give without swapping (MemAvailable): the one
+ * memory check of the library and the CLI before large allocations. */
+size_t ct_available_memory(void);
 
 /* Memory per rod in bytes: top, length, area and plastic strain, 4 doubles. */
 #define CT_BYTES_PER_ROD 32
@@ -675,6 +680,18 @@ double ct_table_eval(const ct_table *t, double V_star);
  * the Fritsch-Butland weighted harmonic mean inside, three-point one-sided ends limited to
  * three secants (Fritsch-Carlson), 0 at a local extremum. */
 void ct_pchip_slopes(size_t n, const double *x, const double *y, double *d);
+/* What a table file says of itself beyond its nodes. */
+typedef struct {
+    const char *version; /* the program's version, "" when none */
+    const char *scene;   /* the scene's name (NULL: not written) */
+    const char *surface; /* one line on the surface (ct_surface_table_line; NULL: none) */
+    double tolerance;    /* the tolerance the build was asked for */
+    size_t check_points; /* points checked inside every interval */
+    double v_per_V_star; /* impact speed per V* in the scene's units (NaN: no mass given) */
+} ct_table_meta;
+/* Writes the table file include/cantact_table.h reads: "# key = value" lines, then
+ * V_star,e,de_dlnV_star rows (round-trip digits). CT_EIO on a write error. */
+int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta);
 
 /* ---- measured surfaces (MODEL.md §9, src/surface/profile.c, profile_read.c, fit.c) --- */
 /* A measured line profile z(x_j) or areal topography z(x_i, y_j) is a rod set directly: after
@@ -794,6 +811,232 @@ int ct_profile_fit_of(const ct_profile *p, double d_lo, double d_hi, double tau_
 /* The bearing fit of a whole fit (ct_profile_fit_of) redone on depths [d_lo, d_hi] (0: the
  * default), alpha, h0, fx and fz with it; the dimensions are kept. On error fit is unchanged. */
 int ct_profile_fit_bearing(const ct_profile *p, double d_lo, double d_hi, ct_profile_fit *fit);
+/* The bearing fit redone on the depths n impacts reached (u_max [length], NaN ones left out):
+ * from the shallowest (not above the fit's default band's start) to the deepest (not below
+ * Rt), as `cantact run` does for compare and bearing. CT_EINVAL when that band holds no fit. */
+int ct_profile_fit_on_reach(const ct_profile *p, const ct_profile_fit *fit, const double *u_max,
+                            size_t n, ct_profile_fit *out);
+/* The fitted Cantor surface beside a profile's rods (layer: its E, sigma_y, H*): for n impact
+ * energies W [energy per unit depth; a grid: energy] (NaN ones skipped), e of the fitted
+ * surface's exact rods at its fractal depth, e of the asymptotic law with the fitted
+ * parameters, and the fitted surface's V*. CT_ERANGE when the fit leaves the model's ranges. */
+int ct_profile_fitted_e(const ct_profile *p, const ct_profile_fit *fit, const ct_layer *layer,
+                        const double *W, size_t n, int threads, double *e_fit, double *e_asym,
+                        double *V_fit);
+/* The fit as CSV: quantity,value,band_lo,band_hi,points,r2,rms_residual_ln (lengths in m). */
+int ct_profile_fit_write(FILE *f, const ct_profile_fit *fit, const char *source, size_t n);
+
+/* ---- output columns as data (src/columns.c) -------------------------------------- */
+/* The quantities of a sweep's rows, each a column: its name (the CSV header, Python's
+ * attribute), its unit, its format and where it sits in ct_sweep_row. Groups: "e" the e
+ * table, "time" the columns of what = time, "row" the library's and Python's only. */
+
+typedef enum {
+    CT_UNIT_ONE = 0,    /* dimensionless as computed */
+    CT_UNIT_LENGTH = 1, /* a length: divided by h0 */
+    CT_UNIT_FORCE = 2,  /* a force: divided by P_Y = sigma_y l0 */
+    CT_UNIT_ENERGY = 3, /* an energy: divided by P_Y h0 */
+    CT_UNIT_TIME = 4,   /* t / tau as computed (the sweep's mass is E l0 / h0) */
+    CT_UNIT_COUNT = 5,  /* an integer */
+} ct_unit;
+
+typedef struct {
+    const char *name;  /* "u_max_over_h0" */
+    const char *group; /* "e", "time" or "row" */
+    ct_unit unit;
+    char type;            /* 'd' double, 'l' long, 'i' int: the field in ct_sweep_row */
+    int digits;           /* 17: round trip ("%.17g"), 3: "%.3g" */
+    const char *physical; /* its twin in the scene's units when a mass is given ("t_contact_s") */
+    double divisor;       /* the value is divided by it last (the DEM step: period / 50) */
+    size_t offset;        /* of the field in ct_sweep_row */
+    const char *doc;      /* one line */
+} ct_column;
+
+/* The columns, in the order the CLI writes them within each group. */
+size_t ct_sweep_columns(const ct_column **cols);
+/* Column c of a row, dimensionless by the layer the rows were computed in. */
+double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer);
+/* Column c of a row in the physical layer's units (tau [time] for times): its twin. */
+double ct_column_physical(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer,
+                          const ct_layer *physical, double tau);
+
+/* ---- scene keys as data (src/scene/keys.c) --------------------------------------- */
+/* A key of a scene ("[section] name = value") is one row: its type, range, default and a
+ * one-line doc. Front-ends (the CLI's INI scenes, Python's keyword arguments) parse values
+ * through the rows, so they accept and refuse the same values with the same words; the key
+ * list of `cantact run --help` and docs/scene-keys.md are printed from them. */
+
+typedef enum {
+    CT_KEY_NUMBER = 0, /* a finite double (lo, hi: see the flags); stored as double */
+    CT_KEY_INTEGER,    /* a long, lo <= v <= hi; stored as long */
+    CT_KEY_COUNT,      /* an integer 0 <= n < 2^64; stored as uint64_t */
+    CT_KEY_WORD,       /* one of words ("a|b|c"); stored as int, the index of the word */
+    CT_KEY_WORDS,      /* a list of words (commas or blanks); stored as unsigned, bit k = word k */
+    CT_KEY_TEXT,       /* non-empty text (a path); stored as a malloc'ed char * */
+    CT_KEY_DEPTH,      /* an integer lo..hi or one of words; stored as long, word k as -1 - k */
+    CT_KEY_SPEEDS,     /* numbers > 0: "a, b, c" or "from:to:count[:log]"; stored as ct_speeds */
+    CT_KEY_RANGE,      /* "from:to", 0 < from < to; stored as double[2] */
+} ct_key_type;
+
+enum {
+    CT_KEY_LO_CLOSED = 1, /* CT_KEY_NUMBER: v >= lo (else v > lo) */
+    CT_KEY_HI_CLOSED = 2, /* CT_KEY_NUMBER: v <= hi (else v < hi) */
+    CT_KEY_REQUIRED = 4,  /* the scene must give it */
+};
+
+typedef struct {
+    const char *section; /* "surface", "material", "impact", ... */
+    const char *name;
+    ct_key_type type;
+    double lo, hi;     /* the range (CT_KEY_NUMBER, CT_KEY_INTEGER, CT_KEY_DEPTH) */
+    unsigned flags;    /* CT_KEY_* above */
+    const char *words; /* CT_KEY_WORD, CT_KEY_WORDS, CT_KEY_DEPTH: "stages|segments" */
+    const char *range; /* what an out-of-range value is told: "must satisfy 1 < fz < 2" */
+    const char *def;   /* the default as shown in docs ("" : none, or set by other keys) */
+    const char *doc;   /* one line */
+    size_t offset;     /* where the value is stored in the settings the row belongs to */
+} ct_key;
+
+/* A CT_KEY_SPEEDS value. */
+typedef struct {
+    double *v; /* malloc'ed, in the order given */
+    size_t n;  /* 1 .. CT_MAX_SPEEDS */
+} ct_speeds;
+#define CT_MAX_SPEEDS 1000000
+
+/* Parses text for the row and stores it at (char *)settings + row->offset (a CT_KEY_TEXT or
+ * CT_KEY_SPEEDS value replaces and frees the one there). CT_EINVAL with the reason alone in
+ * ct_error_message() ("must satisfy 1 < fz < 2", "not a finite number", ...); CT_ENOMEM. */
+int ct_key_parse(const ct_key *row, const char *text, void *settings);
+/* The row's type and range in words for docs ("number, 1 < fz < 2", "stages | segments"). */
+void ct_key_describe(const ct_key *row, char *buf, size_t len);
+/* Frees a row's stored value (CT_KEY_TEXT, CT_KEY_SPEEDS) and zeroes it. */
+void ct_key_clear(const ct_key *row, void *settings);
+/* The word's index in "a|b|c", -1 when it is none of them. */
+int ct_word_index(const char *words, const char *word);
+
+/* ---- surfaces of every kind (src/surface/kind.c) --------------------------------- */
+/* A surface is one kind (cantor, random_cantor, profile, rods: ct_surface_kind_name) set up
+ * by its scene keys (sections surface and material, and what else the kind owns), prepared
+ * (a measured profile is read and levelled; every kind fixes its scales) and built into rods
+ * for the speeds asked. Everything after the rods knows nothing of the kind. The kind also
+ * says which outputs it supports, and why not the others. */
+
+typedef struct ct_surface ct_surface;
+
+/* The kinds, in registry order: n of them; name and one-line summary of kind k. */
+size_t ct_surface_kind_count(void);
+const char *ct_surface_kind_name(size_t k);
+const char *ct_surface_kind_summary(size_t k);
+/* The key rows of kind k (its [surface] keys, [material] and any section it owns). */
+const ct_key *ct_surface_kind_keys(size_t k, size_t *n);
+/* Whether kind k supports an output or subcommand ("e", "time", "curve", "history",
+ * "profile", "compare", "bearing", "bounce", "ensemble", "realisations", "table",
+ * "geometry", "fit", "merge"): 1, or 0 with *why saying why not and what to use instead. */
+int ct_surface_kind_supports(size_t k, const char *output, const char **why);
+/* The outputs and subcommands every kind is asked about, space separated. */
+const char *ct_surface_outputs(void);
+
+/* A new surface of the kind named (CT_EINVAL naming the kinds for another name); every key
+ * at its default. */
+int ct_surface_new(ct_surface **out, const char *kind);
+void ct_surface_free(ct_surface *s);
+/* The kind's index and name. */
+size_t ct_surface_kind_index(const ct_surface *s);
+const char *ct_surface_kind(const ct_surface *s);
+/* The row of section.name among the kind's keys, NULL when the kind has no such key. */
+const ct_key *ct_surface_key(const ct_surface *s, const char *section, const char *name);
+/* Sets a key from text; where ("file:line", "--set", "") prefixes messages: CT_EINVAL with
+ * "where: section.name = value: reason". A key the kind does not have is CT_EINVAL saying
+ * which kinds take it. */
+int ct_surface_set(ct_surface *s, const char *section, const char *name, const char *value,
+                   const char *where);
+/* A key's value as parsed (its default when not given) as a number: a number, an integer, a
+ * depth (auto -1, fractal -2), a count, or a word's index. CT_EINVAL for a text key. */
+int ct_surface_value(const ct_surface *s, const char *section, const char *name, double *out);
+/* 1 when the key was set. */
+int ct_surface_is_set(const ct_surface *s, const char *section, const char *name);
+/* Checks the keys together (required ones, exclusive ones, E > sigma_y ...); scene names
+ * the scene in messages that concern no single key. */
+int ct_surface_check(ct_surface *s, const char *scene);
+/* Reads what the surface needs (a profile's file, a rod file; relative paths from dir, NULL:
+ * the working directory), levels it, fixes its scales. Idempotent. */
+int ct_surface_prepare(ct_surface *s, const char *dir);
+
+/* A surface's units (after ct_surface_prepare). The model's rods live in the layer's units;
+ * a Cantor surface is computed dimensionless (l0 = h0 = sigma_y = 1, E = E/sigma_y) whatever
+ * its scale, and `physical` holds its values as given. */
+typedef struct {
+    ct_layer layer;      /* E, sigma_y, H*, l0, h0 of the rods as built [their units] */
+    ct_layer physical;   /* the same as the scene gave them (its units: SI for SI scenes) */
+    double force_unit;   /* P_Y = sigma_y l0 of the layer [force]: P / force_unit is P / P_Y */
+    double energy_unit;  /* sigma_y l0 h0 of the layer [energy] */
+    double energy_scale; /* l0 E h0 of the layer [energy]: V*^2 = W / energy_scale */
+    double physical_energy_scale; /* l0 E h0 as given: V* = sqrt(m v^2 / (2 this)) */
+} ct_scales;
+void ct_surface_scales(const ct_surface *s, ct_scales *out);
+/* V* of a body of mass m [mass/length; a grid: mass] at speed v [length/time], in the
+ * surface's physical units: sqrt(m / (2 l0 E h0)) v. */
+double ct_speed_to_V_star(const ct_scales *sc, double m, double v);
+/* tau = sqrt(m h0 / (E l0)) [time] of a body of mass m in the physical units. */
+double ct_time_scale(const ct_scales *sc, double m);
+
+/* What a build is for: the speeds it will see and how. */
+typedef struct {
+    const double *V_star; /* dimensionless, > 0 */
+    size_t nvel;
+    long impacts; /* per speed, >= 1 */
+    ct_impact_opts opts;
+    int keep_all_rods;      /* 1: leave out nothing (the whole surface is written) */
+    int threads;            /* of the bundle's sums; 0: the OpenMP default */
+    double depth_tolerance; /* of depth auto (Cantor): relative truncation bound */
+} ct_build_request;
+/* The rods of a prepared surface for the request (a Cantor surface plans its depth and
+ * leaves out what no impact reaches; a random one builds its realisation). */
+int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                     ct_plan_info *info);
+/* Prepares what an output needs before any impact (a profile's fit for compare, bearing,
+ * fit): CT_OK, or CT_EINVAL with the kind's reason when the kind does not give the output. */
+int ct_surface_ready(ct_surface *s, const char *output);
+/* 1 when what = profile shows the state after the impacts (the residual tops), so that it
+ * is written at the last impact; 0 when it does not depend on the state (a profile's heights). */
+int ct_surface_profile_shows_state(const ct_surface *s);
+/* A note for the front-end to show (what was read, a refit), "" when none; cleared by
+ * ct_surface_note_clear. Not an error. */
+const char *ct_surface_note(ct_surface *s);
+void ct_surface_note_clear(ct_surface *s);
+/* One line about the rods built (the run's summary) and the table file's "surface" line. */
+void ct_surface_describe(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len);
+void ct_surface_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len);
+/* The outputs only some kinds give; CT_EINVAL with the kind's reason where it gives none. */
+/* what = profile: the surface as CSV with its header (b in the state to show). */
+int ct_surface_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f);
+/* what = compare: the kind's columns beside e (names), and their values for nrows rows
+ * (out[k * n + j]; NaN where not given: impacts after the first). */
+size_t ct_surface_compare_columns(const ct_surface *s, const char *const **names);
+int ct_surface_compare(ct_surface *s, const ct_sweep_row *rows, size_t nrows, double *out);
+/* what = curve with compare: the kind's columns beside P (names; 0 when none), and their
+ * values at u (unloading from u_max when unload), in P_Y; NaN where not given. */
+size_t ct_surface_curve_compare_columns(const ct_surface *s, const char *const **names);
+void ct_surface_curve_compare(const ct_surface *s, int unload, double u_max, double u, double *out);
+/* After a sweep, for outputs that depend on where the impacts reached (a profile's bearing
+ * fit redone on those depths); may leave a note. */
+int ct_surface_after_sweep(ct_surface *s, const ct_sweep_row *rows, size_t nrows);
+/* what = bearing (a profile's bearing-area curve beside its fit). */
+int ct_surface_write_bearing(const ct_surface *s, FILE *f);
+/* cantact geometry: the Cantor stages at the depth a run of req would use. */
+int ct_surface_write_geometry(const ct_surface *s, const ct_build_request *req, FILE *f);
+/* cantact fit: the Cantor surface a profile looks like, as a table. */
+int ct_surface_write_fit(ct_surface *s, FILE *f);
+/* A random_cantor surface's generator settings (dimensionless parameters) and realisation. */
+int ct_surface_random_cantor(const ct_surface *s, ct_random_cantor *rc, uint64_t *realisation);
+/* A prepared profile surface's levelled profile and (fit not NULL) its fit. */
+int ct_surface_profile(const ct_surface *s, const ct_profile **p, ct_profile_fit *fit);
+
+/* The depth a Cantor surface is built at: setting (>= 0: itself; CT_DEPTH_AUTO: the
+ * truncation bound below tol for the smallest speed V_min; CT_DEPTH_FRACTAL: the limit). */
+int ct_cantor_choose_depth(const ct_params *p, long setting, double V_min, double tol, long *depth,
+                           double *bound);
 
 #if defined(__GNUC__)
 #pragma GCC visibility pop

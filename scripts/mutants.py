@@ -137,7 +137,9 @@ class Tree:
     def __init__(self, base, index):
         self.src = os.path.join(base, 't%d' % index)
         self.build = os.path.join(self.src, 'build')
-        files = subprocess.run(['git', '-C', ROOT, 'ls-files', '-z'], check=True,
+        # tracked files and new ones not ignored: a developer's uncommitted work is checked too
+        files = subprocess.run(['git', '-C', ROOT, 'ls-files', '-z', '--cached', '--others',
+                                '--exclude-standard'], check=True,
                                capture_output=True).stdout.split(b'\0')
         for f in files:
             if not f:

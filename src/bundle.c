@@ -36,7 +36,7 @@ struct ct_bundle {
     size_t nblocks;
     int threads;         /* 0: the OpenMP default */
     size_t parallel_min; /* sums of fewer rods run on one thread */
-    const ct_surface_kind *kind;
+    const ct_rod_meta_kind *kind;
     void *meta;
 };
 
@@ -232,7 +232,7 @@ void ct_bundle_parallel(const ct_bundle *b, size_t count, size_t chunk, ct_chunk
     }
 }
 
-void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted)
+void ct_bundle_set_surface(ct_bundle *b, const ct_rod_meta_kind *kind, void *meta, size_t omitted)
 {
     if (b->kind && b->kind->free)
         b->kind->free(b->meta);
@@ -241,7 +241,7 @@ void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta
     b->omitted = omitted;
 }
 
-const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_surface_kind *kind)
+const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_rod_meta_kind *kind)
 {
     return b->kind == kind ? b->meta : NULL;
 }

@@ -35,7 +35,7 @@ typedef struct {
     void (*rod_info)(const void *meta, size_t k, ct_rod_info *info);
     void *(*clone)(const void *meta); /* NULL on failure */
     void (*free)(void *meta);
-} ct_surface_kind;
+} ct_rod_meta_kind;
 
 /* A bundle of n rods with uninitialised arrays (filled by the caller through
  * ct_bundle_arrays), or CT_ENOMEM naming the bytes and the memory available. */
@@ -46,15 +46,13 @@ void ct_bundle_arrays(ct_bundle *b, double **top, double **length, double **area
  * the thread team, so that pages land where the sums will read them (first touch). */
 void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double length, double area);
 /* Hands the surface's metadata to the bundle (freed with it); omitted rods are counted. */
-void ct_bundle_set_surface(ct_bundle *b, const ct_surface_kind *kind, void *meta, size_t omitted);
+void ct_bundle_set_surface(ct_bundle *b, const ct_rod_meta_kind *kind, void *meta, size_t omitted);
 /* The metadata if b was made by this kind of surface, else NULL. */
-const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_surface_kind *kind);
+const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_rod_meta_kind *kind);
 /* Events a curve of b's state would hold (two per run of identical rods): one pass. */
 size_t ct_curve_events(const ct_bundle *b);
 /* Bytes a curve of that many events needs while it is built. */
 double ct_curve_bytes(size_t events);
-/* Bytes the kernel can give without swapping. */
-size_t ct_available_memory(void);
 /* The thread count a sum over b's rods uses (1 below the parallel threshold). */
 int ct_bundle_team(const ct_bundle *b);
 /* The same from factor times the bundle's rod threshold: for work whose team pays only on

@@ -10,6 +10,7 @@
  * node (below it e = 1 exactly, not interpolated), and an interval that fails its checks is
  * split at a breakpoint's V* when it holds one: both halves are then smooth. */
 #include "internal.h"
+#include "number.h"
 
 #include "cantact_table.h"
 
@@ -608,4 +609,72 @@ done:
     free(errs);
     free(split);
     return st;
+}
+
+/* ---- the table file: written here, read by include/cantact_table.h ---- */
+
+static void put_value(FILE *f, const char *key, double v)
+{
+    fprintf(f, "# %s = ", key);
+    ct_put_double(f, v);
+    fputc('\n', f);
+}
+
+int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
+{
+    CT_NEED(f);
+    CT_NEED(t);
+    CT_NEED(meta);
+    ct_table_info in;
+    ct_table_get_info(t, &in);
+    fprintf(f, "# cantact %s table: e of the first impact on the virgin surface against V*\n",
+            meta->version ? meta->version : "");
+    if (meta->scene)
+        fprintf(f, "# scene = %s\n", meta->scene);
+    if (meta->surface)
+        fprintf(f, "# surface = %s\n", meta->surface);
+    fputs("# units: V_star = sqrt(m v^2 / (2 l0 E h0)) dimensionless; e dimensionless; "
+          "de_dlnV_star = de/d(ln V_star) dimensionless\n",
+          f);
+    fprintf(f, "# interpolation = %s\n", ct_interp_name(ct_table_interpolation(t)));
+    if (ct_table_interpolation(t) == CT_INTERP_LINEAR)
+        fputs("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, t = (x - x_i) / "
+              "(x_i+1 - x_i): e = e_i + (e_i+1 - e_i) t (de_dlnV_star is not used: 0)\n",
+              f);
+    else
+        fputs("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, h = x_i+1 - x_i, "
+              "t = (x - x_i) / h, d = de_dlnV_star: e = e_i + (e_i+1 - e_i) t^2 (3 - 2 t) + "
+              "h t (1 - t) ((1 - t) d_i - t d_i+1)\n",
+              f);
+    fputs("# rule: e = 1 exactly for V_star <= V_star_crit; outside the nodes above it, the "
+          "nearest end's e (the table does not cover it)\n",
+          f);
+    put_value(f, "V_star_crit", in.V_star_crit);
+    put_value(f, "tolerance", meta->tolerance);
+    put_value(f, "worst_error", in.worst_error);
+    put_value(f, "worst_error_at_V_star", in.worst_V_star);
+    fprintf(f,
+            "# checked = %zu points against the exact model (%zu equally spaced in ln V_star "
+            "inside every interval above V_star_crit; the nodes are exact)\n",
+            in.checked, meta->check_points);
+    fprintf(f,
+            "# nodes = %zu (%zu at kinks of e, where u_max reaches a rod's contact or yield "
+            "point)\n",
+            ct_table_size(t), in.kinks);
+    if (isfinite(meta->v_per_V_star))
+        fprintf(f,
+                "# v_per_V_star = %.17g (impact speed = V_star * v_per_V_star, in the units of "
+                "the scene's mass, l0, E and h0)\n",
+                meta->v_per_V_star);
+    fputs("V_star,e,de_dlnV_star\n", f);
+    const double *V = ct_table_V_star(t), *e = ct_table_e(t), *d = ct_table_slope(t);
+    for (size_t i = 0; i < ct_table_size(t); i++) {
+        ct_put_double(f, V[i]);
+        fputc(',', f);
+        ct_put_double(f, e[i]);
+        fputc(',', f);
+        ct_put_double(f, d[i]);
+        fputc('\n', f);
+    }
+    return ferror(f) ? ct_error_set(CT_EIO, "table: write error") : CT_OK;
 }

@@ -113,9 +113,9 @@ cmp -s "$tmp/sm.csv" "$tmp/skip.csv" && ok || bad "merged parts with failed rows
 expect 2 "seed with type = cantor" -- "$ct" run "$tmp/r.ini" --set surface.type=cantor
 grep -q "r.ini:7: surface.distribution = lognormal: only for surface.type = random_cantor" "$tmp/err" && ok || bad "seed message: $(cat "$tmp/err")"
 expect 2 "representation with random_cantor" -- "$ct" run "$tmp/r.ini" --set surface.representation=segments
-grep -q "surface.representation = segments: not for surface.type = random_cantor" "$tmp/err" && ok || bad "representation message: $(cat "$tmp/err")"
+grep -q "surface.representation = segments: only for surface.type = cantor (not random_cantor)" "$tmp/err" && ok || bad "representation message: $(cat "$tmp/err")"
 expect 2 "depth auto" -- "$ct" run "$tmp/r.ini" --set surface.depth=auto
-grep -q "surface.depth = auto: type = random_cantor needs an integer" "$tmp/err" && ok || bad "depth message: $(cat "$tmp/err")"
+grep -q "surface.depth = auto: not an integer (type = random_cantor needs an integer 0 <= depth <= 30)" "$tmp/err" && ok || bad "depth message: $(cat "$tmp/err")"
 expect 2 "uniform spread >= 1" -- "$ct" run "$tmp/r.ini" --set surface.distribution=uniform --set surface.fx_spread=1
 grep -q "surface.fx_spread = 1: must satisfy 0 <= spread < 1" "$tmp/err" && ok || bad "spread message: $(cat "$tmp/err")"
 expect 2 "negative spread" -- "$ct" run "$tmp/r.ini" --set surface.fz_spread=-0.1
@@ -140,7 +140,7 @@ expect 2 "compare with random_cantor" -- "$ct" run "$tmp/one.ini" --set output.w
 expect 2 "--realisations without [ensemble]" -- "$ct" run "$tmp/one.ini" --realisations 0:1
 printf '[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n[impact]\nV_star = 1e-3\n[ensemble]\nrealisations = 3\n' >"$tmp/c.ini"
 expect 2 "[ensemble] with type = cantor" -- "$ct" run "$tmp/c.ini"
-grep -q "c.ini:10: ensemble.realisations = 3: only for surface.type = random_cantor" "$tmp/err" && ok || bad "ensemble message: $(cat "$tmp/err")"
+grep -q "c.ini:10: ensemble.realisations = 3: ensembles are of random surfaces: surface.type = random_cantor" "$tmp/err" && ok || bad "ensemble message: $(cat "$tmp/err")"
 
 # started by a launcher (its environment) with no MPI module to load: one line, exit 1, no
 # output (never every rank writing the whole file); MPI is loaded only under a launcher

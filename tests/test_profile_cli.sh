@@ -280,7 +280,7 @@ s/^H = 10$/Hstar = 0.1/||must exceed the profile's peak-to-valley depth
 s/^H = 10$/H = 10\nHstar = 5/||needs one of surface.H
 s/x/x/|--set surface.H=1|must satisfy H > 1
 s/x/x/|--set surface.unit=furlong|surface.unit = furlong: must be m, mm, um or nm
-s/x/x/|--set surface.fx=1.5|surface.fx = 1.5: not for surface.type = profile
+s/x/x/|--set surface.fx=1.5|surface.fx = 1.5: only for surface.type = cantor or random_cantor (not profile)
 s/x/x/|--set fit.dimension=fourier|fit.dimension = fourier: must be variation, structure or spectrum
 s/x/x/|--set surface.detrend=cubic|must be none, mean, linear or quadratic
 s/x/x/|--set surface.trim=iso|must be none or rq
@@ -307,7 +307,7 @@ expect 0 "fit --help" -- "$ct" fit --help
 has out "Usage: cantact fit PROFILE" "fit --help"
 has out "--dimension M" "fit --help lists --dimension"
 expect 0 "run --help" -- "$ct" run --help
-has out "type = profile" "run --help: profile keys"
+has out "  profile: file unit x_unit z_unit" "run --help: profile keys"
 has out "bearing:" "run --help: bearing output"
 
 echo "$pass passed, $failn failed"

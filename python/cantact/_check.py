@@ -2,6 +2,7 @@
 failure is an InvalidInput naming the argument, its value and what it must be."""
 import math
 import numbers
+import os
 
 import numpy as np
 
@@ -39,9 +40,9 @@ def choice(name, value, options):
     return options[value]
 
 
-def array(name, value, positive=False, nonnegative=False, allow_empty=False):
-    """A 1-D float64 C-contiguous copy of a number or sequence of real numbers, all finite
-    (and > 0 or >= 0 when asked). A scalar becomes one element."""
+def _reals(name, value):
+    """A float64 C-contiguous copy of value, any shape, if it holds real numbers: strings,
+    booleans, complex numbers, objects and ragged lists refused."""
     if isinstance(value, (str, bytes)):
         raise invalid(f"{name}: must be a number or an array of numbers, got a string")
     try:
@@ -52,7 +53,13 @@ def array(name, value, positive=False, nonnegative=False, allow_empty=False):
         raise invalid(f"{name}: must hold real numbers, got dtype {a.dtype}")
     if a.dtype.kind == "b":
         raise invalid(f"{name}: must hold real numbers, got booleans")
-    a = np.array(a, dtype=np.float64, order="C", copy=True)
+    return np.array(a, dtype=np.float64, order="C", copy=True)
+
+
+def array(name, value, positive=False, nonnegative=False, allow_empty=False):
+    """A 1-D float64 C-contiguous copy of a number or sequence of real numbers, all finite
+    (and > 0 or >= 0 when asked). A scalar becomes one element."""
+    a = _reals(name, value)
     if a.ndim == 0:
         a = a.reshape(1)
     if a.ndim != 1:
@@ -70,3 +77,35 @@ def array(name, value, positive=False, nonnegative=False, allow_empty=False):
         k = int(np.flatnonzero(a < 0)[0])
         raise invalid(f"{name}[{k}] = {a[k]!r}: must be >= 0")
     return a
+
+
+def real_array(name, value, ndims=(1, 2), nan_ndims=()):
+    """A float64 C-contiguous copy of an array of real numbers with a number of dimensions in
+    ndims (a scalar is refused), no dimension of length 0, all finite, except that NaN (a
+    missing point) is allowed when its number of dimensions is in nan_ndims."""
+    a = _reals(name, value)
+    if a.ndim not in ndims:
+        raise invalid(f"{name}: {a.ndim} dimensions (shape {a.shape}): must have "
+                      f"{' or '.join(map(str, ndims))}")
+    if a.size == 0:
+        raise invalid(f"{name}: shape {a.shape}: must not be empty")
+    bad = np.isinf(a) if a.ndim in nan_ndims else ~np.isfinite(a)
+    if bad.any():
+        k = np.unravel_index(int(np.flatnonzero(bad)[0]), a.shape)
+        raise invalid(f"{name}[{', '.join(map(str, k))}] = {float(a[k])!r}: must be finite"
+                      + (" (or NaN, a missing point)" if a.ndim in nan_ndims else ""))
+    return a
+
+
+def path(name, value):
+    """A file name (str, bytes or os.PathLike; not empty, no NUL) as bytes for C."""
+    try:
+        p = os.fsencode(os.fspath(value))
+    except TypeError:
+        raise invalid(f"{name} = {value!r}: must be a path (str, bytes or os.PathLike), got "
+                      f"{type(value).__name__}") from None
+    if not p:
+        raise invalid(f"{name} = {value!r}: must not be empty")
+    if b"\0" in p:
+        raise invalid(f"{name} = {value!r}: must not contain a NUL character")
+    return p

@@ -6,8 +6,6 @@ groups alone, and the results (u/h0, P/P_Y, V*) are the same bits as `cantact ru
 (Rods) is computed in the units given; its results are made dimensionless by its h0, sigma_y
 and l0. A new kind of surface is a class with the same four members: kind, _params (or None),
 _physical_energy_scale(), _build()."""
-import os
-
 import numpy as np
 
 from . import _check as chk
@@ -264,13 +262,19 @@ class Profile:
     def __init__(self, file=None, *, E, sigma_y, H=None, Hstar=None, x=None, z=None, dx=None,
                  dy=None, unit=None, x_unit=None, z_unit=None, spacing=None, detrend="linear",
                  trim=None, threads=0):
+        # every argument checked before the library sees any of them
         E = chk.real("E", E, 0.0)
         sigma_y = chk.real("sigma_y", sigma_y, 0.0)
         how = chk.choice("detrend", detrend, DETRENDS)
         if (H is None) == (Hstar is None):
             raise invalid("H (a multiple of Rt) or Hstar (a length): give exactly one")
+        H = None if H is None else chk.real("H", H, 1.0)
+        Hstar = None if Hstar is None else chk.real("Hstar", Hstar, 0.0)
+        trim = None if trim is None else chk.real("trim", trim, 0.0)
+        threads = _threads(threads)
         out = ffi.new("ct_profile **")
         if file is not None:
+            path = chk.path("file", file)
             if z is not None or x is not None or dx is not None or dy is not None:
                 raise invalid("file, or x/z/dx/dy arrays: give one of them")
             if unit is not None and (x_unit is not None or z_unit is not None):
@@ -279,50 +283,54 @@ class Profile:
             opts.x_unit = chk.choice("x_unit", x_unit or unit, UNITS) if (x_unit or unit) else 0.0
             opts.z_unit = chk.choice("z_unit", z_unit or unit, UNITS) if (z_unit or unit) else 0.0
             opts.dx = 0.0 if spacing is None else chk.real("spacing", spacing, 0.0)
-            check(lib.ct_profile_read(os.fsencode(file), opts, out))
+            check(lib.ct_profile_read(path, opts, out))
         else:
             if z is None:
                 raise invalid("a profile needs a file or heights z")
             if unit is not None or x_unit is not None or z_unit is not None or spacing is not None:
                 raise invalid("unit, x_unit, z_unit, spacing: for files only (arrays are read "
                               "in their own units)")
-            zz = np.ascontiguousarray(z, dtype=np.float64)
+            # a line: finite heights; a grid (rows along x): NaN marks an invalid point
+            zz = chk.real_array("z", z, ndims=(1, 2), nan_ndims=(2,))
             if zz.ndim == 1:
                 if dy is not None or (x is None) == (dx is None):
                     raise invalid("a line profile z: give x (positions) or dx (spacing), not dy")
                 if x is not None:
-                    xx = np.ascontiguousarray(x, dtype=np.float64)
+                    xx = chk.real_array("x", x, ndims=(1,))
                     if xx.shape != zz.shape:
                         raise invalid(f"x and z: {xx.size} and {zz.size} points: must be as many")
+                    down = np.flatnonzero(np.diff(xx) <= 0)
+                    if down.size:
+                        k = int(down[0]) + 1
+                        raise invalid(f"x[{k}] = {xx[k]!r}: not increasing: must be > "
+                                      f"x[{k - 1}] = {xx[k - 1]!r}")
                     check(lib.ct_profile_from_line(out, zz.size, ffi.from_buffer("double[]", xx),
                                                    0.0, ffi.from_buffer("double[]", zz)))
                 else:
                     check(lib.ct_profile_from_line(out, zz.size, ffi.NULL,
                                                    chk.real("dx", dx, 0.0),
                                                    ffi.from_buffer("double[]", zz)))
-            elif zz.ndim == 2:
+            else:
                 if x is not None or dx is None or dy is None:
                     raise invalid("a grid z (2-D): give dx and dy, not x")
                 check(lib.ct_profile_from_grid(out, zz.shape[1], zz.shape[0],
                                                chk.real("dx", dx, 0.0), chk.real("dy", dy, 0.0),
                                                ffi.from_buffer("double[]", zz)))
-            else:
-                raise invalid(f"z: {zz.ndim} dimensions: must be 1 (a line) or 2 (a grid)")
         self._profile = ffi.gc(out[0], lib.ct_profile_free)
         check(lib.ct_profile_level(self._profile, how))
         self.clipped = 0
         if trim is not None:
             clipped = ffi.new("size_t *")
-            check(lib.ct_profile_trim(self._profile, chk.real("trim", trim, 0.0), clipped))
+            check(lib.ct_profile_trim(self._profile, trim, clipped))
             self.clipped = int(clipped[0])
         st = ffi.new("ct_profile_stats *")
         check(lib.ct_profile_stats_of(self._profile, st))
         self.stats = {k: getattr(st, k) for k in ("mean", "Ra", "Rq", "Rt", "length")}
-        hs = chk.real("H", H, 1.0) * st.Rt if H is not None else chk.real("Hstar", Hstar, 0.0)
+        hs = H * st.Rt if H is not None else Hstar
         b = ffi.new("ct_bundle **")
         check(lib.ct_profile_bundle(b, self._profile, E, sigma_y, hs))
         self._bundle = ffi.gc(b[0], lib.ct_bundle_free)
-        self.threads = _threads(threads)
+        self.threads = threads
         lib.ct_bundle_set_threads(self._bundle, self.threads)
         self.detrend = detrend
 

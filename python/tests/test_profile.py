@@ -7,6 +7,7 @@ import math
 import os
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -130,3 +131,86 @@ def test_bad_input(tmp_path, dektak):
     raises(cantact.InvalidInput, "dimension", p.fit, dimension="boxes")
     raises(cantact.InvalidInput, "ascending", p.bearing, [2e-7, 1e-7])
     assert not math.isnan(p.fit()["D"])
+
+
+def test_bad_arrays_and_paths(dektak):
+    # every array and path argument checked in Python: an InvalidInput naming it, never
+    # NumPy's ValueError or ComplexWarning, nor Python's TypeError
+    m = dict(E=2e11, sigma_y=4e8, H=2)
+    z = [0.0, 1e-6, -2e-6, 3e-6]
+    grid = 1e-7 * np.arange(12.0).reshape(3, 4) ** 2
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        IN = cantact.InvalidInput
+        raises(IN, r"^z: must hold real numbers, got dtype <U1", cantact.Profile,
+               z=["a", "b", "c"], dx=1.0, **m)
+        raises(IN, r"^z: .*got a string", cantact.Profile, z="abc", dx=1.0, **m)
+        raises(IN, r"^z: .*got booleans", cantact.Profile,
+               z=np.array([True, False, True, False]), dx=1.0, **m)
+        raises(IN, r"^z: .*got dtype complex128", cantact.Profile, z=np.array(z) + 1j, dx=1.0,
+               **m)
+        raises(IN, r"^z: .*got dtype object", cantact.Profile,
+               z=np.array([0.0, 1.0, None, 2.0], dtype=object), dx=1.0, **m)
+        raises(IN, r"^z: not an array of numbers", cantact.Profile, z=[[0.0, 1.0], [2.0]],
+               dx=1.0, dy=1.0, **m)
+        raises(IN, r"^z\[1\] = nan: must be finite", cantact.Profile, z=[0, np.nan, 1, 2],
+               dx=1.0, **m)
+        raises(IN, r"^z\[2\] = -inf: must be finite", cantact.Profile, z=[0, 1, -np.inf, 2],
+               dx=1.0, **m)
+        g = grid.copy()
+        g[1, 2] = np.inf
+        raises(IN, r"^z\[1, 2\] = inf: must be finite \(or NaN", cantact.Profile, z=g, dx=1.0,
+               dy=1.0, **m)
+        raises(IN, r"^z: 0 dimensions \(shape \(\)\): must have 1 or 2", cantact.Profile,
+               z=1.0, dx=1.0, **m)
+        raises(IN, r"^z: 3 dimensions \(shape \(2, 2, 2\)\)", cantact.Profile,
+               z=np.arange(8.0).reshape(2, 2, 2), dx=1.0, dy=1.0, **m)
+        raises(IN, r"^z: shape \(0,\): must not be empty", cantact.Profile, z=[], dx=1.0, **m)
+        raises(IN, r"^z: shape \(0, 3\): must not be empty", cantact.Profile,
+               z=np.zeros((0, 3)), dx=1.0, dy=1.0, **m)
+        raises(IN, r"^z: shape \(3, 0\): must not be empty", cantact.Profile,
+               z=np.zeros((3, 0)), dx=1.0, dy=1.0, **m)
+        # x: 1-D, real, finite, as many as z, strictly increasing
+        raises(IN, r"^x: .*got a string", cantact.Profile, z=z, x="abcd", **m)
+        raises(IN, r"^x: .*got booleans", cantact.Profile, z=z,
+               x=np.array([False, True, True, True]), **m)
+        raises(IN, r"^x: .*got dtype complex128", cantact.Profile, z=z,
+               x=np.arange(4.0) + 1j, **m)
+        raises(IN, r"^x: 2 dimensions", cantact.Profile, z=z, x=[[0, 1], [2, 3]], **m)
+        raises(IN, r"^x: 0 dimensions", cantact.Profile, z=z, x=1.0, **m)
+        raises(IN, r"^x\[2\] = nan: must be finite", cantact.Profile, z=z, x=[0, 1, np.nan, 3],
+               **m)
+        raises(IN, r"^x and z: 3 and 4 points", cantact.Profile, z=z, x=[0, 1, 2], **m)
+        raises(IN, r"^x\[3\] = 2.0: not increasing: must be > x\[2\]",
+               cantact.Profile, z=z, x=[0, 1, 3, 2], **m)
+        raises(IN, r"^x\[1\] = 0.0: not increasing: must be > x\[0\]",
+               cantact.Profile, z=z, x=[0, 0, 1, 2], **m)
+        # spacings, trim, H, Hstar: finite real numbers, > 0 (H: > 1)
+        raises(IN, r"^dx = '1': must be a real number", cantact.Profile, z=z, dx="1", **m)
+        raises(IN, r"^dx = True: must be a real number", cantact.Profile, z=z, dx=True, **m)
+        raises(IN, r"^dx = 0.0: must be > 0", cantact.Profile, z=z, dx=0.0, **m)
+        raises(IN, r"^dx = nan: must be finite", cantact.Profile, z=grid, dx=np.nan, dy=1.0,
+               **m)
+        raises(IN, r"^dy = -1.0: must be > 0", cantact.Profile, z=grid, dx=1.0, dy=-1.0, **m)
+        raises(IN, r"^dy = 1j: must be a real number", cantact.Profile, z=grid, dx=1.0, dy=1j,
+               **m)
+        raises(IN, r"^trim = '1': must be a real number", cantact.Profile, z=z, dx=1.0,
+               trim="1", **m)
+        raises(IN, r"^trim = -1.0: must be > 0", cantact.Profile, z=z, dx=1.0, trim=-1.0, **m)
+        raises(IN, r"^H = '2': must be a real number", cantact.Profile, z=z, dx=1.0, H="2",
+               E=2e11, sigma_y=4e8)
+        raises(IN, r"^Hstar = inf: must be finite", cantact.Profile, z=z, dx=1.0,
+               Hstar=np.inf, E=2e11, sigma_y=4e8)
+        # file: a str, bytes or os.PathLike naming a file
+        raises(IN, r"^file = 123: must be a path \(str, bytes or os.PathLike\), got int",
+               cantact.Profile, file=123, **m)
+        raises(IN, r"^file = True: must be a path", cantact.Profile, True, **m)
+        raises(IN, r"^file = \['a.csv'\]: must be a path", cantact.Profile, ["a.csv"], **m)
+        raises(IN, r"^file = '': must not be empty", cantact.Profile, "", **m)
+        raises(IN, r"^file = 'a\\x00b': must not contain a NUL", cantact.Profile, "a\0b", **m)
+        # what stays accepted: a path as bytes, a grid with NaN, integer heights and positions
+        assert cantact.Profile(os.fsencode(dektak), **m).source == "dektak"
+        g = grid.copy()
+        g[0, 1] = np.nan
+        assert cantact.Profile(z=g, dx=1.0, dy=1.0, **m).invalid == 1
+        assert cantact.Profile(z=[0, 3, 1, 2], x=np.arange(4), **m).stats["Rt"] > 0

@@ -5,6 +5,7 @@
  * sample round-trip exact (%.17g), so `cantact merge` reads partial outputs back into the very
  * same numbers and writes the same bytes as one run over all realisations. */
 #include "ensemble.h"
+#include "args.h"
 #include "ranks.h"
 #include "number.h"
 #include "output.h"
@@ -14,11 +15,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-enum { EXIT_DONE = 0, EXIT_FAILED = 1, EXIT_USAGE = 2 };
-
 static int status_exit(int st)
 {
-    return (st == CT_EINVAL || st == CT_ERANGE || st == CT_EIO) ? EXIT_USAGE : EXIT_FAILED;
+    return ct_cli_status_exit(st);
 }
 
 static void fail_line(const char *msg)
@@ -27,53 +26,6 @@ static void fail_line(const char *msg)
 }
 
 /* ---- a single realisation as a run's surface ---- */
-
-int ct_cli_random_surface(const ct_scene *sc, ct_bundle **b, ct_plan_info *info)
-{
-    ct_random_cantor rc;
-    ct_scene_random_cantor(sc, &rc);
-    int st = ct_random_cantor_bundle(b, &rc, sc->realisation, sc->threads);
-    if (st)
-        return st;
-    ct_bundle_set_threads(*b, sc->threads);
-    if (info) {
-        info->depth = sc->depth;
-        info->bound = 0.0;
-        info->rods = ct_bundle_size(*b);
-        info->omitted = 0;
-        info->u_reach = INFINITY;
-    }
-    return CT_OK;
-}
-
-int ct_cli_write_rod_profile(FILE *f, const ct_bundle *b)
-{
-    const size_t n = ct_bundle_size(b);
-    const ct_layer *L = ct_bundle_layer(b);
-    size_t *rod_of = malloc((n ? n : 1) * sizeof *rod_of);
-    if (!rod_of) {
-        fail_line("profile: out of memory");
-        return CT_ENOMEM;
-    }
-    for (size_t k = 0; k < n; k++) {
-        uint64_t g;
-        if (ct_random_cantor_piece(b, k, &g) || g >= n) {
-            free(rod_of);
-            fail_line("profile: a rod without its piece (not a random cantor surface)");
-            return CT_EINVAL;
-        }
-        rod_of[g] = k;
-    }
-    for (size_t g = 0; g < n; g++) {
-        ct_rod_info info;
-        ct_bundle_rod(b, rod_of[g], &info);
-        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g\n", info.stage, info.x_left / L->l0,
-                info.x_right / L->l0, info.top / L->h0,
-                (info.top + info.plastic_strain * info.length) / L->h0);
-    }
-    free(rod_of);
-    return CT_OK;
-}
 
 /* ---- samples in the output's units ---- */
 
@@ -231,8 +183,11 @@ static int write_ensemble(FILE *f, const ct_scene *sc, const table *t, const dou
 static int deterministic_e(const ct_scene *sc, double *e_det)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
+    ct_random_cantor rc;
     ct_bundle *b;
-    int st = ct_cantor_bundle(&b, &sc->params, CT_REP_STAGES, sc->depth, INFINITY);
+    int st = ct_surface_random_cantor(sc->surface, &rc, NULL);
+    if (!st)
+        st = ct_cantor_bundle(&b, &rc.params, CT_REP_STAGES, rc.depth, INFINITY);
     if (st)
         return st;
     ct_sweep_row *rows = malloc(nrows * sizeof *rows);
@@ -357,7 +312,9 @@ static int write_outputs(outputs *o, const ct_scene *sc, const table *t, int qui
         }
         for (size_t k = 0; k < (size_t)t->count * t->nrows; k++)
             failed += t->err[k] != NULL;
-        const double draws = (double)t->count * (double)(((uint64_t)2 << sc->depth) - 2);
+        ct_random_cantor rc;
+        ct_surface_random_cantor(sc->surface, &rc, NULL);
+        const double draws = (double)t->count * (double)(((uint64_t)2 << rc.depth) - 2);
         fprintf(stderr,
                 "cantact: ratios clipped into the valid ranges: fx %llu of %.0f draws (%.3g %%), "
                 "fz %llu (%.3g %%)\n",
@@ -447,7 +404,7 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
         return EXIT_USAGE;
     }
     ct_random_cantor rc_surface;
-    ct_scene_random_cantor(sc, &rc_surface);
+    ct_surface_random_cantor(sc->surface, &rc_surface, NULL);
     /* this rank's block of realisations */
     const uint64_t n = b - a;
     const uint64_t my_a = a + n * (uint64_t)rank / (uint64_t)size;
@@ -456,7 +413,7 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
         fprintf(stderr,
                 "cantact: random cantor surface, depth %ld (%zu rods per realisation), "
                 "realisations %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
-                sc->depth, ((size_t)2 << sc->depth) - 1, (unsigned long long)a,
+                rc_surface.depth, ((size_t)2 << rc_surface.depth) - 1, (unsigned long long)a,
                 (unsigned long long)(b - 1), (unsigned long long)sc->realisations, size,
                 sc->threads > 0 ? sc->threads : ct_default_threads());
     ct_ensemble_samples *mine = NULL, *all = NULL;
@@ -492,7 +449,7 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
     if (size > 1) {
         st = ct_mpi_gather(mine, st, msg, a, n, nrows, &all, err, sizeof err);
         if (rank == 0 && all)
-            all->draws = ((uint64_t)2 << sc->depth) - 2;
+            all->draws = ((uint64_t)2 << rc_surface.depth) - 2;
     } else {
         all = mine;
         mine = NULL;
@@ -509,7 +466,7 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
                 (size_t)(all->failed_realisation - all->first) * nrows + all->failed_row;
             fail_line(all->message);
             rc = status_exit(all->status[k]);
-        } else if (table_from_samples(&t, all, sc->params.h0)) {
+        } else if (table_from_samples(&t, all, sc->scales.layer.h0)) {
             fail_line("ensemble: out of memory");
             rc = EXIT_FAILED;
         } else {
@@ -690,63 +647,34 @@ done:
 
 int ct_cli_merge(int argc, char **argv)
 {
-    const char **sets = calloc((size_t)argc + 1, sizeof(char *));
-    const char **parts = calloc((size_t)argc + 1, sizeof(char *));
-    char obuf[4096], err[600];
-    const char *scene = NULL;
-    size_t nsets = 0, nparts = 0;
-    int quiet = 0, rc = EXIT_USAGE;
+    char err[600];
+    ct_args a;
     ct_scene sc;
-    int loaded = 0;
+    int loaded = 0, quiet;
     table t;
     memset(&t, 0, sizeof t);
     unsigned char *seen = NULL;
     outputs o;
     memset(&o, 0, sizeof o);
-    if (!sets || !parts) {
-        fail_line("out of memory");
-        rc = EXIT_FAILED;
-        goto done;
+    int rc = ct_args_parse(&a, argc, argv, "merge", NULL, 64);
+    if (rc < 0 && a.help) {
+        fputs(ct_cli_merge_help, stdout);
+        rc = EXIT_DONE;
     }
-    for (int k = 0; k < argc; k++) {
-        const char *s = argv[k];
-        if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
-            fputs(ct_cli_merge_help, stdout);
-            rc = EXIT_DONE;
-            goto done;
-        } else if (!strcmp(s, "-q")) {
-            quiet = 1;
-        } else if (!strcmp(s, "--set") || !strcmp(s, "-o")) {
-            if (k + 1 >= argc) {
-                fprintf(stderr, "cantact: %s needs a value\n", s);
-                goto done;
-            }
-            if (!strcmp(s, "-o")) {
-                snprintf(obuf, sizeof obuf, "output.file=%s", argv[++k]);
-                sets[nsets++] = obuf;
-            } else {
-                sets[nsets++] = argv[++k];
-            }
-        } else if (!strncmp(s, "--set=", 6)) {
-            sets[nsets++] = s + 6;
-        } else if (s[0] == '-' && s[1]) {
-            fprintf(stderr, "cantact: unknown option %s (see cantact merge --help)\n", s);
-            goto done;
-        } else if (!scene) {
-            scene = s;
-        } else {
-            parts[nparts++] = s;
-        }
-    }
-    if (!scene || !nparts) {
+    if (rc < 0 && a.npos < 2) {
         fail_line("merge: needs SCENE.ini and at least one PART.csv (see cantact merge --help)");
-        goto done;
+        rc = EXIT_USAGE;
     }
-    if (ct_scene_load(&sc, scene, sets, nsets)) {
-        fail_line(ct_scene_message());
-        goto done;
+    if (rc < 0)
+        rc = ct_cli_load_scene(&a, "merge", &sc);
+    if (rc >= 0) {
+        ct_args_free(&a);
+        return rc;
     }
     loaded = 1;
+    quiet = a.quiet;
+    rc = EXIT_USAGE;
+    const char *scene = a.positional[0];
     if (!sc.realisations) {
         snprintf(err, sizeof err, "merge: %s has no [ensemble] realisations", scene);
         fail_line(err);
@@ -767,8 +695,8 @@ int ct_cli_merge(int argc, char **argv)
         fail_line(err);
         goto done;
     }
-    for (size_t p = 0; p < nparts; p++)
-        if (read_part(parts[p], &sc, &t, seen, err, sizeof err)) {
+    for (size_t p = 1; p < a.npos; p++)
+        if (read_part(a.positional[p], &sc, &t, seen, err, sizeof err)) {
             fail_line(err);
             goto done;
         }
@@ -786,9 +714,8 @@ done:
     close_outputs(&o);
     table_free(&t);
     free(seen);
-    free(sets);
-    free(parts);
     if (loaded)
         ct_scene_free(&sc);
+    ct_args_free(&a);
     return rc;
 }

@@ -1,10 +1,11 @@
 /* The impact in time in the CLI: the e table's time columns (what = time), histories
  * (what = history) and bounce sequences (impact.sequence = bounce).
  *
- * A Cantor scene is computed dimensionless (l0 = h0 = sigma_y = 1, E = E/sigma_y): the sweep's
- * times are t / tau, tau = sqrt(m h0 / (E l0)), its forces P / P_Y. When the scene gives the
- * mass (impact.mass with velocity or drop_height) the same quantities are also written in
- * the scene's units: seconds, metres and N/m for a scene in SI units. */
+ * The sweep's times are t / tau, tau = sqrt(m h0 / (E l0)), and its forces and lengths are in
+ * the units the rods were built in (the surface's layer: dimensionless for a Cantor scene,
+ * metres and newtons per metre for a measured one). Outputs divide by the layer's h0 and
+ * P_Y = sigma_y l0; when the scene gives the mass, the same quantities are also written in
+ * the scene's units (the surface's physical layer): seconds, metres and N/m for SI scenes. */
 #include "history.h"
 
 #include "number.h"
@@ -13,17 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* DEM codes resolve a contact with a time step a fraction of its period: LAMMPS and LIGGGHTS
- * users commonly take 1/20 to 1/50 of it; we print period / 50. */
-#define DEM_FRACTION 50.0
-
-/* tau [time] of the scene's body: sqrt(m h0 / (E l0)) in the scene's own units. */
-static double tau_of(const ct_scene *sc)
-{
-    const ct_params *p = &sc->physical;
-    return sqrt(sc->mass * p->h0 / (p->E * p->l0));
-}
-
 static void field(FILE *f, double x)
 {
     fputc(',', f);
@@ -31,41 +21,36 @@ static void field(FILE *f, double x)
         ct_put_double(f, x);
 }
 
+static int is_time(const ct_column *c)
+{
+    return !strcmp(c->group, "time");
+}
+
 void ct_cli_time_header(FILE *f, const ct_scene *sc)
 {
-    fputs(",t_contact_over_tau,t_load_over_tau,t_unload_over_tau,P_peak_over_PY,e_kinematic,"
-          "unload_period_over_tau,dem_time_step_over_tau",
-          f);
-    if (sc->mass > 0.0)
-        fputs(",t_contact_s,t_load_s,t_unload_s,P_peak_N_per_m,unload_period_s,dem_time_step_s", f);
+    const ct_column *cols;
+    const size_t n = ct_sweep_columns(&cols);
+    for (size_t k = 0; k < n; k++)
+        if (is_time(&cols[k]))
+            fprintf(f, ",%s", cols[k].name);
+    for (size_t k = 0; k < n && sc->mass > 0.0; k++)
+        if (is_time(&cols[k]) && cols[k].physical)
+            fprintf(f, ",%s", cols[k].physical);
 }
 
 void ct_cli_time_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row)
 {
-    const int n = sc->mass > 0.0 ? 13 : 7;
-    if (row->status) {
-        for (int k = 0; k < n; k++)
-            fputc(',', f);
-        return;
-    }
-    const ct_dynamics *d = &row->dyn;
-    field(f, d->t_contact);
-    field(f, d->t_load);
-    field(f, d->t_unload);
-    field(f, d->P_peak);
-    field(f, d->e_kinematic);
-    field(f, d->period_min);
-    field(f, d->period_min / DEM_FRACTION);
-    if (sc->mass > 0.0) {
-        const ct_params *p = &sc->physical;
-        const double tau = tau_of(sc);
-        field(f, d->t_contact * tau);
-        field(f, d->t_load * tau);
-        field(f, d->t_unload * tau);
-        field(f, d->P_peak * p->sigma_y * p->l0);
-        field(f, d->period_min * tau);
-        field(f, d->period_min * tau / DEM_FRACTION);
-    }
+    const ct_column *cols;
+    const size_t n = ct_sweep_columns(&cols);
+    const ct_layer *L = &sc->scales.layer;
+    const double tau = sc->mass > 0.0 ? ct_time_scale(&sc->scales, sc->mass) : NAN;
+    for (size_t k = 0; k < n; k++)
+        if (is_time(&cols[k]))
+            field(f, row->status ? NAN : ct_column_value(&cols[k], row, L));
+    for (size_t k = 0; k < n && sc->mass > 0.0; k++)
+        if (is_time(&cols[k]) && cols[k].physical)
+            field(f, row->status ? NAN
+                                 : ct_column_physical(&cols[k], row, L, &sc->scales.physical, tau));
 }
 
 int ct_cli_time_check(const ct_sweep_row *row, char *err, size_t errlen)
@@ -89,7 +74,7 @@ void ct_cli_history_header(FILE *f, const ct_scene *sc)
 
 int ct_cli_history_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *row, const ct_bundle *b)
 {
-    /* the sweep's units: h0 = 1, mass E l0 / h0 so that tau = 1, v1 = sqrt(2) V* */
+    /* the sweep's units: mass E l0 / h0 so that tau = 1, v1 = sqrt(2) V* h0 */
     const ct_layer *L = ct_bundle_layer(b);
     const double m = L->E * L->l0 / L->h0, v1 = sqrt(2.0) * row->V_star * L->h0;
     ct_impact_result r;
@@ -98,8 +83,8 @@ int ct_cli_history_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *row, co
     int st = ct_impact_history(b, m, v1, sc->history_points, &r, &d, &h);
     if (st)
         return st;
-    const ct_params *p = &sc->physical;
-    const double tau = sc->mass > 0.0 ? tau_of(sc) : NAN;
+    const ct_layer *p = &sc->scales.physical;
+    const double tau = sc->mass > 0.0 ? ct_time_scale(&sc->scales, sc->mass) : NAN;
     for (size_t i = 0; i < h.n; i++) {
         const ct_history_point *q = &h.points[i];
         ct_put_double(f, row->V_star);
@@ -123,10 +108,11 @@ int ct_cli_history_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *row, co
 
 int ct_cli_bounce(FILE *f, const ct_scene *sc, const ct_bundle *b, char *err, size_t errlen)
 {
-    const ct_layer *L = ct_bundle_layer(b);
-    const ct_params *p = &sc->physical;
-    const double m = L->E * L->l0 / L->h0, tau = tau_of(sc), speed = p->h0 / tau;
-    const double v1 = sqrt(2.0) * sc->V_star[0] * L->h0; /* in h0 / tau */
+    const ct_layer *L = ct_bundle_layer(b), *p = &sc->scales.physical;
+    const double m = L->E * L->l0 / L->h0, tau = ct_time_scale(&sc->scales, sc->mass);
+    /* a speed of the sweep (layer lengths per tau) in the scene's units: / h0, * h0 / tau */
+    const double speed = p->h0 / L->h0 / tau;
+    const double v1 = sqrt(2.0) * sc->V_star[0] * L->h0;
     const size_t nmax = (size_t)sc->impacts;
     ct_impact_result *res = malloc(nmax * sizeof *res);
     ct_dynamics *dyn = malloc(nmax * sizeof *dyn);

@@ -7,9 +7,10 @@
 
 #include <stdio.h>
 
-/* The e table's time columns (what = time): their header names, after the others. */
+/* The e table's time columns (what = time, from the column table's group "time"): their
+ * names, after the others; with a mass also their twins in the scene's units. */
 void ct_cli_time_header(FILE *f, const ct_scene *sc);
-/* A row's time fields (empty for a failed row). */
+/* A row's time fields (empty for a failed row); layer: the units the rows were computed in. */
 void ct_cli_time_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row);
 /* The check of every run with time: e_kinematic equals the energy e to 1e-12 (beyond the
  * stated rounding); -1 with a message otherwise. */

@@ -1,14 +1,17 @@
-/* Scene files (INI, parsed with inih) -> validated parameters. Every error names
- * file:line, the key, its value and the valid range. */
+/* Scene files (INI, parsed with inih) -> a surface of some kind and the run's settings. The
+ * keys are rows: the CLI's own below, each kind's in the library (src/surface/). Values are
+ * stored as text while the file and the --set overrides are read (a later override replaces
+ * an earlier value), then parsed through their rows; every error names file:line, the key,
+ * its value and the valid range. */
 #include "scene.h"
 
 #include <ini.h>
 #include <stdarg.h>
 
 #include <ctype.h>
-#include <locale.h>
 #include <errno.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,83 +43,101 @@ const char *ct_scene_message(void)
     return scene_message;
 }
 
-typedef struct {
-    const char *section, *key;
-    int required;
-} key_spec;
+/* ---- the CLI's keys ---- */
 
-static const key_spec known_keys[] = {
-    {"surface", "type", 0},
-    {"surface", "fx", 0}, /* fx, fz, H: required by type = cantor (interpret) */
-    {"surface", "fz", 0},
-    {"surface", "H", 0},
-    {"surface", "h0", 0},
-    {"surface", "l0", 0},
-    {"surface", "depth", 0},
-    {"surface", "representation", 0},
-    {"material", "E", 1},
-    {"material", "sigma_y", 0},
-    {"impact", "V_star", 0},
-    {"impact", "mass", 0},
-    {"impact", "velocity", 0},
-    {"impact", "impacts", 0},
-    {"solver", "quadrature", 0},
-    {"solver", "nodes", 0},
-    {"solver", "tolerance", 0},
-    {"solver", "depth_tolerance", 0},
-    {"solver", "threads", 0},
-    {"solver", "on_error", 0},
-    {"solver", "check", 0},
-    {"solver", "path", 0},
-    {"output", "file", 0},
-    {"output", "what", 0},
-    /* type = random_cantor */
-    {"surface", "distribution", 0},
-    {"surface", "fx_spread", 0},
-    {"surface", "fz_spread", 0},
-    {"surface", "seed", 0},
-    {"surface", "realisation", 0},
-    {"ensemble", "realisations", 0},
-    {"ensemble", "split", 0},
-    /* the impact in time */
-    {"impact", "sequence", 0},
-    {"impact", "drop_height", 0},
-    {"impact", "gravity", 0},
-    {"impact", "stop_speed", 0},
-    {"output", "history_points", 0},
-    /* type = profile */
-    {"surface", "file", 0},
-    {"surface", "unit", 0},
-    {"surface", "x_unit", 0},
-    {"surface", "z_unit", 0},
-    {"surface", "spacing", 0},
-    {"surface", "detrend", 0},
-    {"surface", "trim", 0},
-    {"surface", "trim_k", 0},
-    {"surface", "Hstar", 0},
-    {"fit", "depth_lo", 0},
-    {"fit", "depth_hi", 0},
-    {"fit", "lag_lo", 0},
-    {"fit", "lag_hi", 0},
-    {"fit", "dimension", 0},
-    /* cantact table */
-    {"table", "tolerance", 0},
-    {"table", "V_star", 0},
-    {"table", "interpolation", 0},
-    {"table", "max_nodes", 0},
-    {"table", "check_points", 0},
+#define AT(field) offsetof(ct_scene_keys, field)
+static const ct_key cli_keys[] = {
+    {"surface", "type", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a kind of surface", "cantor",
+     "the kind of surface that makes the rods (cantact kinds lists them)", AT(type)},
+    {"impact", "V_star", CT_KEY_SPEEDS, 0, 0, 0, NULL, "", "",
+     "speeds V* = sqrt(m v^2 / (2 l0 E h0)), dimensionless (or give mass and velocity)",
+     AT(V_star)},
+    {"impact", "mass", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
+     "mass of the body per unit depth (a grid: its mass), in the scene's units", AT(mass)},
+    {"impact", "velocity", CT_KEY_SPEEDS, 0, 0, 0, NULL, "", "",
+     "incident speeds, in the scene's units (with mass)", AT(velocity)},
+    {"impact", "drop_height", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
+     "a body dropped from rest: velocity = sqrt(2 gravity drop_height) (with mass)",
+     AT(drop_height)},
+    {"impact", "impacts", CT_KEY_INTEGER, 1, 1000000, 0, NULL,
+     "must satisfy 1 <= impacts <= 1000000", "1 (bounce: 20)",
+     "impacts per speed on the same spot, the rods' state carried", AT(impacts)},
+    {"impact", "sequence", CT_KEY_WORD, 0, 0, 0, "sweep|bounce", "must be sweep or bounce", "sweep",
+     "bounce: each impact at the previous rebound speed (needs mass)", AT(sequence)},
+    {"impact", "gravity", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "9.81",
+     "gravity for drop_height and bounce flights [length/time^2]", AT(gravity)},
+    {"impact", "stop_speed", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_LO_CLOSED, NULL, "must be >= 0",
+     "0", "a bounce sequence ends once a rebound is slower", AT(stop_speed)},
+    {"solver", "quadrature", CT_KEY_WORD, 0, 0, 0, "breakpoints|trapezoid|simpson|gauss|closed",
+     "must be breakpoints, trapezoid, simpson, gauss or closed", "breakpoints",
+     "how W_load and W_unload are integrated (breakpoints: exact)", AT(quadrature)},
+    {"solver", "nodes", CT_KEY_INTEGER, 3, 100000000, 0, NULL, "must satisfy 3 <= nodes <= 1e8",
+     "64", "nodes of the composite rules", AT(nodes)},
+    {"solver", "tolerance", CT_KEY_NUMBER, 0.0, 1e-3, 0, NULL, "must satisfy 0 < tolerance < 1e-3",
+     "1e-14", "relative tolerance of the u_max solve (>= 1e-15)", AT(tolerance)},
+    {"solver", "depth_tolerance", CT_KEY_NUMBER, 0.0, 1e-2, 0, NULL,
+     "must satisfy 0 < depth_tolerance < 1e-2", "1e-12", "truncation bound of depth auto (Cantor)",
+     AT(depth_tolerance)},
+    {"solver", "threads", CT_KEY_INTEGER, 0, 1024, 0, NULL, "must satisfy 0 <= threads <= 1024",
+     "0", "threads of the sums over rods (0: OMP_NUM_THREADS); results do not depend on it",
+     AT(threads)},
+    {"solver", "on_error", CT_KEY_WORD, 0, 0, 0, "stop|skip", "must be stop or skip", "stop",
+     "skip: a failed impact is a row with its reason, not the end of the run", AT(on_error)},
+    {"solver", "check", CT_KEY_WORD, 0, 0, 0, "closed|none", "must be closed or none", "closed",
+     "closed: every impact also in closed form rod by rod (e_closed_form, quadrature_error)",
+     AT(check)},
+    {"solver", "path", CT_KEY_WORD, 0, 0, 0, "auto|curve|rods", "must be auto, curve or rods",
+     "auto", "the load curve, or Newton on the rods' closed forms (no curve in memory)", AT(path)},
+    {"output", "file", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a path or -", "-",
+     "where the e table goes (-: standard output); other outputs beside it", AT(file)},
+    {"output", "what", CT_KEY_WORDS, 0, 0, 0, CT_OUTPUT_WORDS,
+     "each item must be e, time, curve, history, profile, compare, bearing, bounce, ensemble or "
+     "realisations",
+     "e", "the outputs (cantact kinds: which each kind of surface gives)", AT(what)},
+    {"output", "history_points", CT_KEY_INTEGER, 0, 100000000, 0, NULL,
+     "must satisfy 0 <= history_points <= 1e8", "200",
+     "uniform time points of each impact's history, beside its breakpoints", AT(history_points)},
+    {"table", "tolerance", CT_KEY_NUMBER, 1e-13, 0.5, CT_KEY_LO_CLOSED, NULL,
+     "must satisfy 1e-13 <= tolerance < 0.5", "1e-6",
+     "largest |e_table - e| at every checked point (cantact table)", AT(table_tolerance)},
+    {"table", "V_star", CT_KEY_RANGE, 0, 0, 0, NULL, "", "the range of [impact]'s speeds",
+     "the table's range of V*", AT(table_range)},
+    {"table", "interpolation", CT_KEY_WORD, 0, 0, 0, "monotone_cubic|linear",
+     "must be monotone_cubic or linear", "monotone_cubic", "in x = ln V*", AT(interpolation)},
+    {"table", "max_nodes", CT_KEY_INTEGER, 2, 10000000, 0, NULL,
+     "must satisfy 2 <= max_nodes <= 10000000", "100000", "the build fails rather than exceed it",
+     AT(max_nodes)},
+    {"table", "check_points", CT_KEY_INTEGER, 1, 1000, 0, NULL,
+     "must satisfy 1 <= check_points <= 1000", "16", "points checked inside every interval",
+     AT(check_points)},
+    {"ensemble", "realisations", CT_KEY_INTEGER, 1, 1000000000, 0, NULL,
+     "must satisfy 1 <= realisations <= 1e9", "",
+     "realisations of a random surface (their statistics per speed)", AT(realisations)},
+    {"ensemble", "split", CT_KEY_WORD, 0, 0, 0, "auto|realisations|rods",
+     "must be auto, realisations or rods", "auto",
+     "threads over whole realisations, or over one realisation's rods", AT(split)},
 };
-#define NKEYS (sizeof known_keys / sizeof known_keys[0])
+#undef AT
+#define NCLI (sizeof cli_keys / sizeof cli_keys[0])
+
+const ct_key *ct_scene_keys_table(size_t *n)
+{
+    *n = NCLI;
+    return cli_keys;
+}
+
+/* ---- the values as read: text, where it came from ---- */
 
 typedef struct {
+    char section[64], key[64];
     char *value;
     char where[300]; /* "file:line" or "--set" */
-    int set;
 } entry;
 
 typedef struct {
     const char *name;
-    entry entries[NKEYS];
+    entry *entries;
+    size_t n, cap;
     int line;
     int section_line; /* line of the latest [section] header */
     int error_line;   /* line of the handler's first error */
@@ -126,49 +147,118 @@ typedef struct {
     size_t nlong;
 } parse_state;
 
-static int find_key(const char *section, const char *key)
+static const ct_key *cli_key(const char *section, const char *key)
 {
-    for (size_t k = 0; k < NKEYS; k++)
-        if (!strcmp(known_keys[k].section, section) && !strcmp(known_keys[k].key, key))
-            return (int)k;
-    return -1;
+    for (size_t k = 0; k < NCLI; k++)
+        if (!strcmp(cli_keys[k].section, section) && !strcmp(cli_keys[k].name, key))
+            return &cli_keys[k];
+    return NULL;
+}
+
+/* The rows of every kind of surface and the CLI's, in that order: row i of n. */
+static const ct_key *any_row(size_t i)
+{
+    for (size_t k = 0; k < ct_surface_kind_count(); k++) {
+        size_t n;
+        const ct_key *rows = ct_surface_kind_keys(k, &n);
+        if (i < n)
+            return &rows[i];
+        i -= n;
+    }
+    return i < NCLI ? &cli_keys[i] : NULL;
+}
+
+static int key_known(const char *section, const char *key)
+{
+    for (size_t i = 0;; i++) {
+        const ct_key *r = any_row(i);
+        if (!r)
+            return 0;
+        if (!strcmp(r->section, section) && !strcmp(r->name, key))
+            return 1;
+    }
+}
+
+/* The sections: the usual ones in their usual order, then any other a table has. */
+static void section_list(char *buf, size_t len)
+{
+    static const char *const usual[] = {"surface", "material", "impact", "solver",
+                                        "output",  "ensemble", "table",  "fit"};
+    size_t n = 0;
+    buf[0] = '\0';
+    for (size_t k = 0; k < sizeof usual / sizeof usual[0]; k++)
+        for (size_t i = 0; any_row(i); i++)
+            if (!strcmp(any_row(i)->section, usual[k])) {
+                n += (size_t)snprintf(buf + n, len > n ? len - n : 0, "%s%s", n ? ", " : "",
+                                      usual[k]);
+                break;
+            }
+    for (size_t i = 0; any_row(i) && n < len; i++) {
+        const char *sec = any_row(i)->section;
+        int seen = 0;
+        for (size_t k = 0; k < sizeof usual / sizeof usual[0] && !seen; k++)
+            seen = !strcmp(usual[k], sec);
+        for (size_t j = 0; j < i && !seen; j++)
+            seen = !strcmp(any_row(j)->section, sec);
+        if (!seen)
+            n += (size_t)snprintf(buf + n, len - n, ", %s", sec);
+    }
 }
 
 static int section_known(const char *section)
 {
-    for (size_t k = 0; k < NKEYS; k++)
-        if (!strcmp(known_keys[k].section, section))
+    for (size_t i = 0; any_row(i); i++)
+        if (!strcmp(any_row(i)->section, section))
             return 1;
     return 0;
+}
+
+static entry *find_entry(parse_state *s, const char *section, const char *key)
+{
+    for (size_t k = 0; k < s->n; k++)
+        if (!strcmp(s->entries[k].section, section) && !strcmp(s->entries[k].key, key))
+            return &s->entries[k];
+    return NULL;
 }
 
 static int store(parse_state *s, const char *section, const char *key, const char *value,
                  const char *where)
 {
+    char known[200];
     if (!section_known(section)) {
+        section_list(known, sizeof known);
         if (strcmp(where, "--set"))
-            return scene_error(CT_EINVAL,
-                               "%s:%d: [%s]: unknown section (known: surface, material, "
-                               "impact, solver, output, ensemble, table, fit)",
-                               s->name, s->section_line, section);
-        return scene_error(CT_EINVAL,
-                           "--set: [%s]: unknown section (known: surface, material, impact, "
-                           "solver, output, ensemble, table, fit)",
-                           section);
+            return scene_error(CT_EINVAL, "%s:%d: [%s]: unknown section (known: %s)", s->name,
+                               s->section_line, section, known);
+        return scene_error(CT_EINVAL, "--set: [%s]: unknown section (known: %s)", section, known);
     }
-    int k = find_key(section, key);
-    if (k < 0)
+    if (!key_known(section, key) || strlen(key) >= sizeof s->entries[0].key)
         return scene_error(CT_EINVAL, "%s: %s.%s: unknown key", where, section, key);
-    entry *e = &s->entries[k];
-    if (e->set && strcmp(where, "--set") && strncmp(e->where, "--set", 5))
+    entry *e = find_entry(s, section, key);
+    if (e && strcmp(where, "--set") && strncmp(e->where, "--set", 5))
         return scene_error(CT_EINVAL, "%s: %s.%s: duplicate key (first set at %s)", where, section,
                            key, e->where);
     char *copy = strdup(value);
     if (!copy)
         return scene_error(CT_ENOMEM, "scene: out of memory");
+    if (!e) {
+        if (s->n == s->cap) {
+            size_t cap = s->cap ? 2 * s->cap : 32;
+            entry *grown = realloc(s->entries, cap * sizeof *grown);
+            if (!grown) {
+                free(copy);
+                return scene_error(CT_ENOMEM, "scene: out of memory");
+            }
+            s->entries = grown;
+            s->cap = cap;
+        }
+        e = &s->entries[s->n++];
+        memset(e, 0, sizeof *e);
+        snprintf(e->section, sizeof e->section, "%s", section);
+        snprintf(e->key, sizeof e->key, "%s", key);
+    }
     free(e->value);
     e->value = copy;
-    e->set = 1;
     snprintf(e->where, sizeof e->where, "%s", where);
     return CT_OK;
 }
@@ -270,11 +360,12 @@ static char *read_string_line(char *buf, int size, void *stream)
             return reader_error(s, "%s:%d: %s: not a section name", shown);
         memcpy(name, a, (size_t)(b - a));
         name[b - a] = '\0';
-        if (!section_known(name))
-            return reader_error(s,
-                                "%s:%d: [%s]: unknown section (known: surface, material, "
-                                "impact, solver, output, ensemble, table, fit)",
-                                name);
+        if (!section_known(name)) {
+            char msg[400], known[200];
+            section_list(known, sizeof known);
+            snprintf(msg, sizeof msg, "%%s:%%d: [%%s]: unknown section (known: %s)", known);
+            return reader_error(s, msg, name);
+        }
         s->section_line = s->line;
         snprintf(buf, (size_t)size, "[%s]\n", name);
         return buf;
@@ -323,805 +414,240 @@ static char *read_string_line(char *buf, int size, void *stream)
     return buf;
 }
 
-/* ---- value parsers ---- */
+/* ---- interpreting the values ---- */
 
-static int bad(const entry *e, const char *section, const char *key, const char *why)
+static int bad(const entry *e, const char *why)
 {
     size_t n = strlen(e->value);
-    return scene_error(CT_EINVAL, "%s: %s.%s = %.*s%s: %s", e->where, section, key,
+    return scene_error(CT_EINVAL, "%s: %s.%s = %.*s%s: %s", e->where, e->section, e->key,
                        (int)(n > 80 ? 72 : n), e->value, n > 80 ? "..." : "", why);
 }
 
-/* A number the whole text spells (white space around it allowed), finite and representable;
- * else 0 with *why (when not NULL) saying what is wrong. */
-static int parse_number_why(const char *text, double *out, const char **why)
+/* Parses every entry of the CLI's own keys into k, in file order. */
+static int cli_values(parse_state *s, ct_scene_keys *k)
 {
-    char *end;
-    const char *reason = "not a finite number";
-    while (isspace((unsigned char)*text))
-        text++;
-    errno = 0;
-    double v = *text ? strtod(text, &end) : 0.0;
-    if (!*text)
-        goto fail;
-    while (isspace((unsigned char)*end))
-        end++;
-    if (*end || end == text)
-        goto fail;
-    if (errno == ERANGE) {
-        reason = fabs(v) >= 1.0 ? "overflows double precision (|value| > 1.8e308)"
-                                : "underflows double precision (0 < |value| < 2.2e-308)";
-        goto fail;
-    }
-    if (!isfinite(v)) /* inf, nan spelled out */
-        goto fail;
-    *out = v;
-    return 1;
-fail:
-    if (why)
-        *why = reason;
-    return 0;
-}
-
-static int parse_integer(const char *text, long *out)
-{
-    char *end;
-    while (isspace((unsigned char)*text))
-        text++;
-    if (!*text)
-        return 0;
-    errno = 0;
-    long v = strtol(text, &end, 10);
-    while (isspace((unsigned char)*end))
-        end++;
-    if (*end || end == text || errno == ERANGE)
-        return 0;
-    *out = v;
-    return 1;
-}
-
-static entry *get(parse_state *s, const char *section, const char *key)
-{
-    entry *e = &s->entries[find_key(section, key)];
-    return e->set ? e : NULL;
-}
-
-/* Reads a number key that must satisfy lo < v < hi (open bounds; pass +-INFINITY). */
-static int number_key(parse_state *s, const char *section, const char *key, double lo, double hi,
-                      const char *range, double *out)
-{
-    entry *e = get(s, section, key);
-    if (!e)
-        return CT_OK; /* default stays */
-    double v;
-    const char *why;
-    if (!parse_number_why(e->value, &v, &why))
-        return bad(e, section, key, why);
-    if (!(v > lo && v < hi))
-        return bad(e, section, key, range);
-    *out = v;
-    return CT_OK;
-}
-
-static int integer_key(parse_state *s, const char *section, const char *key, long lo, long hi,
-                       const char *range, long *out)
-{
-    entry *e = get(s, section, key);
-    if (!e)
-        return CT_OK;
-    long v;
-    if (!parse_integer(e->value, &v))
-        return bad(e, section, key, "not an integer");
-    if (v < lo || v > hi)
-        return bad(e, section, key, range);
-    *out = v;
-    return CT_OK;
-}
-
-/* one value | a, b, c | from:to:count[:log], every value finite and > 0 */
-static int velocity_list(const entry *e, const char *key, double **out, size_t *count)
-{
-    const char *v = e->value;
-    double *vals = NULL;
-    size_t n = 0;
-    if (strchr(v, ':')) {
-        /* exactly three or four fields, none empty: strtok would skip empty ones */
-        char buf[256];
-        if (strlen(v) >= sizeof buf)
-            return bad(e, "impact", key, "from:to:count[:log] longer than 255 characters");
-        snprintf(buf, sizeof buf, "%s", v);
-        char *parts[4];
-        int np = 0;
-        for (char *f = buf;;) {
-            char *colon = strchr(f, ':');
-            if (colon)
-                *colon = '\0';
-            if (np == 4)
-                return bad(e, "impact", key, "expected from:to:count[:log] (too many fields)");
-            parts[np++] = f;
-            if (!colon)
-                break;
-            f = colon + 1;
-        }
-        double from, to;
-        long cnt;
-        int logscale = 0;
-        const char *why;
-        if (np < 3)
-            return bad(e, "impact", key, "expected from:to:count[:log]");
-        for (int k = 0; k < 2; k++)
-            if (!parse_number_why(parts[k], k ? &to : &from, &why)) {
-                char msg[160];
-                snprintf(msg, sizeof msg, "expected from:to:count[:log]: %s field %s",
-                         k ? "the second" : "the first", why);
-                return bad(e, "impact", key, msg);
-            }
-        if (!parse_integer(parts[2], &cnt))
-            return bad(e, "impact", key, "expected from:to:count[:log]: count is no integer");
-        if (np == 4) {
-            char *m = parts[3], *end = m + strlen(m);
-            while (isspace((unsigned char)*m))
-                m++;
-            while (end > m && isspace((unsigned char)end[-1]))
-                end--;
-            if (end - m != 3 || strncmp(m, "log", 3))
-                return bad(e, "impact", key, "the fourth field may only be 'log'");
-            logscale = 1;
-        }
-        if (cnt < 1 || cnt > CT_MAX_VELOCITIES)
-            return bad(e, "impact", key, "count must satisfy 1 <= count <= 1000000");
-        if (!(from > 0.0) || !(to > 0.0))
-            return bad(e, "impact", key, "from and to must be > 0");
-        vals = malloc((size_t)cnt * sizeof(double));
-        if (!vals)
-            return scene_error(CT_ENOMEM, "scene: out of memory");
-        for (long k = 0; k < cnt; k++) {
-            double t = cnt == 1 ? 0.0 : (double)k / (double)(cnt - 1);
-            vals[k] = logscale ? from * exp(t * (log(to) - log(from))) : from + t * (to - from);
-        }
-        vals[cnt - 1] = to;
-        n = (size_t)cnt;
-    } else {
-        size_t cap = 1;
-        for (const char *c = v; *c; c++)
-            cap += *c == ',';
-        if (cap > CT_MAX_VELOCITIES)
-            return bad(e, "impact", key, "at most 1000000 values");
-        vals = malloc(cap * sizeof(double));
-        char *buf = strdup(v);
-        if (!vals || !buf) {
-            free(vals);
-            free(buf);
-            return scene_error(CT_ENOMEM, "scene: out of memory");
-        }
-        char *start = buf;
-        for (;;) {
-            char *comma = strchr(start, ',');
-            if (comma)
-                *comma = '\0';
-            const char *why = "must be > 0";
-            vals[n] = NAN;
-            if (!parse_number_why(start, &vals[n], &why) || !(vals[n] > 0.0)) {
-                char msg[160];
-                snprintf(msg, sizeof msg, "value %zu: %s", n + 1, why);
-                free(vals);
-                free(buf);
-                return bad(e, "impact", key, msg);
-            }
-            n++;
-            if (!comma)
-                break;
-            start = comma + 1;
-        }
-        free(buf);
-    }
-    *out = vals;
-    *count = n;
-    return CT_OK;
-}
-
-/* A length unit's size in metres. */
-static double unit_of(const char *name)
-{
-    static const struct {
-        const char *name;
-        double metres;
-    } units[] = {{"m", 1.0}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}};
-    for (size_t k = 0; k < sizeof units / sizeof units[0]; k++)
-        if (!strcmp(name, units[k].name))
-            return units[k].metres;
-    return 0.0;
-}
-
-int ct_scene_dimension_of(const char *name)
-{
-    static const char *const names[] = {"variation", "structure", "spectrum"};
-    for (int k = 0; k < 3; k++)
-        if (!strcmp(name, names[k]))
-            return CT_DIM_VARIATION + k;
-    return -1;
-}
-
-/* Keys of type = profile and [fit]: given with another type they are errors that name them,
- * and the Cantor keys are errors with this type. */
-static int profile_keys(parse_state *s, ct_scene *sc)
-{
-    static const char *const only[] = {"file",    "unit", "x_unit", "z_unit", "spacing",
-                                       "detrend", "trim", "trim_k", "Hstar"};
-    static const char *const fit_keys[] = {"depth_lo", "depth_hi", "lag_lo", "lag_hi", "dimension"};
-    static const char *const not_here[] = {"fx", "fz", "h0", "l0", "depth", "representation"};
-    const int profile = sc->surface_type == CT_SURFACE_PROFILE;
-    entry *e;
-    int st;
-    for (size_t k = 0; k < sizeof only / sizeof only[0]; k++)
-        if (!profile && (e = get(s, "surface", only[k])))
-            return bad(e, "surface", only[k], "only for surface.type = profile");
-    for (size_t k = 0; k < 5; k++)
-        if (!profile && (e = get(s, "fit", fit_keys[k])))
-            return bad(e, "fit", fit_keys[k], "only for surface.type = profile");
-    if (!profile)
-        return CT_OK;
-    for (size_t k = 0; k < sizeof not_here / sizeof not_here[0]; k++)
-        if ((e = get(s, "surface", not_here[k])))
-            return bad(e, "surface", not_here[k],
-                       "not for surface.type = profile (the measured surface gives it)");
-    if (!(e = get(s, "surface", "file")) || !e->value[0])
-        return scene_error(CT_EINVAL, "%s: surface.file: required key missing (type = profile)",
-                           s->name);
-    if (!(sc->profile_file = strdup(e->value)))
-        return scene_error(CT_ENOMEM, "scene: out of memory");
-    if (!get(s, "material", "sigma_y"))
-        return scene_error(CT_EINVAL,
-                           "%s: material.sigma_y: required key missing (type = profile: E and "
-                           "sigma_y in Pa)",
-                           s->name);
-    double xu = 0.0, zu = 0.0; /* 0: the unit the file's column names state */
-    static const char *const unit_keys[] = {"unit", "x_unit", "z_unit"};
-    for (int k = 0; k < 3; k++)
-        if ((e = get(s, "surface", unit_keys[k]))) {
-            double u = unit_of(e->value);
-            if (!(u > 0.0))
-                return bad(e, "surface", unit_keys[k], "must be m, mm, um or nm");
-            if (k != 2)
-                xu = u;
-            if (k != 1)
-                zu = u;
-        }
-    sc->read_opts.x_unit = xu;
-    sc->read_opts.z_unit = zu;
-    sc->read_opts.dx = 0.0;
-    if ((st = number_key(s, "surface", "spacing", 0.0, INFINITY,
-                         "must be > 0 (one column of heights at this spacing, in x_unit)",
-                         &sc->read_opts.dx)))
-        return st;
-    sc->detrend = CT_DETREND_LINEAR;
-    if ((e = get(s, "surface", "detrend"))) {
-        static const char *const names[] = {"none", "mean", "linear", "quadratic"};
-        int found = -1;
-        for (int k = 0; k < 4; k++)
-            if (!strcmp(e->value, names[k]))
-                found = k;
-        if (found < 0)
-            return bad(e, "surface", "detrend", "must be none, mean, linear or quadratic");
-        sc->detrend = (ct_detrend)found;
-    }
-    sc->trim_k = 0.0;
-    if ((e = get(s, "surface", "trim"))) {
-        if (!strcmp(e->value, "rq"))
-            sc->trim_k = 3.0;
-        else if (strcmp(e->value, "none"))
-            return bad(e, "surface", "trim", "must be none or rq (clip at mean + trim_k Rq)");
-    }
-    if ((e = get(s, "surface", "trim_k"))) {
-        if (!(sc->trim_k > 0.0))
-            return bad(e, "surface", "trim_k", "only with surface.trim = rq");
-        if ((st = number_key(s, "surface", "trim_k", 0.0, INFINITY, "must be > 0", &sc->trim_k)))
-            return st;
-    }
-    entry *eh = get(s, "surface", "H"), *es = get(s, "surface", "Hstar");
-    if (!eh == !es)
-        return scene_error(CT_EINVAL,
-                           "%s: type = profile needs one of surface.H (H* as a multiple of the "
-                           "peak-to-valley depth) and surface.Hstar (in z_unit)",
-                           s->name);
-    sc->Hstar_given = sc->H_over_Rt = 0.0;
-    if ((st = number_key(s, "surface", "Hstar", 0.0, INFINITY, "must be > 0", &sc->Hstar_given)) ||
-        (st = number_key(s, "surface", "H", 1.0, INFINITY,
-                         "must satisfy H > 1 (H* = H Rt must exceed the peak-to-valley depth)",
-                         &sc->H_over_Rt)))
-        return st;
-    for (int k = 0; k < 4; k++) {
-        sc->fit_band[k] = 0.0;
-        if ((st = number_key(s, "fit", fit_keys[k], 0.0, INFINITY,
-                             "must be > 0 (in the file's unit)", &sc->fit_band[k])))
-            return st;
-    }
-    sc->fit_dimension = CT_DIM_VARIATION;
-    if ((e = get(s, "fit", "dimension"))) {
-        const int m = ct_scene_dimension_of(e->value);
-        if (m < 0)
-            return bad(e, "fit", "dimension", "must be variation, structure or spectrum");
-        sc->fit_dimension = (ct_dimension_method)m;
-    }
-    return CT_OK;
-}
-
-/* Keys of type = random_cantor and [ensemble]: given with another type they are errors that
- * name them; representation (a cantor key) is one with this type. */
-static int random_cantor_keys(parse_state *s, ct_scene *sc)
-{
-    static const char *const random_only[] = {"distribution", "fx_spread", "fz_spread", "seed",
-                                              "realisation"};
-    entry *e;
-    int st;
-    const int random = sc->surface_type == CT_SURFACE_RANDOM_CANTOR;
-    for (size_t k = 0; k < sizeof random_only / sizeof random_only[0]; k++)
-        if (!random && (e = get(s, "surface", random_only[k])))
-            return bad(e, "surface", random_only[k], "only for surface.type = random_cantor");
-    static const char *const ensemble_keys[] = {"realisations", "split"};
-    for (size_t k = 0; k < 2; k++)
-        if (!random && (e = get(s, "ensemble", ensemble_keys[k])))
-            return bad(e, "ensemble", ensemble_keys[k], "only for surface.type = random_cantor");
-    if (!random)
-        return CT_OK;
-    if ((e = get(s, "surface", "representation")))
-        return bad(e, "surface", "representation",
-                   "not for surface.type = random_cantor (every piece is its own rod)");
-    if (!get(s, "surface", "depth"))
-        return scene_error(CT_EINVAL,
-                           "%s: surface.depth: required key missing (type = "
-                           "random_cantor needs an integer depth 0..%d)",
-                           s->name, CT_MAX_RANDOM_DEPTH);
-    sc->ratio_dist = CT_RATIO_LOGNORMAL;
-    if ((e = get(s, "surface", "distribution"))) {
-        if (!strcmp(e->value, "uniform"))
-            sc->ratio_dist = CT_RATIO_UNIFORM;
-        else if (!strcmp(e->value, "lognormal"))
-            sc->ratio_dist = CT_RATIO_LOGNORMAL;
-        else
-            return bad(e, "surface", "distribution", "must be uniform or lognormal");
-    }
-    const int uniform = sc->ratio_dist == CT_RATIO_UNIFORM;
-    const char *range = uniform ? "must satisfy 0 <= spread < 1 (distribution = uniform)"
-                                : "must satisfy 0 <= spread <= 10 (distribution = lognormal)";
-    sc->fx_spread = sc->fz_spread = 0.0;
-    if ((st = number_key(s, "surface", "fx_spread", -INFINITY, INFINITY, range, &sc->fx_spread)) ||
-        (st = number_key(s, "surface", "fz_spread", -INFINITY, INFINITY, range, &sc->fz_spread)))
-        return st;
-    const char *keys[2] = {"fx_spread", "fz_spread"};
-    const double v[2] = {sc->fx_spread, sc->fz_spread};
-    for (int k = 0; k < 2; k++)
-        if (!(v[k] >= 0.0) || (uniform ? !(v[k] < 1.0) : !(v[k] <= 10.0)))
-            return bad(get(s, "surface", keys[k]), "surface", keys[k], range);
-    static const char *const counts[] = {"seed", "realisation"};
-    uint64_t *dst[] = {&sc->seed, &sc->realisation};
-    for (int k = 0; k < 2; k++) {
-        *dst[k] = 0;
-        if (!(e = get(s, "surface", counts[k])))
+    for (size_t i = 0; i < s->n; i++) {
+        entry *e = &s->entries[i];
+        const ct_key *row = cli_key(e->section, e->key);
+        if (!row || !strcmp(e->section, "surface"))
             continue;
-        const char *t = e->value;
-        char *end;
-        while (isspace((unsigned char)*t))
-            t++;
-        errno = 0;
-        unsigned long long x = strtoull(t, &end, 10);
-        while (isspace((unsigned char)*end))
-            end++;
-        if (!isdigit((unsigned char)*t) || *end || errno == ERANGE)
-            return bad(e, "surface", counts[k], "must be an integer 0 <= n < 2^64");
-        *dst[k] = (uint64_t)x;
-    }
-    sc->realisations = 0;
-    if ((e = get(s, "ensemble", "realisations"))) {
-        long r;
-        if (!parse_integer(e->value, &r))
-            return bad(e, "ensemble", "realisations", "not an integer");
-        if (r < 1 || r > 1000000000L)
-            return bad(e, "ensemble", "realisations", "must satisfy 1 <= realisations <= 1e9");
-        sc->realisations = (uint64_t)r;
-        if ((e = get(s, "surface", "realisation")))
-            return bad(e, "surface", "realisation",
-                       "names the one realisation of a run without [ensemble]");
-    }
-    sc->split = CT_SPLIT_AUTO;
-    if ((e = get(s, "ensemble", "split"))) {
-        if (!sc->realisations)
-            return bad(e, "ensemble", "split", "needs ensemble.realisations");
-        if (!strcmp(e->value, "auto"))
-            sc->split = CT_SPLIT_AUTO;
-        else if (!strcmp(e->value, "realisations"))
-            sc->split = CT_SPLIT_REALISATIONS;
-        else if (!strcmp(e->value, "rods"))
-            sc->split = CT_SPLIT_RODS;
-        else
-            return bad(e, "ensemble", "split", "must be auto, realisations or rods");
+        int st = ct_key_parse(row, e->value, k);
+        if (st == CT_ENOMEM)
+            return scene_error(st, "scene: out of memory");
+        if (st)
+            return bad(e, ct_error_message());
     }
     return CT_OK;
 }
 
-/* [table]: the keys of cantact table. Its V* range defaults to the range of [impact]'s speeds. */
-static int table_keys(parse_state *s, ct_scene *sc)
+/* The kind named by surface.type, and every key the surface takes given to it. */
+static int surface_values(parse_state *s, ct_scene *sc)
 {
-    entry *e;
-    int st;
-    sc->table_tolerance = 1e-6;
-    if ((st = number_key(s, "table", "tolerance", -INFINITY, INFINITY,
-                         "must satisfy 1e-13 <= tolerance < 0.5", &sc->table_tolerance)))
-        return st;
-    if (!(sc->table_tolerance >= 1e-13 && sc->table_tolerance < 0.5))
-        return bad(get(s, "table", "tolerance"), "table", "tolerance",
-                   "must satisfy 1e-13 <= tolerance < 0.5");
-    sc->table_V_min = sc->table_V_max = sc->V_star[0];
-    for (size_t k = 1; k < sc->nvel; k++) {
-        sc->table_V_min = fmin(sc->table_V_min, sc->V_star[k]);
-        sc->table_V_max = fmax(sc->table_V_max, sc->V_star[k]);
+    entry *et = find_entry(s, "surface", "type");
+    int st = ct_surface_new(&sc->surface, et ? et->value : "cantor");
+    if (st == CT_ENOMEM)
+        return scene_error(st, "scene: out of memory");
+    if (st)
+        return bad(et, ct_error_message());
+    /* keys of other kinds first: a scene of the wrong kind says so before anything else */
+    for (size_t i = 0; i < s->n; i++) {
+        entry *e = &s->entries[i];
+        if (cli_key(e->section, e->key) || ct_surface_key(sc->surface, e->section, e->key))
+            continue;
+        if ((st = ct_surface_set(sc->surface, e->section, e->key, e->value, e->where)))
+            return scene_error(st, "%s", ct_error_message());
     }
-    if ((e = get(s, "table", "V_star"))) {
-        const char *colon = strchr(e->value, ':');
-        char first[128];
-        const char *why = "not a finite number";
-        if (!colon || strchr(colon + 1, ':') || (size_t)(colon - e->value) >= sizeof first)
-            return bad(e, "table", "V_star", "expected from:to (two numbers, 0 < from < to)");
-        memcpy(first, e->value, (size_t)(colon - e->value));
-        first[colon - e->value] = '\0';
-        if (!parse_number_why(first, &sc->table_V_min, &why) ||
-            !parse_number_why(colon + 1, &sc->table_V_max, &why))
-            return bad(e, "table", "V_star", why);
-        if (!(sc->table_V_min > 0.0 && sc->table_V_max > sc->table_V_min))
-            return bad(e, "table", "V_star", "expected from:to with 0 < from < to");
+    size_t nrows;
+    const ct_key *rows = ct_surface_kind_keys(ct_surface_kind_index(sc->surface), &nrows);
+    for (size_t r = 0; r < nrows; r++) {
+        entry *e = find_entry(s, rows[r].section, rows[r].name);
+        if (e && (st = ct_surface_set(sc->surface, e->section, e->key, e->value, e->where)))
+            return scene_error(st, "%s", ct_error_message());
     }
-    sc->table_interpolation = CT_INTERP_MONOTONE_CUBIC;
-    if ((e = get(s, "table", "interpolation"))) {
-        if (!strcmp(e->value, "monotone_cubic"))
-            sc->table_interpolation = CT_INTERP_MONOTONE_CUBIC;
-        else if (!strcmp(e->value, "linear"))
-            sc->table_interpolation = CT_INTERP_LINEAR;
-        else
-            return bad(e, "table", "interpolation", "must be monotone_cubic or linear");
-    }
-    sc->table_max_nodes = 100000;
-    sc->table_check_points = 16;
-    if ((st = integer_key(s, "table", "max_nodes", 2, 10000000,
-                          "must satisfy 2 <= max_nodes <= 10000000", &sc->table_max_nodes)) ||
-        (st = integer_key(s, "table", "check_points", 1, 1000,
-                          "must satisfy 1 <= check_points <= 1000", &sc->table_check_points)))
-        return st;
+    if ((st = ct_surface_check(sc->surface, s->name)))
+        return scene_error(st, "%s", ct_error_message());
     return CT_OK;
 }
 
-void ct_scene_random_cantor(const ct_scene *sc, ct_random_cantor *rc)
+/* [impact]: V* given, or mass with velocity or drop_height; a bounce sequence. */
+static int impact_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
 {
-    rc->params = sc->params;
-    rc->dist = sc->ratio_dist;
-    rc->fx_spread = sc->fx_spread;
-    rc->fz_spread = sc->fz_spread;
-    rc->depth = sc->depth;
-    rc->seed = sc->seed;
-}
-
-static int interpret(parse_state *s, ct_scene *sc)
-{
-    int st;
-    entry *e;
-    sc->surface_type = CT_SURFACE_CANTOR;
-    if ((e = get(s, "surface", "type"))) {
-        if (!strcmp(e->value, "cantor"))
-            sc->surface_type = CT_SURFACE_CANTOR;
-        else if (!strcmp(e->value, "random_cantor"))
-            sc->surface_type = CT_SURFACE_RANDOM_CANTOR;
-        else if (!strcmp(e->value, "profile"))
-            sc->surface_type = CT_SURFACE_PROFILE;
-        else
-            return bad(e, "surface", "type", "must be cantor, random_cantor or profile");
-    }
-    if ((st = random_cantor_keys(s, sc)) || (st = profile_keys(s, sc)))
-        return st;
-    for (size_t k = 0; k < NKEYS; k++)
-        if (known_keys[k].required && !s->entries[k].set)
-            return scene_error(CT_EINVAL, "%s: %s.%s: required key missing", s->name,
-                               known_keys[k].section, known_keys[k].key);
-
-    if (sc->surface_type == CT_SURFACE_CANTOR || sc->surface_type == CT_SURFACE_RANDOM_CANTOR) {
-        static const char *const cantor_required[] = {"fx", "fz", "H"};
-        for (size_t k = 0; k < 3; k++)
-            if (!get(s, "surface", cantor_required[k]))
-                return scene_error(CT_EINVAL, "%s: surface.%s: required key missing", s->name,
-                                   cantor_required[k]);
-    }
-
-    ct_params *p = &sc->params;
-    double H = 0.0;
-    p->h0 = 1.0;
-    p->l0 = 1.0;
-    p->sigma_y = 1.0;
-    if (sc->surface_type == CT_SURFACE_PROFILE) { /* the material; the rest is the file's */
-        if ((st =
-                 number_key(s, "material", "sigma_y", 0.0, INFINITY, "must be > 0", &p->sigma_y)) ||
-            (st = number_key(s, "material", "E", 0.0, INFINITY, "must be > 0", &p->E)))
-            return st;
-        if (!(p->E > p->sigma_y))
-            return bad(get(s, "material", "E"), "material", "E",
-                       "must be > sigma_y (yield strain sigma_y/E < 1)");
-    } else if ((st =
-                    number_key(s, "surface", "fx", 1.0, INFINITY, "must satisfy fx > 1", &p->fx)) ||
-               (st = number_key(s, "surface", "fz", 1.0, 2.0, "must satisfy 1 < fz < 2", &p->fz)) ||
-               (st = number_key(s, "surface", "H", 1.0, INFINITY,
-                                "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)",
-                                &H)) ||
-               (st = number_key(s, "surface", "h0", 0.0, INFINITY, "must be > 0", &p->h0)) ||
-               (st = number_key(s, "surface", "l0", 0.0, INFINITY, "must be > 0", &p->l0)) ||
-               (st = number_key(s, "material", "sigma_y", 0.0, INFINITY, "must be > 0",
-                                &p->sigma_y)) ||
-               (st = number_key(s, "material", "E", 0.0, INFINITY, "must be > 0", &p->E)))
-        return st;
-    if (sc->surface_type != CT_SURFACE_PROFILE) {
-        if (!(p->E > p->sigma_y))
-            return bad(get(s, "material", "E"), "material", "E",
-                       "must be > sigma_y (yield strain sigma_y/E < 1)");
-        p->Hstar = H * p->h0;
-        if ((st = ct_params_validate(p)))
-            return scene_error(st, "%s: %s", s->name, ct_error_message());
-    }
-
-    sc->depth = CT_DEPTH_AUTO;
-    if ((e = get(s, "surface", "depth"))) {
-        long d;
-        if (!strcmp(e->value, "auto"))
-            sc->depth = CT_DEPTH_AUTO;
-        else if (!strcmp(e->value, "fractal"))
-            sc->depth = CT_DEPTH_FRACTAL;
-        else if (!parse_integer(e->value, &d))
-            return bad(e, "surface", "depth", "must be an integer >= 0, auto or fractal");
-        else if (d < 0 || d > CT_MAX_STAGES_DEPTH)
-            return bad(e, "surface", "depth", "must satisfy 0 <= depth <= 100000000");
-        else
-            sc->depth = d;
-    }
-    if (sc->surface_type == CT_SURFACE_RANDOM_CANTOR &&
-        (sc->depth < 0 || sc->depth > CT_MAX_RANDOM_DEPTH))
-        return bad(get(s, "surface", "depth"), "surface", "depth",
-                   "type = random_cantor needs an integer 0 <= depth <= 30");
-    sc->representation = CT_REP_STAGES;
-    if ((e = get(s, "surface", "representation"))) {
-        if (!strcmp(e->value, "stages"))
-            sc->representation = CT_REP_STAGES;
-        else if (!strcmp(e->value, "segments"))
-            sc->representation = CT_REP_SEGMENTS;
-        else
-            return bad(e, "surface", "representation", "must be stages or segments");
-    }
-    if (sc->representation == CT_REP_SEGMENTS) {
-        e = get(s, "surface", "depth");
-        if (sc->depth < 0)
-            return scene_error(CT_EINVAL,
-                               "%s: surface.representation = segments: needs an integer "
-                               "surface.depth (0..%d)",
-                               e ? e->where : s->name, CT_MAX_SEGMENTS_DEPTH);
-        if (sc->depth > CT_MAX_SEGMENTS_DEPTH)
-            return bad(e, "surface", "depth", "segments allow 0 <= depth <= 40");
-    }
-
-    entry *ev = get(s, "impact", "V_star"), *em = get(s, "impact", "mass"),
-          *evel = get(s, "impact", "velocity");
-    entry *edrop = get(s, "impact", "drop_height");
-    sc->gravity = 9.81;
-    if ((st = number_key(s, "impact", "gravity", 0.0, INFINITY, "must be > 0", &sc->gravity)))
-        return st;
+    entry *ev = find_entry(s, "impact", "V_star"), *em = find_entry(s, "impact", "mass"),
+          *evel = find_entry(s, "impact", "velocity"),
+          *edrop = find_entry(s, "impact", "drop_height");
     if (edrop) { /* a body dropped from rest: v1 = sqrt(2 g h), as the velocity list */
-        double hd = 0.0;
         if (evel || ev)
-            return bad(edrop, "impact", "drop_height",
-                       "give either drop_height or velocity / V_star, not both");
+            return bad(edrop, "give either drop_height or velocity / V_star, not both");
         if (!em)
-            return bad(edrop, "impact", "drop_height", "needs impact.mass");
-        if ((st = number_key(s, "impact", "drop_height", 0.0, INFINITY, "must be > 0", &hd)))
-            return st;
-        char speed[64];
-        snprintf(speed, sizeof speed, "%.17g", sqrt(2.0 * sc->gravity * hd));
-        if ((st = store(s, "impact", "velocity", speed, edrop->where)))
-            return st;
-        evel = get(s, "impact", "velocity");
+            return bad(edrop, "needs impact.mass");
+        free(k->velocity.v);
+        if (!(k->velocity.v = malloc(sizeof(double))))
+            return scene_error(CT_ENOMEM, "scene: out of memory");
+        k->velocity.v[0] = sqrt(2.0 * k->gravity * k->drop_height);
+        k->velocity.n = 1;
+        evel = edrop;
     }
     if (ev && (em || evel))
-        return bad(ev, "impact", "V_star", "give either V_star or mass + velocity, not both");
+        return bad(ev, "give either V_star or mass + velocity, not both");
     if (!ev && !(em && evel))
         return scene_error(CT_EINVAL, "%s: [impact]: needs V_star, or both mass and velocity",
                            s->name);
-    sc->mass = 0.0;
-    if (ev) {
-        if ((st = velocity_list(ev, "V_star", &sc->V_star, &sc->nvel)))
-            return st;
-    } else {
-        double m = 0.0;
-        if ((st = number_key(s, "impact", "mass", 0.0, INFINITY, "must be > 0", &m)))
-            return st;
-        if ((st = velocity_list(evel, "velocity", &sc->V_star, &sc->nvel)))
-            return st;
-        sc->mass = m;
-        /* V* = sqrt(m v1^2 / (2 l0 E h0)); a measured surface's l0 and h0 come with its file */
-        double scale = 2.0 * ct_energy_scale(p);
-        sc->speeds_are_velocities = sc->surface_type == CT_SURFACE_PROFILE;
-        for (size_t k = 0; k < sc->nvel && !sc->speeds_are_velocities; k++) {
-            sc->V_star[k] = sqrt(m / scale) * sc->V_star[k];
-            if (!isfinite(sc->V_star[k]) || !(sc->V_star[k] > 0.0))
-                return bad(evel, "impact", "velocity",
-                           "gives a V* that is not a finite number > 0");
-        }
-    }
-    /* every impact energy V*^2 l0 E h0 must be a number the solver can use */
-    for (size_t k = 0; k < sc->nvel && !sc->speeds_are_velocities; k++) {
-        double W = sc->V_star[k] * sc->V_star[k] * ct_energy_scale(p);
-        if (!isfinite(W) || !(W > 0.0)) {
-            char msg[200];
-            snprintf(msg, sizeof msg,
-                     "V* = %g (value %zu) gives the impact energy V*^2 l0 E h0 = %g, not a finite "
-                     "number > 0",
-                     sc->V_star[k], k + 1, W);
-            return bad(ev ? ev : evel, "impact", ev ? "V_star" : "velocity", msg);
-        }
-    }
-    sc->bounce = 0;
-    if ((e = get(s, "impact", "sequence"))) {
-        if (!strcmp(e->value, "bounce"))
-            sc->bounce = 1;
-        else if (strcmp(e->value, "sweep"))
-            return bad(e, "impact", "sequence", "must be sweep or bounce");
-    }
-    sc->stop_speed = 0.0;
-    if ((e = get(s, "impact", "stop_speed"))) {
-        if (!sc->bounce)
-            return bad(e, "impact", "stop_speed", "only with sequence = bounce");
-        if ((st = number_key(s, "impact", "stop_speed", -1.0, INFINITY, "must be >= 0",
-                             &sc->stop_speed)) ||
-            !(sc->stop_speed >= 0.0))
-            return st ? st : bad(e, "impact", "stop_speed", "must be >= 0");
-    }
+    ct_speeds *sp = ev ? &k->V_star : &k->velocity;
+    sc->V_star = sp->v;
+    sc->nvel = sp->n;
+    sp->v = NULL;
+    sp->n = 0;
+    sc->mass = ev ? 0.0 : k->mass;
+    sc->speeds_are_velocities = !ev;
+    sc->speeds_key = ev ? "V_star" : "velocity";
+    snprintf(sc->where_speeds, sizeof sc->where_speeds, "%s", (ev ? ev : evel)->where);
+    sc->bounce = k->sequence == 1;
+    entry *e = find_entry(s, "impact", "stop_speed");
+    if (e && !sc->bounce)
+        return bad(e, "only with sequence = bounce");
+    sc->stop_speed = k->stop_speed;
+    sc->gravity = k->gravity;
     if (sc->bounce && !(sc->mass > 0.0 && sc->nvel == 1))
         return scene_error(CT_EINVAL,
                            "%s: impact.sequence = bounce: needs impact.mass and one first speed "
                            "(impact.velocity or impact.drop_height)",
                            s->name);
-    sc->impacts = sc->bounce ? 20 : 1;
-    if ((st = integer_key(s, "impact", "impacts", 1, 1000000,
-                          "must satisfy 1 <= impacts <= 1000000", &sc->impacts)))
-        return st;
-    if ((st = table_keys(s, sc)))
-        return st;
+    sc->impacts = find_entry(s, "impact", "impacts") ? k->impacts : sc->bounce ? 20 : 1;
+    return CT_OK;
+}
 
+static int solver_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
+{
     ct_impact_opts_default(&sc->opts);
-    if ((e = get(s, "solver", "quadrature"))) {
-        int found = 0;
-        for (int r = CT_QUAD_BREAKPOINTS; r <= CT_QUAD_CLOSED; r++)
-            if (!strcmp(e->value, ct_quad_rule_name((ct_quad_rule)r))) {
-                sc->opts.rule = (ct_quad_rule)r;
-                found = 1;
-            }
-        if (!found)
-            return bad(e, "solver", "quadrature",
-                       "must be breakpoints, trapezoid, simpson, gauss or closed");
-    }
-    long nodes = (long)sc->opts.nodes;
-    if ((st = integer_key(s, "solver", "nodes", 3, 100000000, "must satisfy 3 <= nodes <= 1e8",
-                          &nodes)))
-        return st;
-    sc->opts.nodes = (size_t)nodes;
-    sc->skip_failed = 0;
-    if ((e = get(s, "solver", "on_error"))) {
-        if (!strcmp(e->value, "skip"))
-            sc->skip_failed = 1;
-        else if (strcmp(e->value, "stop"))
-            return bad(e, "solver", "on_error", "must be stop or skip");
-    }
-    sc->path = CT_PATH_AUTO;
-    if ((e = get(s, "solver", "path"))) {
-        if (!strcmp(e->value, "auto"))
-            sc->path = CT_PATH_AUTO;
-        else if (!strcmp(e->value, "curve"))
-            sc->path = CT_PATH_CURVE;
-        else if (!strcmp(e->value, "rods"))
-            sc->path = CT_PATH_RODS;
-        else
-            return bad(e, "solver", "path", "must be auto, curve or rods");
-    }
-    if ((e = get(s, "solver", "check"))) {
-        if (!strcmp(e->value, "closed"))
-            sc->opts.check = 1;
-        else if (!strcmp(e->value, "none"))
-            sc->opts.check = 0;
-        else
-            return bad(e, "solver", "check", "must be closed or none");
-    }
-    if ((st = number_key(s, "solver", "tolerance", 0.0, 1e-3, "must satisfy 0 < tolerance < 1e-3",
-                         &sc->opts.tolerance)))
-        return st;
-    if (sc->opts.tolerance < 1e-15)
-        return bad(get(s, "solver", "tolerance"), "solver", "tolerance",
-                   "must be >= 1e-15 (double precision)");
-    sc->depth_tolerance = 1e-12;
-    if ((st = number_key(s, "solver", "depth_tolerance", 0.0, 1e-2,
-                         "must satisfy 0 < depth_tolerance < 1e-2", &sc->depth_tolerance)))
-        return st;
-    long threads = 0;
-    if ((st = integer_key(s, "solver", "threads", 0, 1024, "must satisfy 0 <= threads <= 1024",
-                          &threads)))
-        return st;
-    sc->threads = (int)threads;
+    if (find_entry(s, "solver", "quadrature"))
+        sc->opts.rule = (ct_quad_rule)k->quadrature;
+    if (find_entry(s, "solver", "nodes"))
+        sc->opts.nodes = (size_t)k->nodes;
+    if (find_entry(s, "solver", "check"))
+        sc->opts.check = k->check == 0;
+    entry *e = find_entry(s, "solver", "tolerance");
+    if (e && k->tolerance < 1e-15)
+        return bad(e, "must be >= 1e-15 (double precision)");
+    if (e)
+        sc->opts.tolerance = k->tolerance;
+    sc->skip_failed = k->on_error == 1;
+    sc->path = (ct_sweep_path)k->path;
+    sc->depth_tolerance = k->depth_tolerance;
+    sc->threads = (int)k->threads;
+    return CT_OK;
+}
 
-    e = get(s, "output", "file");
-    if (e && !e->value[0])
-        return bad(e, "output", "file", "must be a path or -");
-    sc->output = strdup(e ? e->value : "-");
+/* [output] what: compare and time alone mean e with them; a bounce sequence and an ensemble
+ * write their own tables. */
+static int output_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
+{
+    entry *e = find_entry(s, "output", "what"), *ef = find_entry(s, "output", "file");
+    sc->output = k->file ? k->file : strdup("-");
+    k->file = NULL;
     if (!sc->output)
         return scene_error(CT_ENOMEM, "scene: out of memory");
-    sc->what = CT_OUT_E;
-    if ((e = get(s, "output", "what"))) {
-        sc->what = 0;
-        char *buf = strdup(e->value);
-        if (!buf)
-            return scene_error(CT_ENOMEM, "scene: out of memory");
-        for (char *tok = strtok(buf, ", \t"); tok; tok = strtok(NULL, ", \t")) {
-            if (!strcmp(tok, "e"))
-                sc->what |= CT_OUT_E;
-            else if (!strcmp(tok, "curve"))
-                sc->what |= CT_OUT_CURVE;
-            else if (!strcmp(tok, "profile"))
-                sc->what |= CT_OUT_PROFILE;
-            else if (!strcmp(tok, "compare"))
-                sc->what |= CT_OUT_COMPARE;
-            else if (!strcmp(tok, "bearing"))
-                sc->what |= CT_OUT_BEARING;
-            else if (!strcmp(tok, "ensemble"))
-                sc->what |= CT_OUT_ENSEMBLE;
-            else if (!strcmp(tok, "realisations"))
-                sc->what |= CT_OUT_REALISATIONS;
-            else if (!strcmp(tok, "time"))
-                sc->what |= CT_OUT_TIME;
-            else if (!strcmp(tok, "history"))
-                sc->what |= CT_OUT_HISTORY;
-            else if (!strcmp(tok, "bounce"))
-                sc->what |= CT_OUT_BOUNCE;
-            else {
-                free(buf);
-                return bad(e, "output", "what",
-                           "each item must be e, time, curve, history, profile, compare, "
-                           "bearing, bounce, ensemble or realisations");
-            }
-        }
-        free(buf);
-        if (!sc->what)
-            return bad(e, "output", "what", "name at least one of e, curve, profile, compare");
-        /* compare adds the paper's laws to e and curve, time adds the impact in time to e:
-         * alone they mean e with them */
-        if (!(sc->what & ~(unsigned)(CT_OUT_COMPARE | CT_OUT_TIME)))
-            sc->what |= CT_OUT_E;
-    }
-    if (sc->bounce) { /* a bounce sequence writes its own table */
+    (void)ef;
+    sc->what = e ? k->what : CT_OUT_E;
+    sc->what_given = e != NULL;
+    if (e && !(sc->what & ~(unsigned)(CT_OUT_COMPARE | CT_OUT_TIME)))
+        sc->what |= CT_OUT_E;
+    if (sc->bounce) {
         if (e && (sc->what & ~(unsigned)CT_OUT_BOUNCE))
-            return bad(e, "output", "what", "with impact.sequence = bounce it must be bounce");
+            return bad(e, "with impact.sequence = bounce it must be bounce");
         sc->what = CT_OUT_BOUNCE;
     } else if (sc->what & CT_OUT_BOUNCE) {
-        return bad(e, "output", "what", "bounce needs impact.sequence = bounce");
+        return bad(e, "bounce needs impact.sequence = bounce");
     }
-    long hp = 200;
-    if ((st = integer_key(s, "output", "history_points", 0, 100000000,
-                          "must satisfy 0 <= history_points <= 1e8", &hp)))
-        return st;
-    sc->history_points = (size_t)hp;
-    /* an ensemble writes its statistics and samples, a single surface the rest */
+    sc->history_points = (size_t)k->history_points;
     const unsigned ens = CT_OUT_ENSEMBLE | CT_OUT_REALISATIONS;
     if (sc->realisations && !e)
         sc->what = CT_OUT_ENSEMBLE;
     else if (sc->realisations && (sc->what & ~ens))
-        return bad(e, "output", "what",
-                   "with [ensemble] each item must be ensemble or realisations");
+        return bad(e, "with [ensemble] each item must be ensemble or realisations");
     else if (!sc->realisations && (sc->what & ens))
-        return bad(e, "output", "what", "ensemble and realisations need [ensemble] realisations");
-    if (sc->surface_type == CT_SURFACE_RANDOM_CANTOR && (sc->what & CT_OUT_COMPARE))
-        return bad(e, "output", "what",
-                   "compare: the paper's laws model the deterministic surface (type = cantor)");
-    if (sc->surface_type != CT_SURFACE_PROFILE && (sc->what & CT_OUT_BEARING))
-        return bad(e, "output", "what", "bearing: only for surface.type = profile");
+        return bad(e, "ensemble and realisations need [ensemble] realisations");
+    /* what the kind of surface does not give: its reason */
+    for (unsigned bit = 0; bit < 10; bit++) {
+        if (!(sc->what & (1u << bit)))
+            continue;
+        char word[32];
+        const char *w = CT_OUTPUT_WORDS;
+        for (unsigned j = 0; j < bit; j++)
+            w = strchr(w, '|') + 1;
+        snprintf(word, sizeof word, "%.*s", (int)strcspn(w, "|"), w);
+        const char *why;
+        if (!ct_surface_kind_supports(ct_surface_kind_index(sc->surface), word, &why)) {
+            char msg[400];
+            snprintf(msg, sizeof msg, "%s: %s", word, why);
+            return e ? bad(e, msg) : scene_error(CT_EINVAL, "%s: output.what: %s", s->name, msg);
+        }
+    }
     return CT_OK;
+}
+
+static int ensemble_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
+{
+    entry *er = find_entry(s, "ensemble", "realisations"), *es = find_entry(s, "ensemble", "split");
+    const char *why;
+    if ((er || es) &&
+        !ct_surface_kind_supports(ct_surface_kind_index(sc->surface), "ensemble", &why))
+        return bad(er ? er : es, why);
+    sc->realisations = er ? (uint64_t)k->realisations : 0;
+    if (es && !er)
+        return bad(es, "needs ensemble.realisations");
+    if (er && ct_surface_is_set(sc->surface, "surface", "realisation")) {
+        entry *e = find_entry(s, "surface", "realisation");
+        return bad(e, "names the one realisation of a run without [ensemble]");
+    }
+    sc->split = (ct_ensemble_split)k->split;
+    return CT_OK;
+}
+
+static void table_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
+{
+    sc->table_tolerance = k->table_tolerance;
+    sc->table_V_min = sc->table_V_max = 0.0; /* the speeds' range, once they are V* */
+    if (find_entry(s, "table", "V_star")) {
+        sc->table_V_min = k->table_range[0];
+        sc->table_V_max = k->table_range[1];
+    }
+    sc->table_interpolation = (ct_interp)k->interpolation;
+    sc->table_max_nodes = k->max_nodes;
+    sc->table_check_points = k->check_points;
+}
+
+static void keys_defaults(ct_scene_keys *k)
+{
+    memset(k, 0, sizeof *k);
+    k->impacts = 1;
+    k->gravity = 9.81;
+    k->nodes = 64;
+    k->tolerance = 1e-14;
+    k->depth_tolerance = 1e-12;
+    k->history_points = 200;
+    k->table_tolerance = 1e-6;
+    k->max_nodes = 100000;
+    k->check_points = 16;
+}
+
+static void keys_free(ct_scene_keys *k)
+{
+    for (size_t r = 0; r < NCLI; r++)
+        ct_key_clear(&cli_keys[r], k);
+}
+
+static int interpret(parse_state *s, ct_scene *sc)
+{
+    ct_scene_keys k;
+    keys_defaults(&k);
+    snprintf(sc->name, sizeof sc->name, "%s", s->name);
+    int st;
+    if (!(st = surface_values(s, sc)) && !(st = cli_values(s, &k)) &&
+        !(st = impact_values(s, sc, &k)) && !(st = solver_values(s, sc, &k)) &&
+        !(st = ensemble_values(s, sc, &k)) && !(st = output_values(s, sc, &k)))
+        table_values(s, sc, &k);
+    keys_free(&k);
+    return st;
 }
 
 static void trim_copy(char *dst, size_t cap, const char *begin, const char *end)
@@ -1175,8 +701,9 @@ static int finish(parse_state *s, int ini_status, ct_scene *scene, const char *c
         st = apply_overrides(s, overrides, noverrides);
     if (!st)
         st = interpret(s, scene);
-    for (size_t k = 0; k < NKEYS; k++)
+    for (size_t k = 0; k < s->n; k++)
         free(s->entries[k].value);
+    free(s->entries);
     for (size_t k = 0; k < s->nlong; k++)
         free(s->long_values[k]);
     free(s->long_values);
@@ -1193,17 +720,8 @@ int ct_scene_parse(ct_scene *scene, const char *name, const char *text,
     memset(scene, 0, sizeof *scene);
     s.name = name;
     s.text = text;
-    /* numbers are read in the C locale whatever the caller's (a decimal comma would make
-     * "1.5" fail and "1,5" pass): uselocale is per thread, and restored */
-    locale_t c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
-    locale_t before = c_locale ? uselocale(c_locale) : (locale_t)0;
     int r = ini_parse_stream(read_string_line, &s, handler, &s);
-    int st = finish(&s, r, scene, overrides, noverrides);
-    if (c_locale) {
-        uselocale(before);
-        freelocale(c_locale);
-    }
-    return st;
+    return finish(&s, r, scene, overrides, noverrides);
 }
 
 int ct_scene_load(ct_scene *scene, const char *path, const char *const *overrides,
@@ -1272,29 +790,81 @@ int ct_scene_load(ct_scene *scene, const char *path, const char *const *override
     }
     return st;
 }
-void ct_scene_make_dimensionless(ct_scene *sc)
+
+/* Every speed a V* whose impact energy V*^2 l0 E h0 is a number the solver can use. */
+static int check_speeds(ct_scene *sc)
 {
-    ct_params *p = &sc->params;
-    sc->physical = *p;
-    if (sc->surface_type != CT_SURFACE_CANTOR && sc->surface_type != CT_SURFACE_RANDOM_CANTOR)
-        return;
-    p->Hstar = p->Hstar / p->h0;
-    p->E = p->E / p->sigma_y;
-    p->l0 = p->h0 = p->sigma_y = 1.0;
+    const ct_scales *u = &sc->scales;
+    for (size_t k = 0; k < sc->nvel; k++) {
+        if (sc->speeds_are_velocities) {
+            sc->V_star[k] = ct_speed_to_V_star(u, sc->mass, sc->V_star[k]);
+            if (!isfinite(sc->V_star[k]) || !(sc->V_star[k] > 0.0))
+                return scene_error(CT_EINVAL,
+                                   "%s: impact.velocity (value %zu): gives a V* that is not a "
+                                   "finite number > 0",
+                                   sc->where_speeds, k + 1);
+        }
+        double W = sc->V_star[k] * sc->V_star[k] * u->energy_scale;
+        if (!isfinite(W) || !(W > 0.0))
+            return scene_error(CT_EINVAL,
+                               "%s: impact.%s: V* = %g (value %zu) gives the impact energy V*^2 "
+                               "l0 E h0 = %g, not a finite number > 0",
+                               sc->where_speeds, sc->speeds_key, sc->V_star[k], k + 1, W);
+    }
+    sc->speeds_are_velocities = 0;
+    return CT_OK;
+}
+
+int ct_scene_prepare(ct_scene *sc)
+{
+    int st = ct_surface_prepare(sc->surface, sc->scene_dir);
+    if (st)
+        return scene_error(st, "%s", ct_error_message());
+    ct_surface_scales(sc->surface, &sc->scales);
+    if ((st = check_speeds(sc)))
+        return st;
+    if (!(sc->table_V_max > 0.0)) {
+        sc->table_V_min = sc->table_V_max = sc->V_star[0];
+        for (size_t k = 1; k < sc->nvel; k++) {
+            sc->table_V_min = fmin(sc->table_V_min, sc->V_star[k]);
+            sc->table_V_max = fmax(sc->table_V_max, sc->V_star[k]);
+        }
+    }
+    for (unsigned bit = 0; bit < 10; bit++) {
+        if (!(sc->what & (1u << bit)))
+            continue;
+        char word[32];
+        const char *w = CT_OUTPUT_WORDS;
+        for (unsigned j = 0; j < bit; j++)
+            w = strchr(w, '|') + 1;
+        snprintf(word, sizeof word, "%.*s", (int)strcspn(w, "|"), w);
+        if ((st = ct_surface_ready(sc->surface, word)))
+            return scene_error(st, "%s", ct_error_message());
+    }
+    return CT_OK;
+}
+
+void ct_scene_request(const ct_scene *sc, int keep_all, ct_build_request *req)
+{
+    *req = (ct_build_request){.V_star = sc->V_star,
+                              .nvel = sc->nvel,
+                              .impacts = sc->impacts,
+                              .opts = sc->opts,
+                              .keep_all_rods = keep_all,
+                              .threads = sc->threads,
+                              .depth_tolerance = sc->depth_tolerance};
 }
 
 void ct_scene_free(ct_scene *scene)
 {
     if (!scene)
         return;
+    ct_surface_free(scene->surface);
     free(scene->V_star);
     free(scene->output);
-    free(scene->profile_file);
     free(scene->scene_dir);
-    ct_profile_free(scene->profile);
+    scene->surface = NULL;
     scene->V_star = NULL;
     scene->output = NULL;
-    scene->profile_file = NULL;
     scene->scene_dir = NULL;
-    scene->profile = NULL;
 }

@@ -1,8 +1,9 @@
 /* The Cantor surface (MODEL.md §1-2): parameter validation, the geometry of Eqs. 1-3, 16-18,
  * 28, the prefractal as rods (stages or segments) with its metadata, and the truncation depth. */
-#include "internal.h"
+#include "kind.h"
 
 #include <float.h>
+#include <stddef.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -183,7 +184,7 @@ static void *cantor_clone(const void *meta)
     return m;
 }
 
-static const ct_surface_kind cantor_kind = {"cantor", cantor_rod_info, cantor_clone, free};
+static const ct_rod_meta_kind cantor_kind = {"cantor", cantor_rod_info, cantor_clone, free};
 
 void ct_cantor_layer(const ct_params *p, ct_layer *layer)
 {
@@ -428,3 +429,309 @@ int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *boun
     CT_NEED(bound);
     return search_depth(p, W_min, 1e-15, 1, depth, bound);
 }
+
+int ct_cantor_choose_depth(const ct_params *p, long setting, double V_min, double tol, long *depth,
+                           double *bound)
+{
+    CT_NEED(p);
+    CT_NEED(depth);
+    CT_NEED(bound);
+    *bound = 0.0;
+    if (setting >= 0) {
+        *depth = setting;
+        return CT_OK;
+    }
+    const double W_min = V_min * V_min * ct_energy_scale(p);
+    if (setting == CT_DEPTH_FRACTAL)
+        return ct_fractal_depth(p, W_min, depth, bound);
+    if (setting == CT_DEPTH_AUTO)
+        return ct_auto_depth(p, W_min, tol, depth, bound);
+    return ct_error_set(CT_EINVAL, "depth = %ld: must be >= 0, auto or fractal", setting);
+}
+
+/* ---- the kind (src/surface/kind.h): keys, checks, rods, and the outputs only it gives ---- */
+
+typedef struct {
+    double fx, fz, H, h0, l0; /* [surface] */
+    long depth;               /* >= 0, CT_DEPTH_AUTO, CT_DEPTH_FRACTAL */
+    int representation;       /* ct_representation */
+    double E, sigma_y;        /* [material] */
+    ct_params params;         /* computed: dimensionless (l0 = h0 = sigma_y = 1) */
+    ct_params physical;       /* as given */
+} cantor_config;
+
+#define AT(field) offsetof(cantor_config, field)
+static const ct_key cantor_keys[] = {
+    {"surface", "fx", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL, "must satisfy fx > 1",
+     "", "horizontal ratio: stage n keeps 1/fx of stage n-1's length", AT(fx)},
+    {"surface", "fz", CT_KEY_NUMBER, 1.0, 2.0, CT_KEY_REQUIRED, NULL, "must satisfy 1 < fz < 2", "",
+     "vertical ratio: the recess depth shrinks by 1/fz per stage", AT(fz)},
+    {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL,
+     "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)", "",
+     "Winkler layer thickness H* in units of h0", AT(H)},
+    {"surface", "h0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
+     "recess depth of stage 0 [length] (a scale: results are per h0)", AT(h0)},
+    {"surface", "l0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
+     "length of stage 0 [length] (a scale: results are per l0)", AT(l0)},
+    {"surface", "depth", CT_KEY_DEPTH, 0.0, CT_MAX_STAGES_DEPTH, 0, "auto|fractal",
+     "must satisfy 0 <= depth <= 100000000", "auto",
+     "prefractal depth N; auto: truncation bound below solver.depth_tolerance; fractal: the "
+     "limit to double precision",
+     AT(depth)},
+    {"surface", "representation", CT_KEY_WORD, 0, 0, 0, "stages|segments",
+     "must be stages or segments", "stages",
+     "one rod per stage (pieces merged, exact) or one per piece (depth <= 40)", AT(representation)},
+    {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
+     "Young's modulus (only E/sigma_y matters)", AT(E)},
+    {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
+     "yield stress", AT(sigma_y)},
+};
+#undef AT
+
+static void cantor_defaults(void *config)
+{
+    cantor_config *c = config;
+    c->h0 = c->l0 = c->sigma_y = 1.0;
+    c->depth = CT_DEPTH_AUTO;
+    c->representation = CT_REP_STAGES;
+}
+
+/* E > sigma_y, the parameters valid as given and in the dimensionless form the model is
+ * computed in (E/sigma_y times H* / h0 may overflow). */
+static int cantor_check(ct_surface *s, const char *scene)
+{
+    cantor_config *c = s->config;
+    int st;
+    if (!(c->E > c->sigma_y))
+        return ct_surface_key_error(s, "material", "E", CT_EINVAL,
+                                    "must be > sigma_y (yield strain sigma_y/E < 1)");
+    c->physical = (ct_params){.fx = c->fx,
+                              .fz = c->fz,
+                              .l0 = c->l0,
+                              .h0 = c->h0,
+                              .Hstar = c->H * c->h0,
+                              .E = c->E,
+                              .sigma_y = c->sigma_y};
+    if ((st = ct_params_validate(&c->physical)))
+        return ct_error_set(st, "%s: %s", scene, ct_error_message());
+    c->params = c->physical;
+    c->params.Hstar = c->physical.Hstar / c->physical.h0;
+    c->params.E = c->physical.E / c->physical.sigma_y;
+    c->params.l0 = c->params.h0 = c->params.sigma_y = 1.0;
+    if ((st = ct_params_validate(&c->params)))
+        return ct_error_set(st, "%s: %s", scene, ct_error_message());
+    if (c->representation == CT_REP_SEGMENTS) {
+        if (c->depth < 0) {
+            size_t k;
+            ct_kind_key(s->kind, "surface", "depth", &k);
+            return ct_error_set(CT_EINVAL,
+                                "%s: surface.representation = segments: needs an integer "
+                                "surface.depth (0..%d)",
+                                s->where[k] ? s->where[k] : scene, CT_MAX_SEGMENTS_DEPTH);
+        }
+        if (c->depth > CT_MAX_SEGMENTS_DEPTH)
+            return ct_surface_key_error(s, "surface", "depth", CT_EINVAL,
+                                        "segments allow 0 <= depth <= 40");
+    }
+    return CT_OK;
+}
+
+static int cantor_prepare(ct_surface *s, const char *dir)
+{
+    (void)dir;
+    const cantor_config *c = s->config;
+    ct_layer built, given;
+    ct_cantor_layer(&c->params, &built);
+    ct_cantor_layer(&c->physical, &given);
+    ct_scales_of(&s->scales, &built, &given);
+    return CT_OK;
+}
+
+static int cantor_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
+                        ct_plan_info *info)
+{
+    const cantor_config *c = s->config;
+    ct_cantor_plan plan = {
+        .params = c->params,
+        .depth = c->depth,
+        .representation = (ct_representation)c->representation,
+        .depth_tolerance = r->depth_tolerance,
+        .V_star = r->V_star,
+        .nvel = r->nvel,
+        .impacts = r->impacts,
+        .opts = r->opts,
+        .keep_all_rods = r->keep_all_rods,
+        .threads = r->threads,
+    };
+    int st = ct_cantor_plan_build(&plan, out, info);
+    if (!st && r->keep_all_rods && info->depth > 20) {
+        ct_bundle_free(*out);
+        *out = NULL;
+        return ct_error_set(CT_EINVAL,
+                            "profile: depth %ld has 2^%ld pieces; the profile is written for "
+                            "depth <= 20 (set surface.depth)",
+                            info->depth, info->depth + 1);
+    }
+    return st;
+}
+
+static void cantor_describe(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    const cantor_config *c = s->config;
+    char how[96];
+    if (c->depth >= 0)
+        snprintf(how, sizeof how, "given");
+    else
+        snprintf(how, sizeof how, "%s: truncation bound %.2g",
+                 c->depth == CT_DEPTH_FRACTAL ? "fractal limit" : "auto", info->bound);
+    snprintf(buf, len, "%s, depth %ld (%s), %zu rods, %zu left out as never touched",
+             c->representation == CT_REP_STAGES ? "stage rods" : "segment rods", info->depth, how,
+             info->rods, info->omitted);
+}
+
+static void cantor_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    const ct_params *p = &((const cantor_config *)s->config)->params;
+    snprintf(
+        buf, len,
+        "cantor: fx = %.17g, fz = %.17g, H*/h0 = %.17g, E/sigma_y = %.17g, depth %ld, %zu rods",
+        p->fx, p->fz, p->Hstar / p->h0, p->E / p->sigma_y, info->depth, info->rods);
+}
+
+/* One row per piece of every stage (stage rods stand for all pieces of their stage), with its
+ * x-extent and top, and the top after the impacts (the residual: top + plastic strain L). */
+static int cantor_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
+{
+    const ct_params *p = &((const cantor_config *)s->config)->params;
+    const long N = ct_cantor_depth(b);
+    const int stages = ct_cantor_representation(b) == CT_REP_STAGES;
+    const size_t n = ct_bundle_size(b);
+    ct_rod_info info;
+    long first_stage = N + 1;
+    if (n && !ct_bundle_rod(b, 0, &info))
+        first_stage = info.stage;
+    fputs("stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0\n", f);
+    for (long i = 0; i <= N; i++) {
+        double top = ct_stage_depth(p, (double)i), residual = top;
+        if (i >= first_stage) {
+            size_t k =
+                stages ? (size_t)(i - first_stage) : ((size_t)1 << i) - ((size_t)1 << first_stage);
+            if (ct_bundle_rod(b, k, &info) == CT_OK)
+                residual = info.top + info.plastic_strain * info.length;
+        }
+        for (size_t j = 0; j < ((size_t)1 << i); j++) {
+            double xl, xr;
+            ct_piece_extent(p, N, i, j, &xl, &xr);
+            if (!stages && i >= first_stage) {
+                size_t k = ((size_t)1 << i) - 1 + j - (((size_t)1 << first_stage) - 1);
+                if (ct_bundle_rod(b, k, &info) == CT_OK)
+                    residual = info.top + info.plastic_strain * info.length;
+            }
+            fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g\n", i, xl / p->l0, xr / p->l0, top / p->h0,
+                    residual / p->h0);
+        }
+    }
+    return CT_OK;
+}
+
+static const char *const law_e_names[] = {"e_series", "e_asymptotic", "e_asymptotic_consistent"};
+static const char *const law_P_names[] = {"P_series_over_PY", "P_asymptotic_over_PY",
+                                          "P_asymptotic_consistent_over_PY"};
+
+/* The paper's laws model the first impact on the virgin fractal; where a law does not apply
+ * (u_max > h0, e > 1) its value is NaN. */
+static int cantor_compare(ct_surface *s, const ct_sweep_row *rows, size_t n, double *out)
+{
+    const ct_params *p = &((const cantor_config *)s->config)->params;
+    for (size_t k = 0; k < n; k++) {
+        if (rows[k].status || rows[k].impact != 1)
+            continue;
+        for (int law = CT_LAW_SERIES; law <= CT_LAW_ASYMPTOTIC_CONSISTENT; law++) {
+            double um, el;
+            if (ct_law_impact(p, (ct_law)law, rows[k].r.kinetic_energy, &um, &el) == CT_OK)
+                out[3 * k + (size_t)law] = el;
+        }
+    }
+    return CT_OK;
+}
+
+/* The laws' P at u (unloading from u_max when unload), in P_Y; NaN where a law does not
+ * apply. */
+static void cantor_curve_compare(const ct_surface *s, int unload, double u_max, double u,
+                                 double *out)
+{
+    const ct_params *p = &((const cantor_config *)s->config)->params;
+    const double PY = p->sigma_y * p->l0;
+    double ps = 0.0, pa = 0.0, pc = 0.0;
+    int ss = unload ? ct_series_unload(p, u_max, u, &ps) : ct_series_load(p, u, &ps);
+    int sa = unload ? ct_asym_unload(p, u_max, u, 0, &pa) : ct_asym_load(p, u, &pa);
+    int sc = unload ? ct_asym_unload(p, u_max, u, 1, &pc) : sa;
+    out[0] = ss ? NAN : ps / PY;
+    out[1] = sa ? NAN : pa / PY;
+    out[2] = sc ? NAN : (unload ? pc : pa) / PY;
+}
+
+/* The stages at the depth a run would use (auto: for the smallest speed asked). */
+static int cantor_write_geometry(const ct_surface *s, const ct_build_request *r, FILE *f)
+{
+    const cantor_config *c = s->config;
+    const ct_params *p = &c->params;
+    double vmin = INFINITY, bound;
+    for (size_t k = 0; k < r->nvel; k++)
+        vmin = r->V_star[k] < vmin ? r->V_star[k] : vmin;
+    long depth;
+    int st = ct_cantor_choose_depth(p, c->depth, vmin, r->depth_tolerance, &depth, &bound);
+    if (st)
+        return st;
+    fprintf(f, "# fx = %g, fz = %g, H*/h0 = %g, E/sigma_y = %g\n", p->fx, p->fz, p->Hstar / p->h0,
+            p->E / p->sigma_y);
+    fprintf(f, "# alpha = %.17g, beta = %.17g, D = %.17g, depth = %ld\n", ct_alpha(p), ct_beta(p),
+            ct_dimension(p), depth);
+    fputs("stage,l_over_l0,h_over_h0,s_over_l0,rod_length_over_h0\n", f);
+    const long shown = depth < 60 ? depth : 60;
+    for (long i = 0; i <= shown; i++) {
+        double a = i < depth ? ct_stage_area(p, (double)i) : ct_stage_length(p, (double)i);
+        double h = ct_stage_depth(p, (double)i);
+        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g\n", i, ct_stage_length(p, (double)i) / p->l0,
+                h / p->h0, a / p->l0, (p->Hstar - h) / p->h0);
+    }
+    if (shown < depth)
+        fprintf(f, "# ... %ld more stages\n", depth - shown);
+    return CT_OK;
+}
+
+static const ct_refusal cantor_refusals[] = {
+    {"bearing", "a bearing-area curve is written for measured surfaces (type = profile); the "
+                "Cantor surface's is the power law (d/h0)^alpha, alpha in cantact geometry"},
+    {"ensemble", "ensembles are of random surfaces: surface.type = random_cantor"},
+    {"realisations", "ensembles are of random surfaces: surface.type = random_cantor"},
+    {"merge", "merge combines the parts of an ensemble of a random_cantor surface"},
+    {"fit", "cantact fit fits a Cantor surface to a measured profile (type = profile or a "
+            "profile file)"},
+    {NULL, NULL},
+};
+
+const ct_kind ct_kind_cantor = {
+    .name = "cantor",
+    .summary = "the deterministic Cantor prefractal of the paper, one rod per stage or per piece",
+    .keys = cantor_keys,
+    .nkeys = sizeof cantor_keys / sizeof cantor_keys[0],
+    .config_size = sizeof(cantor_config),
+    .defaults = cantor_defaults,
+    .gives = "profile compare geometry",
+    .refusals = cantor_refusals,
+    .check = cantor_check,
+    .prepare = cantor_prepare,
+    .build = cantor_build,
+    .describe = cantor_describe,
+    .table_line = cantor_table_line,
+    .write_profile = cantor_write_profile,
+    .profile_shows_state = 1,
+    .ncompare = 3,
+    .compare_names = law_e_names,
+    .compare = cantor_compare,
+    .ncurve_compare = 3,
+    .curve_compare_names = law_P_names,
+    .curve_compare = cantor_curve_compare,
+    .write_geometry = cantor_write_geometry,
+};

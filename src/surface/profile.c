@@ -6,9 +6,12 @@
  * that uniform sampling gives every sample dx); on a grid, the pixel dx dy. Invalid grid
  * points (NaN) are left out. The x-order of the rods does not matter to P(u) (a Winkler
  * bundle): only the bearing-area curve does. */
-#include "internal.h"
+#include "kind.h"
+#include "number.h"
 
 #include <gsl/gsl_errno.h>
+#include <stddef.h>
+#include <stdio.h>
 #include <gsl/gsl_linalg.h>
 #include <math.h>
 #include <stdlib.h>
@@ -376,8 +379,8 @@ static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
     info->x_right = x + right;
 }
 
-static const ct_surface_kind profile_kind = {"profile", profile_rod_info, profile_meta_clone,
-                                             profile_meta_free};
+static const ct_rod_meta_kind profile_kind = {"profile", profile_rod_info, profile_meta_clone,
+                                              profile_meta_free};
 
 int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sigma_y, double Hstar)
 {
@@ -486,3 +489,575 @@ int ct_profile_bearing(const ct_profile *p, size_t n, const double *d, double *p
     free(tw);
     return CT_OK;
 }
+
+/* ---- the kind (src/surface/kind.h): a measured profile's keys, reading and levelling, its
+ * fitted Cantor surface (what = compare, bearing; cantact fit) ---- */
+
+static const char unit_words[] = "m|mm|um|nm";
+static const double unit_metres[] = {1.0, 1e-3, 1e-6, 1e-9};
+
+typedef struct {
+    char *file;               /* [surface] */
+    int unit, x_unit, z_unit; /* indices into unit_words (read only when given) */
+    double spacing;           /* one column of heights at this spacing [x unit]; 0: two */
+    int detrend;              /* ct_detrend */
+    int trim;                 /* 0 none, 1 rq */
+    double trim_k;            /* clip at mean + trim_k Rq */
+    double H, Hstar;          /* H* = H Rt, or H* [z unit] */
+    double E, sigma_y;        /* [material], Pa */
+    double band[4];           /* [fit] depth_lo depth_hi [z unit], lag_lo lag_hi [x unit] */
+    int dimension;            /* ct_dimension_method */
+    /* prepared */
+    ct_profile *profile; /* levelled (and trimmed) */
+    ct_profile_stats stats;
+    ct_layer layer;
+    double band_m[4]; /* the bands in metres (0: the default) */
+    ct_profile_fit fit;
+    int have_fit, fit_from_impacts;
+} profile_config;
+
+#define AT(field) offsetof(profile_config, field)
+static const ct_key profile_keys[] = {
+    {"surface", "file", CT_KEY_TEXT, 0, 0, CT_KEY_REQUIRED, NULL, "must be a path", "",
+     "the profile: text/CSV (x z, or z with spacing), a Dektak export or an X3P file; relative "
+     "to the scene's directory",
+     AT(file)},
+    {"surface", "unit", CT_KEY_WORD, 0, 0, 0, unit_words, "must be m, mm, um or nm",
+     "what the file's column names state", "the file's length unit for x and z", AT(unit)},
+    {"surface", "x_unit", CT_KEY_WORD, 0, 0, 0, unit_words, "must be m, mm, um or nm", "unit",
+     "the file's unit of x", AT(x_unit)},
+    {"surface", "z_unit", CT_KEY_WORD, 0, 0, 0, unit_words, "must be m, mm, um or nm", "unit",
+     "the file's unit of z", AT(z_unit)},
+    {"surface", "spacing", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL,
+     "must be > 0 (one column of heights at this spacing, in x_unit)", "",
+     "a file of one column of heights: their spacing [x unit]", AT(spacing)},
+    {"surface", "detrend", CT_KEY_WORD, 0, 0, 0, "none|mean|linear|quadratic",
+     "must be none, mean, linear or quadratic", "linear",
+     "levelling: the least-squares mean, line (plane) or parabola (quadric) removed", AT(detrend)},
+    {"surface", "trim", CT_KEY_WORD, 0, 0, 0, "none|rq",
+     "must be none or rq (clip at mean + trim_k Rq)", "none",
+     "spikes: rq clips heights above mean + trim_k Rq", AT(trim)},
+    {"surface", "trim_k", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "3",
+     "the clip level of trim = rq, in Rq", AT(trim_k)},
+    {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, 0, NULL,
+     "must satisfy H > 1 (H* = H Rt must exceed the peak-to-valley depth)", "",
+     "H* as a multiple of the peak-to-valley depth Rt (or give Hstar)", AT(H)},
+    {"surface", "Hstar", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
+     "H* in the file's z unit (or give H)", AT(Hstar)},
+    {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
+     "Young's modulus [Pa]", AT(E)},
+    {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
+     "yield stress [Pa]", AT(sigma_y)},
+    {"fit", "depth_lo", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0 (in the file's unit)",
+     "the 20th highest point", "the bearing fit's shallowest depth [z unit]", AT(band[0])},
+    {"fit", "depth_hi", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0 (in the file's unit)",
+     "phi = 0.1", "the bearing fit's deepest depth [z unit]", AT(band[1])},
+    {"fit", "lag_lo", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0 (in the file's unit)",
+     "2 spacings", "the dimension estimators' shortest lag [x unit]", AT(band[2])},
+    {"fit", "lag_hi", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0 (in the file's unit)",
+     "a tenth of the length", "the dimension estimators' longest lag [x unit]", AT(band[3])},
+    {"fit", "dimension", CT_KEY_WORD, 0, 0, 0, "variation|structure|spectrum",
+     "must be variation, structure or spectrum", "variation", "the estimate of D that enters Eq. 3",
+     AT(dimension)},
+};
+#undef AT
+
+static void profile_defaults(void *config)
+{
+    profile_config *c = config;
+    c->detrend = CT_DETREND_LINEAR;
+    c->dimension = CT_DIM_VARIATION;
+}
+
+static void profile_release(void *config)
+{
+    profile_config *c = config;
+    ct_profile_free(c->profile);
+    c->profile = NULL;
+}
+
+static int profile_check(ct_surface *s, const char *scene)
+{
+    profile_config *c = s->config;
+    if (ct_surface_given(s, "surface", "trim_k") && c->trim != 1)
+        return ct_surface_key_error(s, "surface", "trim_k", CT_EINVAL,
+                                    "only with surface.trim = rq");
+    if (c->trim == 1 && !ct_surface_given(s, "surface", "trim_k"))
+        c->trim_k = 3.0;
+    if (c->trim == 0)
+        c->trim_k = 0.0;
+    if (ct_surface_given(s, "surface", "H") == ct_surface_given(s, "surface", "Hstar"))
+        return ct_error_set(CT_EINVAL,
+                            "%s: type = profile needs one of surface.H (H* as a multiple of the "
+                            "peak-to-valley depth) and surface.Hstar (in z_unit)",
+                            scene);
+    if (!(c->E > c->sigma_y))
+        return ct_surface_key_error(s, "material", "E", CT_EINVAL,
+                                    "must be > sigma_y (yield strain sigma_y/E < 1)");
+    return CT_OK;
+}
+
+static const char *detrend_name(int d)
+{
+    static const char *const names[] = {"none", "mean", "linear", "quadratic"};
+    return d >= 0 && d < 4 ? names[d] : "?";
+}
+
+static int profile_prepare(ct_surface *s, const char *dir)
+{
+    profile_config *c = s->config;
+    profile_release(c);
+    c->have_fit = c->fit_from_impacts = 0;
+    ct_profile_read_opts opts = {0.0, 0.0, 0.0}; /* a unit 0: the one the file states */
+    if (ct_surface_given(s, "surface", "unit"))
+        opts.x_unit = opts.z_unit = unit_metres[c->unit];
+    if (ct_surface_given(s, "surface", "x_unit"))
+        opts.x_unit = unit_metres[c->x_unit];
+    if (ct_surface_given(s, "surface", "z_unit"))
+        opts.z_unit = unit_metres[c->z_unit];
+    opts.dx = c->spacing;
+    char *path = ct_path_join(dir, c->file);
+    if (!path)
+        return ct_error_set(CT_ENOMEM, "out of memory");
+    int st = ct_profile_read(path, &opts, &c->profile);
+    free(path);
+    if (st)
+        return st;
+    ct_profile *p = c->profile;
+    /* H* and the fit's bands are given in the file's units, known now */
+    const double Hstar = c->Hstar * p->z_unit;
+    for (int k = 0; k < 4; k++)
+        c->band_m[k] = c->band[k] * (k < 2 ? p->z_unit : p->x_unit);
+    ct_profile_stats raw;
+    size_t clipped = 0;
+    if ((st = ct_profile_stats_of(p, &raw)) || (st = ct_profile_level(p, c->detrend)) ||
+        (c->trim_k > 0.0 && (st = ct_profile_trim(p, c->trim_k, &clipped))) ||
+        (st = ct_profile_stats_of(p, &c->stats)))
+        return st;
+    const ct_profile_stats *q = &c->stats;
+    if (!(q->Rt > 0.0))
+        return ct_error_set(CT_EINVAL, "%s: all heights are equal after levelling: no roughness",
+                            c->file);
+    c->layer = (ct_layer){.E = c->E,
+                          .sigma_y = c->sigma_y,
+                          .Hstar = Hstar > 0.0 ? Hstar : c->H * q->Rt,
+                          .l0 = q->length,
+                          .h0 = q->Rt};
+    if (!(c->layer.Hstar > q->Rt))
+        return ct_error_set(CT_EINVAL,
+                            "surface.Hstar = %g m: must exceed the profile's peak-to-valley depth "
+                            "Rt = %g m after levelling",
+                            c->layer.Hstar, q->Rt);
+    ct_scales_of(&s->scales, &c->layer, &c->layer);
+    ct_surface_note_set(s,
+                        "%s (%s): %zu points%s, levelled (%s): Rq %.4g m, Rt %.4g m (raw Rt %.4g "
+                        "m), l0 %.4g m%s, H* %.4g m",
+                        c->file, p->source, p->n, p->ny > 1 ? " on a grid" : "",
+                        detrend_name(c->detrend), q->Rq, q->Rt, raw.Rt, q->length,
+                        p->ny > 1 ? "^2" : "", c->layer.Hstar);
+    size_t n = strlen(s->note);
+    if (p->invalid)
+        n += (size_t)snprintf(s->note + n, sizeof s->note - n, ", %zu invalid points left out",
+                              p->invalid);
+    if (c->trim_k > 0.0 && n < sizeof s->note)
+        snprintf(s->note + n, sizeof s->note - n, ", %zu heights clipped at mean + %g Rq", clipped,
+                 c->trim_k);
+    return CT_OK;
+}
+
+static int profile_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
+                         ct_plan_info *info)
+{
+    (void)r;
+    const profile_config *c = s->config;
+    int st = ct_profile_bundle(out, c->profile, c->layer.E, c->layer.sigma_y, c->layer.Hstar);
+    if (st)
+        return st;
+    info->depth = -1;
+    info->bound = 0.0;
+    info->rods = ct_bundle_size(*out);
+    info->omitted = ct_bundle_omitted(*out);
+    info->u_reach = INFINITY;
+    return CT_OK;
+}
+
+/* The fit the outputs compare with: on the bands given, else the defaults (ct_profile_fit_of). */
+static int need_fit(ct_surface *s)
+{
+    profile_config *c = s->config;
+    if (c->have_fit)
+        return CT_OK;
+    c->fit.dimension = (ct_dimension_method)c->dimension;
+    const double *b = c->band_m;
+    int st = ct_profile_fit_of(c->profile, b[0], b[1], b[2], b[3], &c->fit);
+    if (st)
+        return st;
+    c->have_fit = 1;
+    return CT_OK;
+}
+
+int ct_profile_fit_on_reach(const ct_profile *p, const ct_profile_fit *fit, const double *u_max,
+                            size_t n, ct_profile_fit *out)
+{
+    CT_NEED(p);
+    CT_NEED(fit);
+    CT_NEED(out);
+    if (n && !u_max)
+        return ct_error_set(CT_EINVAL, "ct_profile_fit_on_reach: u_max is NULL");
+    double lo = INFINITY, hi = 0.0;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(u_max[k])) {
+            lo = fmin(lo, u_max[k]);
+            hi = fmax(hi, u_max[k]);
+        }
+    /* from the shallowest reach (not above the default band's start, the 20th highest
+     * point: above it the curve is a few samples) to the deepest (not below Rt) */
+    lo = fmax(lo, fit->bearing.lo);
+    hi = fmin(hi, fit->stats.Rt);
+    if (!(hi > lo))
+        return ct_error_set(CT_EINVAL,
+                            "the depths the impacts reach, %.4g .. %.4g m, give no bearing fit "
+                            "(an empty band)",
+                            lo, hi);
+    ct_profile_fit f = *fit;
+    int st = ct_profile_fit_bearing(p, lo, hi, &f);
+    if (st) {
+        char why[400];
+        snprintf(why, sizeof why, "%s", ct_error_message());
+        return ct_error_set(st,
+                            "the depths the impacts reach, %.4g .. %.4g m, give no bearing fit "
+                            "(%s)",
+                            lo, hi, why);
+    }
+    *out = f;
+    return CT_OK;
+}
+
+/* After the sweep, with a fit and no [fit] depth band given: the bearing fit redone on the
+ * depths the impacts reached (docs/model.md §9); the default band is kept, and said, when
+ * that band holds no fit. */
+static int profile_after_sweep(ct_surface *s, const ct_sweep_row *rows, size_t n)
+{
+    profile_config *c = s->config;
+    if (!c->have_fit || c->band_m[0] > 0.0 || c->band_m[1] > 0.0)
+        return CT_OK;
+    double *u = malloc((n ? n : 1) * sizeof *u);
+    if (!u)
+        return ct_error_set(CT_ENOMEM, "fit: out of memory");
+    for (size_t k = 0; k < n; k++)
+        u[k] = rows[k].status ? NAN : rows[k].r.u_max;
+    ct_profile_fit f;
+    int st = ct_profile_fit_on_reach(c->profile, &c->fit, u, n, &f);
+    free(u);
+    if (st == CT_ENOMEM)
+        return st;
+    if (st) {
+        ct_surface_note_set(s, "fit: %s: the default band kept", ct_error_message());
+        return CT_OK;
+    }
+    static const char *const names[] = {"variation", "structure", "spectrum"};
+    c->fit = f;
+    c->fit_from_impacts = 1;
+    ct_surface_note_set(s,
+                        "fit on the depths the impacts reach, %.4g .. %.4g m: alpha %.4g, h0 "
+                        "%.4g m, D %.4g (%s), fx %.4g, fz %.4g",
+                        f.bearing.lo, f.bearing.hi, f.alpha, f.h0, f.D,
+                        names[f.dimension - CT_DIM_VARIATION], f.fx, f.fz);
+    return CT_OK;
+}
+
+int ct_profile_fitted_e(const ct_profile *p, const ct_profile_fit *fit, const ct_layer *layer,
+                        const double *W, size_t n, int threads, double *e_fit, double *e_asym,
+                        double *V_fit)
+{
+    CT_NEED(p);
+    CT_NEED(fit);
+    CT_NEED(layer);
+    if (n && (!W || !e_fit || !e_asym || !V_fit))
+        return ct_error_set(CT_EINVAL, "ct_profile_fitted_e: NULL arrays for %zu impacts", n);
+    for (size_t k = 0; k < n; k++)
+        e_fit[k] = e_asym[k] = V_fit[k] = NAN;
+    /* the fitted Cantor surface in dimensionless form with the layer: H* / h0_fit, E/sigma_y */
+    ct_params c = {.fx = fit->fx,
+                   .fz = fit->fz,
+                   .l0 = 1.0,
+                   .h0 = 1.0,
+                   .Hstar = layer->Hstar / fit->h0,
+                   .E = layer->E / layer->sigma_y,
+                   .sigma_y = 1.0};
+    if (ct_params_validate(&c)) {
+        char why[400];
+        snprintf(why, sizeof why, "%s", ct_error_message());
+        return ct_error_set(CT_ERANGE,
+                            "the fitted Cantor surface (fx %g, fz %g, H*/h0 %g) is outside the "
+                            "model's ranges: %s",
+                            fit->fx, fit->fz, c.Hstar, why);
+    }
+    /* the impact energy per unit depth (a grid's over its extent in y) in the fitted surface's
+     * units: W / (sigma_y l0_fit h0_fit), so V*_fit = sqrt(W / (l0_fit E h0_fit)) */
+    const double depth = p->ny > 1 ? (double)p->ny * p->dy : 1.0;
+    const double scale = fit->l0 * layer->E * fit->h0;
+    double *V = malloc((n ? n : 1) * sizeof(double));
+    ct_sweep_row *cr = malloc((n ? n : 1) * sizeof *cr);
+    size_t m = 0;
+    int st = CT_OK;
+    if (!V || !cr) {
+        free(V);
+        free(cr);
+        return ct_error_set(CT_ENOMEM, "compare: out of memory");
+    }
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(W[k]))
+            V[m++] = sqrt(W[k] / depth / scale);
+    if (m) {
+        ct_cantor_plan plan = {.params = c,
+                               .depth = CT_DEPTH_FRACTAL,
+                               .representation = CT_REP_STAGES,
+                               .depth_tolerance = 1e-12,
+                               .V_star = V,
+                               .nvel = m,
+                               .impacts = 1,
+                               .threads = threads};
+        ct_impact_opts_default(&plan.opts);
+        ct_bundle *b;
+        ct_plan_info info;
+        if (!(st = ct_cantor_plan_build(&plan, &b, &info))) {
+            ct_sweep_spec spec = {.V_star = V, .nvel = m, .impacts = 1, .opts = plan.opts};
+            st = ct_sweep(b, &spec, cr);
+            ct_bundle_free(b);
+        }
+    }
+    for (size_t k = 0, q = 0; k < n && !st; k++) {
+        if (!isfinite(W[k]))
+            continue;
+        V_fit[k] = V[q];
+        if (!cr[q].status)
+            e_fit[k] = cr[q].r.e;
+        double um, e;
+        if (ct_law_impact(&c, CT_LAW_ASYMPTOTIC, V[q] * V[q] * c.E, &um, &e) == CT_OK)
+            e_asym[k] = e;
+        q++;
+    }
+    free(V);
+    free(cr);
+    return st;
+}
+
+static const char *const fit_e_names[] = {"e_cantor_fit", "e_asymptotic_fit", "V_star_cantor_fit"};
+
+/* For every first impact: e of the fitted Cantor surface (exact rods, fractal depth), of the
+ * asymptotic law with the fitted parameters, and the fitted surface's V*, at the row's energy. */
+static int profile_compare(ct_surface *s, const ct_sweep_row *rows, size_t n, double *out)
+{
+    profile_config *c = s->config;
+    int st = need_fit(s);
+    if (st)
+        return st;
+    double *W = malloc((n ? n : 1) * 4 * sizeof(double));
+    if (!W)
+        return ct_error_set(CT_ENOMEM, "compare: out of memory");
+    double *ef = W + n, *ea = ef + n, *vf = ea + n;
+    for (size_t k = 0; k < n; k++)
+        W[k] = !rows[k].status && rows[k].impact == 1 ? rows[k].r.kinetic_energy : NAN;
+    st = ct_profile_fitted_e(c->profile, &c->fit, &c->layer, W, n, 0, ef, ea, vf);
+    for (size_t k = 0; k < n && !st; k++) {
+        out[3 * k] = ef[k];
+        out[3 * k + 1] = ea[k];
+        out[3 * k + 2] = vf[k];
+    }
+    free(W);
+    return st;
+}
+
+static int profile_ready(ct_surface *s, const char *output)
+{
+    if (!strcmp(output, "compare") || !strcmp(output, "bearing") || !strcmp(output, "fit"))
+        return need_fit(s);
+    return CT_OK;
+}
+
+/* what = bearing: phi(d) on 400 depths log-spaced from 1e-4 Rt to Rt, beside the fit. */
+static int profile_write_bearing(const ct_surface *s, FILE *f)
+{
+    const profile_config *c = s->config;
+    if (!c->have_fit)
+        return ct_error_set(CT_EINVAL, "bearing: the profile has not been fitted");
+    const ct_profile_fit *fit = &c->fit;
+    const double Rt = fit->stats.Rt;
+    enum { N = 400 };
+    double d[N], phi[N];
+    for (int k = 0; k < N; k++)
+        d[k] = Rt * pow(1e-4, 1.0 - (double)k / (N - 1));
+    int st = ct_profile_bearing(c->profile, N, d, phi);
+    if (st)
+        return st;
+    fprintf(f,
+            "# bearing fit: phi = (d / h0)^alpha, alpha = %.6g, h0 = %.6g m, on d in [%.4g, "
+            "%.4g] m (%s; %zu points, R^2 %.4f, rms residual %.3g in ln phi)\n",
+            fit->alpha, fit->h0, fit->bearing.lo, fit->bearing.hi,
+            c->band_m[0] > 0.0 || c->band_m[1] > 0.0 ? "the band given"
+            : c->fit_from_impacts                    ? "the depths the impacts reach"
+                                                     : "the default band",
+            fit->bearing.n, fit->bearing.r2, fit->bearing.residual);
+    fprintf(f,
+            "# Cantor fit (Eq. 3): D = %.17g, fx = %.17g, fz = %.17g, h0 = %.17g m, l0 = %.17g m\n",
+            fit->D, fit->fx, fit->fz, fit->h0, fit->l0);
+    fputs("d_m,d_over_Rt,phi,phi_fit\n", f);
+    for (int k = 0; k < N; k++) {
+        const double pf = d[k] < fit->h0 ? pow(d[k] / fit->h0, fit->alpha) : 1.0;
+        ct_put_double(f, d[k]);
+        fputc(',', f);
+        ct_put_double(f, d[k] / Rt);
+        fputc(',', f);
+        ct_put_double(f, phi[k]);
+        fputc(',', f);
+        ct_put_double(f, pf);
+        fputc('\n', f);
+    }
+    return CT_OK;
+}
+
+/* what = profile: the heights after levelling (a grid: x, y, z of the valid points). */
+static int profile_write_levelled(const ct_surface *s, const ct_bundle *b, FILE *f)
+{
+    (void)b;
+    const ct_profile *p = ((const profile_config *)s->config)->profile;
+    if (p->ny > 1) {
+        fputs("x_m,y_m,z_m\n", f);
+        for (size_t j = 0; j < p->nx * p->ny; j++) {
+            if (isnan(p->z[j]))
+                continue;
+            ct_put_double(f, (double)(j % p->nx) * p->dx);
+            fputc(',', f);
+            ct_put_double(f, (double)(j / p->nx) * p->dy);
+            fputc(',', f);
+            ct_put_double(f, p->z[j]);
+            fputc('\n', f);
+        }
+        return CT_OK;
+    }
+    fputs("x_m,z_m\n", f);
+    for (size_t j = 0; j < p->nx; j++) {
+        ct_put_double(f, p->x ? p->x[j] : (double)j * p->dx);
+        fputc(',', f);
+        ct_put_double(f, p->z[j]);
+        fputc('\n', f);
+    }
+    return CT_OK;
+}
+
+static void fit_row(FILE *f, const char *name, double value, const ct_fit_line *l)
+{
+    fprintf(f, "%s,", name);
+    ct_put_double(f, value);
+    if (l)
+        fprintf(f, ",%.6g,%.6g,%zu,%.6f,%.4g\n", l->lo, l->hi, l->n, l->r2, l->residual);
+    else
+        fputs(",,,,,\n", f);
+}
+
+int ct_profile_fit_write(FILE *f, const ct_profile_fit *fit, const char *source, size_t n)
+{
+    CT_NEED(f);
+    CT_NEED(fit);
+    CT_NEED(source);
+    static const char *const names[] = {"variation", "structure", "spectrum"};
+    const ct_fit_line *used = fit->dimension == CT_DIM_STRUCTURE  ? &fit->structure
+                              : fit->dimension == CT_DIM_SPECTRUM ? &fit->spectrum
+                                                                  : &fit->variation;
+    fprintf(f,
+            "# %s: %zu points; bands: bearing depths [m], variation window widths and "
+            "structure-function lags [m], spectrum wavenumbers [1/m]; D (into Eq. 3) from the "
+            "%s estimate\n",
+            source, n, names[fit->dimension - CT_DIM_VARIATION]);
+    fputs("quantity,value,band_lo,band_hi,points,r2,rms_residual_ln\n", f);
+    fit_row(f, "Rq_m", fit->stats.Rq, NULL);
+    fit_row(f, "Ra_m", fit->stats.Ra, NULL);
+    fit_row(f, "Rt_m", fit->stats.Rt, NULL);
+    fit_row(f, "alpha", fit->alpha, &fit->bearing);
+    fit_row(f, "h0_m", fit->h0, &fit->bearing);
+    fit_row(f, "D_variation", fit->D_variation, &fit->variation);
+    fit_row(f, "D_structure", fit->D_structure, &fit->structure);
+    fit_row(f, "D_spectrum", fit->D_spectrum, &fit->spectrum);
+    fit_row(f, "D", fit->D, used);
+    fit_row(f, "fx", fit->fx, NULL);
+    fit_row(f, "fz", fit->fz, NULL);
+    fit_row(f, "l0_m", fit->l0, NULL);
+    return CT_OK;
+}
+
+static int profile_write_fit(ct_surface *s, FILE *f)
+{
+    int st = need_fit(s);
+    if (st)
+        return st;
+    const profile_config *c = s->config;
+    return ct_profile_fit_write(f, &c->fit, c->profile->source, c->profile->n);
+}
+
+int ct_surface_profile(const ct_surface *s, const ct_profile **p, ct_profile_fit *fit)
+{
+    CT_NEED(s);
+    if (s->kind != &ct_kind_profile || !s->prepared)
+        return ct_error_set(CT_EINVAL, "surface %s: not a prepared profile", s->kind->name);
+    const profile_config *c = s->config;
+    if (p)
+        *p = c->profile;
+    if (fit && !c->have_fit)
+        return ct_error_set(CT_EINVAL, "the profile has not been fitted");
+    if (fit)
+        *fit = c->fit;
+    return CT_OK;
+}
+
+static void profile_describe(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    (void)s;
+    snprintf(buf, len, "measured surface, %zu rods", info->rods);
+}
+
+static void profile_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    const profile_config *c = s->config;
+    const ct_layer *L = &c->layer;
+    snprintf(buf, len,
+             "profile: %s (%s), %zu rods, l0 = %.17g m, h0 = Rt = %.17g m, H* = %.17g m, E = "
+             "%.17g Pa, sigma_y = %.17g Pa, detrend %s",
+             c->file, c->profile->source, info->rods, L->l0, L->h0, L->Hstar, L->E, L->sigma_y,
+             detrend_name(c->detrend));
+}
+
+static const ct_refusal profile_refusals[] = {
+    {"geometry", "a measured profile has no Cantor stages: cantact fit gives the Cantor surface "
+                 "it looks like"},
+    {"ensemble", "ensembles are of random surfaces: surface.type = random_cantor"},
+    {"realisations", "ensembles are of random surfaces: surface.type = random_cantor"},
+    {"merge", "merge combines the parts of an ensemble of a random_cantor surface"},
+    {NULL, NULL},
+};
+
+const ct_kind ct_kind_profile = {
+    .name = "profile",
+    .summary = "a measured line profile or areal topography (text, Dektak, X3P), one rod per "
+               "sample",
+    .keys = profile_keys,
+    .nkeys = sizeof profile_keys / sizeof profile_keys[0],
+    .config_size = sizeof(profile_config),
+    .defaults = profile_defaults,
+    .gives = "profile compare bearing fit",
+    .refusals = profile_refusals,
+    .check = profile_check,
+    .prepare = profile_prepare,
+    .build = profile_build,
+    .release = profile_release,
+    .ready = profile_ready,
+    .describe = profile_describe,
+    .table_line = profile_table_line,
+    .write_profile = profile_write_levelled,
+    .ncompare = 3,
+    .compare_names = fit_e_names,
+    .compare = profile_compare,
+    .after_sweep = profile_after_sweep,
+    .write_bearing = profile_write_bearing,
+    .write_fit = profile_write_fit,
+};

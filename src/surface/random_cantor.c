@@ -15,9 +15,10 @@
  * Spread 0 gives the deterministic surface's rods in the same order, each top and area equal
  * to a few ulps per stage (not bitwise: cantor.c computes h0 f^-i in one exp/log so that deep
  * stages do not drift, a random piece's depth is the product of its own i ratios). */
-#include "internal.h"
+#include "kind.h"
 
 #include <Random123/philox.h>
+#include <stddef.h>
 
 #include <float.h>
 #include <math.h>
@@ -204,8 +205,8 @@ static void *random_clone(const void *meta)
     return m;
 }
 
-static const ct_surface_kind random_kind = {"random_cantor", random_rod_info, random_clone,
-                                            random_free};
+static const ct_rod_meta_kind random_kind = {"random_cantor", random_rod_info, random_clone,
+                                             random_free};
 
 int ct_random_cantor_piece(const ct_bundle *b, size_t k, uint64_t *g)
 {
@@ -453,3 +454,216 @@ int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t r
     meta->rc = *rc;
     return fill(b, meta, realisation, 1);
 }
+
+/* ---- the kind (src/surface/kind.h) ---- */
+
+typedef struct {
+    double fx, fz, H, h0, l0; /* [surface]: fx, fz the centres of the ratio distributions */
+    long depth;
+    int distribution; /* ct_ratio_dist */
+    double fx_spread, fz_spread;
+    uint64_t seed, realisation;
+    double E, sigma_y;   /* [material] */
+    ct_random_cantor rc; /* computed: dimensionless (l0 = h0 = sigma_y = 1) */
+    ct_params physical;  /* as given */
+} random_config;
+
+#define AT(field) offsetof(random_config, field)
+static const ct_key random_keys[] = {
+    {"surface", "fx", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL, "must satisfy fx > 1",
+     "", "centre of the width ratios fx_k", AT(fx)},
+    {"surface", "fz", CT_KEY_NUMBER, 1.0, 2.0, CT_KEY_REQUIRED, NULL, "must satisfy 1 < fz < 2", "",
+     "centre of the depth ratios fz_k", AT(fz)},
+    {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL,
+     "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)", "",
+     "Winkler layer thickness H* in units of h0", AT(H)},
+    {"surface", "h0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
+     "recess depth of stage 0 [length]", AT(h0)},
+    {"surface", "l0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
+     "length of stage 0 [length]", AT(l0)},
+    {"surface", "depth", CT_KEY_INTEGER, 0.0, CT_MAX_RANDOM_DEPTH, CT_KEY_REQUIRED, NULL,
+     "type = random_cantor needs an integer 0 <= depth <= 30", "",
+     "stages 0..depth, every piece its own rod (2^(depth+1) - 1 rods)", AT(depth)},
+    {"surface", "distribution", CT_KEY_WORD, 0, 0, 0, "uniform|lognormal",
+     "must be uniform or lognormal", "lognormal",
+     "the ratios' distribution: f (1 + spread (2U - 1)) or f exp(spread Z)", AT(distribution)},
+    {"surface", "fx_spread", CT_KEY_NUMBER, -INFINITY, INFINITY, 0, NULL,
+     "0 <= spread < 1 (uniform), 0 <= spread <= 10 (lognormal)", "0", "spread of the width ratios",
+     AT(fx_spread)},
+    {"surface", "fz_spread", CT_KEY_NUMBER, -INFINITY, INFINITY, 0, NULL,
+     "0 <= spread < 1 (uniform), 0 <= spread <= 10 (lognormal)", "0", "spread of the depth ratios",
+     AT(fz_spread)},
+    {"surface", "seed", CT_KEY_COUNT, 0, 0, 0, NULL, "must be an integer 0 <= n < 2^64", "0",
+     "the generator's key with the realisation (Philox4x64)", AT(seed)},
+    {"surface", "realisation", CT_KEY_COUNT, 0, 0, 0, NULL, "must be an integer 0 <= n < 2^64", "0",
+     "the one realisation of a run without [ensemble]", AT(realisation)},
+    {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
+     "Young's modulus (only E/sigma_y matters)", AT(E)},
+    {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
+     "yield stress", AT(sigma_y)},
+};
+#undef AT
+
+static void random_defaults(void *config)
+{
+    random_config *c = config;
+    c->h0 = c->l0 = c->sigma_y = 1.0;
+    c->distribution = CT_RATIO_LOGNORMAL;
+}
+
+static int random_check(ct_surface *s, const char *scene)
+{
+    random_config *c = s->config;
+    int st;
+    const int uniform = c->distribution == CT_RATIO_UNIFORM;
+    const char *range = uniform ? "must satisfy 0 <= spread < 1 (distribution = uniform)"
+                                : "must satisfy 0 <= spread <= 10 (distribution = lognormal)";
+    static const char *const keys[2] = {"fx_spread", "fz_spread"};
+    const double v[2] = {c->fx_spread, c->fz_spread};
+    for (int k = 0; k < 2; k++)
+        if (!(v[k] >= 0.0) || (uniform ? !(v[k] < 1.0) : !(v[k] <= 10.0)))
+            return ct_surface_key_error(s, "surface", keys[k], CT_EINVAL, "%s", range);
+    if (!(c->E > c->sigma_y))
+        return ct_surface_key_error(s, "material", "E", CT_EINVAL,
+                                    "must be > sigma_y (yield strain sigma_y/E < 1)");
+    c->physical = (ct_params){.fx = c->fx,
+                              .fz = c->fz,
+                              .l0 = c->l0,
+                              .h0 = c->h0,
+                              .Hstar = c->H * c->h0,
+                              .E = c->E,
+                              .sigma_y = c->sigma_y};
+    if ((st = ct_params_validate(&c->physical)))
+        return ct_error_set(st, "%s: %s", scene, ct_error_message());
+    ct_params p = c->physical;
+    p.Hstar = c->physical.Hstar / c->physical.h0;
+    p.E = c->physical.E / c->physical.sigma_y;
+    p.l0 = p.h0 = p.sigma_y = 1.0;
+    c->rc = (ct_random_cantor){.params = p,
+                               .dist = (ct_ratio_dist)c->distribution,
+                               .fx_spread = c->fx_spread,
+                               .fz_spread = c->fz_spread,
+                               .depth = c->depth,
+                               .seed = c->seed};
+    if ((st = ct_random_cantor_validate(&c->rc)))
+        return ct_error_set(st, "%s: %s", scene, ct_error_message());
+    return CT_OK;
+}
+
+static int random_prepare(ct_surface *s, const char *dir)
+{
+    (void)dir;
+    const random_config *c = s->config;
+    ct_layer built, given;
+    ct_cantor_layer(&c->rc.params, &built);
+    ct_cantor_layer(&c->physical, &given);
+    ct_scales_of(&s->scales, &built, &given);
+    return CT_OK;
+}
+
+static int random_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
+                        ct_plan_info *info)
+{
+    const random_config *c = s->config;
+    int st = ct_random_cantor_bundle(out, &c->rc, c->realisation, r->threads);
+    if (st)
+        return st;
+    info->depth = c->depth;
+    info->bound = 0.0;
+    info->rods = ct_bundle_size(*out);
+    info->omitted = 0;
+    info->u_reach = INFINITY;
+    return CT_OK;
+}
+
+int ct_surface_random_cantor(const ct_surface *s, ct_random_cantor *rc, uint64_t *realisation)
+{
+    CT_NEED(s);
+    if (s->kind != &ct_kind_random_cantor || !s->checked)
+        return ct_error_set(CT_EINVAL, "surface %s: not a checked random_cantor surface",
+                            s->kind->name);
+    const random_config *c = s->config;
+    if (rc)
+        *rc = c->rc;
+    if (realisation)
+        *realisation = c->realisation;
+    return CT_OK;
+}
+
+static void random_describe(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    (void)s;
+    snprintf(buf, len,
+             "random cantor rods, depth %ld (given), %zu rods, %zu left out as never "
+             "touched",
+             info->depth, info->rods, info->omitted);
+}
+
+static void random_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    const random_config *c = s->config;
+    const ct_params *p = &c->rc.params;
+    snprintf(buf, len,
+             "random_cantor: fx = %.17g, fz = %.17g, H*/h0 = %.17g, E/sigma_y = %.17g, depth %ld, "
+             "%zu rods, seed %llu, realisation %llu, spreads %.17g %.17g",
+             p->fx, p->fz, p->Hstar / p->h0, p->E / p->sigma_y, info->depth, info->rods,
+             (unsigned long long)c->seed, (unsigned long long)c->realisation, c->fx_spread,
+             c->fz_spread);
+}
+
+/* One row per piece, in piece order (stage, then x), with its top and residual top. */
+static int random_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
+{
+    (void)s;
+    const size_t n = ct_bundle_size(b);
+    const ct_layer *L = ct_bundle_layer(b);
+    size_t *rod_of = malloc((n ? n : 1) * sizeof *rod_of);
+    if (!rod_of)
+        return ct_error_set(CT_ENOMEM, "profile: out of memory");
+    for (size_t k = 0; k < n; k++) {
+        uint64_t g;
+        if (ct_random_cantor_piece(b, k, &g) || g >= n) {
+            free(rod_of);
+            return ct_error_set(CT_EINVAL, "profile: a rod without its piece");
+        }
+        rod_of[g] = k;
+    }
+    fputs("stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0\n", f);
+    for (size_t g = 0; g < n; g++) {
+        ct_rod_info info;
+        ct_bundle_rod(b, rod_of[g], &info);
+        fprintf(f, "%ld,%.17g,%.17g,%.17g,%.17g\n", info.stage, info.x_left / L->l0,
+                info.x_right / L->l0, info.top / L->h0,
+                (info.top + info.plastic_strain * info.length) / L->h0);
+    }
+    free(rod_of);
+    return CT_OK;
+}
+
+static const ct_refusal random_refusals[] = {
+    {"compare", "the paper's laws model the deterministic surface (type = cantor)"},
+    {"bearing", "a bearing-area curve is written for measured surfaces (type = profile)"},
+    {"geometry", "a random surface has no single stage geometry: what = profile writes its "
+                 "pieces"},
+    {"fit", "cantact fit fits a Cantor surface to a measured profile (type = profile or a "
+            "profile file)"},
+    {NULL, NULL},
+};
+
+const ct_kind ct_kind_random_cantor = {
+    .name = "random_cantor",
+    .summary = "a random Cantor surface: every split draws its own ratios (Philox, seeded)",
+    .keys = random_keys,
+    .nkeys = sizeof random_keys / sizeof random_keys[0],
+    .config_size = sizeof(random_config),
+    .defaults = random_defaults,
+    .gives = "profile ensemble realisations merge",
+    .refusals = random_refusals,
+    .check = random_check,
+    .prepare = random_prepare,
+    .build = random_build,
+    .describe = random_describe,
+    .table_line = random_table_line,
+    .write_profile = random_write_profile,
+    .profile_shows_state = 1,
+};

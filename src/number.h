@@ -1,6 +1,6 @@
 /* Doubles as text: byte for byte what printf("%.17g") writes (round-trip exact), faster. */
-#ifndef CT_CLI_NUMBER_H
-#define CT_CLI_NUMBER_H
+#ifndef CT_NUMBER_H
+#define CT_NUMBER_H
 
 #include <stddef.h>
 #include <stdio.h>

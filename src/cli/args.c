@@ -1,0 +1,191 @@
+/* The one argument parser of the subcommands, and loading a subcommand's scene. */
+#include "args.h"
+
+#include "output.h"
+#include "ranks.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+void ct_cli_fail(const char *fmt, ...)
+{
+    if (ct_mpi_rank() != 0) /* under mpirun every rank reads the scene: one line, not K */
+        return;
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "cantact: %s\n", msg);
+}
+
+int ct_cli_status_exit(int st)
+{
+    return (st == CT_EINVAL || st == CT_ERANGE || st == CT_EIO) ? EXIT_USAGE : EXIT_FAILED;
+}
+
+static char *own(ct_args *a, char *s)
+{
+    if (s)
+        a->owned[a->nowned++] = s;
+    return s;
+}
+
+static const ct_opt *find_opt(const ct_opt *opts, const char *name)
+{
+    for (const ct_opt *o = opts; o && o->name; o++)
+        if (!strcmp(o->name, name))
+            return o;
+    return NULL;
+}
+
+int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_opt *opts,
+                  size_t max_pos)
+{
+    memset(a, 0, sizeof *a);
+    const size_t cap = (size_t)argc + 2;
+    a->sets = calloc(cap, sizeof *a->sets);
+    a->set_where = calloc(cap, sizeof *a->set_where);
+    a->owned = calloc(cap, sizeof *a->owned);
+    if (!a->sets || !a->set_where || !a->owned) {
+        ct_cli_fail("out of memory");
+        return EXIT_FAILED;
+    }
+    const char *output = NULL;
+    for (int k = 0; k < argc; k++) {
+        const char *s = argv[k];
+        const ct_opt *o = find_opt(opts, s);
+        const int needs = !strcmp(s, "--set") || !strcmp(s, "-o") || o;
+        if (needs && k + 1 >= argc) {
+            ct_cli_fail("%s needs a value", s);
+            return EXIT_USAGE;
+        }
+        if (!strcmp(s, "-h") || !strcmp(s, "--help")) {
+            a->help = 1;
+        } else if (!strcmp(s, "-q")) {
+            a->quiet = 1;
+        } else if (!strcmp(s, "--set")) {
+            a->set_where[a->nsets] = "--set";
+            a->sets[a->nsets++] = argv[++k];
+        } else if (!strncmp(s, "--set=", 6)) {
+            a->set_where[a->nsets] = "--set";
+            a->sets[a->nsets++] = s + 6;
+        } else if (!strcmp(s, "-o")) {
+            output = argv[++k]; /* applied last, as a --set output.file */
+        } else if (o && o->key) {
+            const char *v = argv[++k];
+            size_t n = strlen(o->key) + strlen(v) + 2;
+            char *set = own(a, malloc(n));
+            if (!set) {
+                ct_cli_fail("out of memory");
+                return EXIT_FAILED;
+            }
+            snprintf(set, n, "%s=%s", o->key, v);
+            a->set_where[a->nsets] = o->name;
+            a->sets[a->nsets++] = set;
+        } else if (o) {
+            if (a->nextra == sizeof a->extra_name / sizeof a->extra_name[0]) {
+                ct_cli_fail("%s: too many options", cmd);
+                return EXIT_USAGE;
+            }
+            a->extra_name[a->nextra] = o->name;
+            a->extra_value[a->nextra++] = argv[++k];
+        } else if (s[0] == '-' && s[1]) {
+            ct_cli_fail("unknown option %s (see cantact %s --help)", s, cmd);
+            return EXIT_USAGE;
+        } else if (a->npos < max_pos && a->npos < sizeof a->positional / sizeof a->positional[0]) {
+            a->positional[a->npos++] = s;
+        } else if (max_pos == 1) {
+            ct_cli_fail("only one scene file, got %s and %s", a->positional[0], s);
+            return EXIT_USAGE;
+        } else {
+            ct_cli_fail("%s: too many arguments (%s)", cmd, s);
+            return EXIT_USAGE;
+        }
+    }
+    if (output) {
+        size_t n = strlen(output) + sizeof "output.file=";
+        char *set = own(a, malloc(n));
+        if (!set) {
+            ct_cli_fail("out of memory");
+            return EXIT_FAILED;
+        }
+        snprintf(set, n, "output.file=%s", output);
+        a->set_where[a->nsets] = "-o";
+        a->sets[a->nsets++] = set;
+    }
+    return -1;
+}
+
+void ct_args_free(ct_args *a)
+{
+    for (size_t k = 0; k < a->nowned; k++)
+        free(a->owned[k]);
+    free(a->owned);
+    free(a->sets);
+    free(a->set_where);
+    memset(a, 0, sizeof *a);
+}
+
+const char *ct_args_extra(const ct_args *a, const char *name)
+{
+    const char *v = NULL;
+    for (size_t k = 0; k < a->nextra; k++)
+        if (!strcmp(a->extra_name[k], name))
+            v = a->extra_value[k];
+    return v;
+}
+
+void ct_cli_notes(ct_surface *s, int quiet)
+{
+    const char *note = s ? ct_surface_note(s) : "";
+    for (const char *p = note; !quiet && *p;) {
+        const char *nl = strchr(p, '\n');
+        int n = nl ? (int)(nl - p) : (int)strlen(p);
+        if (ct_mpi_rank() == 0)
+            fprintf(stderr, "cantact: %.*s\n", n, p);
+        p += n + (nl != NULL);
+    }
+    if (s)
+        ct_surface_note_clear(s);
+}
+
+int ct_cli_load_scene(const ct_args *a, const char *cmd, ct_scene *sc)
+{
+    if (!a->npos) {
+        ct_cli_fail("%s: missing SCENE.ini (see cantact %s --help)", cmd, cmd);
+        return EXIT_USAGE;
+    }
+    const char *path = a->positional[0];
+    if (ct_scene_load(sc, path, a->sets, a->nsets)) {
+        ct_cli_fail("%s", ct_scene_message());
+        return EXIT_USAGE;
+    }
+    if (ct_out_same_file(path, sc->output)) {
+        ct_cli_fail("output.file = %s: is the scene file itself", sc->output);
+        ct_scene_free(sc);
+        return EXIT_USAGE;
+    }
+    /* a subcommand the kind of surface does not give: said before any file is read */
+    const char *why;
+    char list[256];
+    snprintf(list, sizeof list, " %s ", ct_surface_outputs());
+    char word[64];
+    snprintf(word, sizeof word, " %s ", cmd);
+    if (strstr(list, word) &&
+        !ct_surface_kind_supports(ct_surface_kind_index(sc->surface), cmd, &why)) {
+        ct_cli_fail("%s: %s", cmd, why);
+        ct_scene_free(sc);
+        return EXIT_USAGE;
+    }
+    int st = ct_scene_prepare(sc);
+    ct_cli_notes(sc->surface, a->quiet);
+    if (st) {
+        ct_cli_fail("%s", ct_scene_message());
+        ct_scene_free(sc);
+        return ct_cli_status_exit(st);
+    }
+    return -1;
+}

@@ -1,0 +1,57 @@
+/* One argument parser for every subcommand: the options all share (-h, -q, --set, -o) and a
+ * subcommand's own, from a table. */
+#ifndef CT_CLI_ARGS_H
+#define CT_CLI_ARGS_H
+
+#include "scene.h"
+
+#include <stddef.h>
+
+enum { EXIT_DONE = 0, EXIT_FAILED = 1, EXIT_USAGE = 2 };
+
+/* A subcommand's own option: its spelling and what --set it stands for ("surface.unit"; NULL:
+ * the option is kept as it is, in ct_args.extra). */
+typedef struct {
+    const char *name;
+    const char *key; /* "section.key" it sets, NULL: kept */
+} ct_opt;
+
+typedef struct {
+    const char *positional[64];
+    size_t npos;
+    const char **sets; /* "section.key=value", -o last as output.file */
+    const char **set_where;
+    size_t nsets;
+    int quiet, help;
+    const char *extra_name[16], *extra_value[16];
+    size_t nextra;
+    char **owned; /* strings made here */
+    size_t nowned;
+} ct_args;
+
+/* Parses argv (the subcommand's arguments) with the shared options and opts (may be NULL).
+ * max_pos: the most positional arguments taken (more is an error naming them). Returns -1
+ * when the caller goes on, else an exit status (the error printed as one line). */
+int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_opt *opts,
+                  size_t max_pos);
+void ct_args_free(ct_args *a);
+/* The value of a kept option, NULL when not given. */
+const char *ct_args_extra(const ct_args *a, const char *name);
+
+/* Prints "cantact: msg" on stderr (rank 0 only under MPI). */
+void ct_cli_fail(const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+/* Exit status of a library status: 2 for bad input, 1 for a failed computation. */
+int ct_cli_status_exit(int st);
+
+/* Prints the surface's notes (one line each, "cantact: " first) unless quiet, and clears them. */
+void ct_cli_notes(ct_surface *s, int quiet);
+/* Loads the scene of a subcommand's first positional argument with the --set overrides,
+ * refuses an output that is the scene itself, and prepares it (files read, speeds as V*,
+ * outputs made ready). Returns -1 when the caller goes on, else an exit status. */
+int ct_cli_load_scene(const ct_args *a, const char *cmd, ct_scene *sc);
+
+#endif

@@ -1,0 +1,533 @@
+/* `cantact run`: the scene's surface built as rods and swept, its outputs held in a list
+ * (each a file opened first, written as the sweep goes or after it, published together). */
+#include "run.h"
+
+#include "args.h"
+#include "ensemble.h"
+#include "history.h"
+#include "number.h"
+#include "output.h"
+#include "ranks.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The outputs of a run besides a bounce sequence and an ensemble, in the order of their
+ * files: the e table at output.file, the others beside it (FILE_curve.csv, ...) when there
+ * are several. */
+typedef struct {
+    unsigned bit;
+    const char *tag;
+    ct_out out;
+    char *path;
+    int opened;
+} run_output;
+
+typedef struct {
+    run_output o[5]; /* e, curve, profile, history, bearing */
+    size_t n;
+} output_list;
+
+static const struct {
+    unsigned bit;
+    const char *tag;
+} output_kinds[] = {{CT_OUT_E, "e"},
+                    {CT_OUT_CURVE, "curve"},
+                    {CT_OUT_PROFILE, "profile"},
+                    {CT_OUT_HISTORY, "history"},
+                    {CT_OUT_BEARING, "bearing"}};
+#define NOUTPUTS (sizeof output_kinds / sizeof output_kinds[0])
+
+static char *derived_path(const char *path, const char *tag)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    size_t n = strlen(path);
+    char *out = malloc(n + strlen(tag) + 2);
+    if (!out)
+        return NULL;
+    if (dot && (!slash || dot > slash) && dot != path)
+        sprintf(out, "%.*s_%s%s", (int)(dot - path), path, tag, dot);
+    else
+        sprintf(out, "%s_%s", path, tag);
+    return out;
+}
+
+static FILE *output_file(output_list *l, unsigned bit)
+{
+    for (size_t k = 0; k < l->n; k++)
+        if (l->o[k].bit == bit && l->o[k].opened)
+            return l->o[k].out.f;
+    return NULL;
+}
+
+/* Opens every output asked for: an unwritable path fails before any work is done. */
+static int open_outputs(output_list *l, const ct_scene *sc, char *err, size_t errlen)
+{
+    memset(l, 0, sizeof *l);
+    size_t items = 0;
+    for (size_t k = 0; k < NOUTPUTS; k++)
+        items += !!(sc->what & output_kinds[k].bit);
+    if (items > 1 && !strcmp(sc->output, "-")) {
+        snprintf(err, errlen,
+                 "output.what names several outputs: set output.file (or -o FILE) to a path");
+        return -1;
+    }
+    for (size_t k = 0; k < NOUTPUTS; k++) {
+        if (!(sc->what & output_kinds[k].bit))
+            continue;
+        run_output *o = &l->o[l->n++];
+        o->bit = output_kinds[k].bit;
+        o->tag = output_kinds[k].tag;
+        o->path =
+            items > 1 && o->bit != CT_OUT_E ? derived_path(sc->output, o->tag) : strdup(sc->output);
+        if (!o->path) {
+            snprintf(err, errlen, "out of memory");
+            return -1;
+        }
+        if (ct_out_open(&o->out, o->path, err, errlen))
+            return -1;
+        o->opened = 1;
+    }
+    return 0;
+}
+
+/* All outputs land together or none does. */
+static int commit_outputs(output_list *l, char *err, size_t errlen)
+{
+    ct_out *outs[NOUTPUTS];
+    size_t n = 0;
+    for (size_t k = 0; k < l->n; k++)
+        if (l->o[k].opened) {
+            outs[n++] = &l->o[k].out;
+            l->o[k].opened = 0;
+        }
+    return ct_out_commit_all(outs, n, err, errlen);
+}
+
+static void close_outputs(output_list *l)
+{
+    for (size_t k = 0; k < l->n; k++) {
+        if (l->o[k].opened)
+            ct_out_abort(&l->o[k].out);
+        free(l->o[k].path);
+    }
+    memset(l, 0, sizeof *l);
+}
+
+/* ---- the curve output ---- */
+
+/* What the run writes while the sweep goes: curve branches, histories and, after the last
+ * impact of the last speed, the profile of the surface in that state. */
+typedef struct {
+    const ct_scene *sc;
+    FILE *curve, *profile, *history;
+    int compare;
+    ct_curve *post; /* the post-impact state's curve (the unloading branch) */
+} run_observer;
+
+/* A curve branch: the breakpoints in [lo, hi] (when fewer than 1e5) and a uniform grid, P
+ * from the state's load curve; the kind's comparison columns on the first impact. */
+static int write_branch(FILE *f, const run_observer *o, const ct_curve *c, const ct_layer *L,
+                        double V, long impact, double lo, double hi, int unload)
+{
+    enum { GRID = 200 };
+    const double *x = ct_curve_points(c), h0 = L->h0, PY = L->sigma_y * L->l0;
+    size_t n = ct_curve_size(c), a = 0, z = n;
+    while (a < n && !(x[a] > lo))
+        a++;
+    while (z > a && !(x[z - 1] < hi))
+        z--;
+    size_t use = z - a < 100000 ? z - a : 0;
+    double *u = malloc((use + GRID + 1) * sizeof(double));
+    if (!u)
+        return CT_ENOMEM;
+    /* merge the (sorted) breakpoints with the (sorted) grid */
+    size_t m = 0, i = a, g = 0;
+    while (i < a + use || g <= GRID) {
+        double ug = g <= GRID ? lo + (hi - lo) * g / GRID : INFINITY;
+        double ub = i < a + use ? x[i] : INFINITY;
+        double next = ub < ug ? ub : ug;
+        if (ub < ug)
+            i++;
+        else
+            g++;
+        if (!m || next != u[m - 1])
+            u[m++] = next;
+    }
+    const char *const *names;
+    const size_t ncmp = o->compare ? ct_surface_curve_compare_columns(o->sc->surface, &names) : 0;
+    for (size_t j = 0; j < m; j++) {
+        size_t k = unload ? m - 1 - j : j;
+        ct_put_double(f, V);
+        fprintf(f, ",%ld,", impact);
+        ct_put_double(f, u[k] / h0);
+        fputc(',', f);
+        ct_put_double(f, ct_curve_force(c, u[k]) / PY);
+        fprintf(f, ",%s", unload ? "unload" : "load");
+        double laws[8];
+        for (size_t q = 0; q < ncmp; q++)
+            laws[q] = NAN;
+        if (impact == 1) /* the laws at the same u, unloading from the exact u_max (hi) */
+            ct_surface_curve_compare(o->sc->surface, unload, hi, u[k], laws);
+        for (size_t q = 0; q < ncmp; q++) {
+            fputc(',', f);
+            if (isfinite(laws[q]))
+                ct_put_double(f, laws[q]);
+        }
+        fputc('\n', f);
+    }
+    free(u);
+    return CT_OK;
+}
+
+static int observe(const ct_sweep_row *row, int phase, const ct_bundle *b, const ct_curve *c,
+                   void *ctx)
+{
+    run_observer *o = ctx;
+    const ct_scene *sc = o->sc;
+    const ct_layer *L = ct_bundle_layer(b);
+    int st = CT_OK;
+    if (phase == 0 && o->history && (st = ct_cli_history_rows(o->history, sc, row, b)))
+        return st;
+    if (phase == 0 && o->curve)
+        st = write_branch(o->curve, o, c, L, row->V_star, row->impact, row->r.u_contact,
+                          row->r.u_max, 0);
+    if (phase == 1 && o->curve && !(st = ct_curve_build(o->post, b)))
+        st = write_branch(o->curve, o, o->post, L, row->V_star, row->impact, row->r.u_release,
+                          row->r.u_max, 1);
+    if (phase == 1 && o->profile && row->speed + 1 == sc->nvel && row->impact == sc->impacts)
+        st = ct_surface_write_profile(sc->surface, b, o->profile);
+    return st;
+}
+
+static void show_progress(size_t done, size_t total, void *ctx)
+{
+    (void)total;
+    ct_progress *prog = ctx;
+    while (prog->done < done)
+        ct_progress_step(prog);
+}
+
+/* ---- the e table ---- */
+
+static void field(FILE *f, double x, int digits)
+{
+    fputc(',', f);
+    if (isfinite(x)) {
+        if (digits == 3)
+            ct_put_g3(f, x);
+        else
+            ct_put_double(f, x);
+    }
+}
+
+static void write_e_header(FILE *f, const ct_scene *sc)
+{
+    const ct_column *cols;
+    const size_t n = ct_sweep_columns(&cols);
+    const char *sep = "";
+    for (size_t k = 0; k < n; k++, sep = ",")
+        if (!strcmp(cols[k].group, "e"))
+            fprintf(f, "%s%s", sep, cols[k].name);
+    if (sc->what & CT_OUT_COMPARE) {
+        const char *const *names;
+        const size_t m = ct_surface_compare_columns(sc->surface, &names);
+        for (size_t k = 0; k < m; k++)
+            fprintf(f, ",%s", names[k]);
+    }
+    if (sc->what & CT_OUT_TIME)
+        ct_cli_time_header(f, sc);
+    fprintf(f, "%s\n", sc->skip_failed ? ",error" : "");
+}
+
+/* One row: the e columns, the kind's comparison columns, the time columns, and (with
+ * solver.on_error = skip) the error; a failed impact has its impact and V* and empty fields
+ * up to its reason. */
+static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, const double *cmp,
+                        size_t ncmp)
+{
+    const ct_column *cols;
+    const size_t n = ct_sweep_columns(&cols);
+    const ct_layer *L = &sc->scales.layer;
+    ct_put_long(f, row->impact);
+    fputc(',', f);
+    ct_put_double(f, row->V_star);
+    for (size_t k = 0; k < n; k++) {
+        if (strcmp(cols[k].group, "e") || !strcmp(cols[k].name, "impact") ||
+            !strcmp(cols[k].name, "V_star"))
+            continue;
+        const double v = row->status ? NAN : ct_column_value(&cols[k], row, L);
+        if (cols[k].type != 'd' && !row->status) {
+            fputc(',', f);
+            ct_put_long(f, (long)v);
+        } else {
+            field(f, v, cols[k].digits);
+        }
+    }
+    for (size_t q = 0; q < ncmp; q++)
+        field(f, row->status ? NAN : cmp[q], 17);
+    if (sc->what & CT_OUT_TIME)
+        ct_cli_time_row(f, sc, row);
+    if (row->status) {
+        fputs(",\"", f);
+        for (const char *m = row->message; *m; m++)
+            fputc(*m == '"' ? '\'' : *m, f);
+        fputs("\"\n", f);
+        return;
+    }
+    if (sc->skip_failed)
+        fputc(',', f);
+    fputc('\n', f);
+}
+
+/* Checks every row, writes the e table, and says how many impacts failed. */
+static int write_e_table(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, size_t nrows,
+                         const double *cmp, size_t ncmp, int quiet)
+{
+    char err[512];
+    size_t failed = 0;
+    const ct_sweep_row *first_failed = NULL;
+    for (size_t k = 0; k < nrows; k++) {
+        if (rows[k].status == CT_OK && !(isfinite(rows[k].r.e) && isfinite(rows[k].r.u_max))) {
+            ct_cli_fail("V* = %g impact %ld: a non-finite result", rows[k].V_star, rows[k].impact);
+            return EXIT_FAILED;
+        }
+        if ((sc->what & CT_OUT_TIME) && ct_cli_time_check(&rows[k], err, sizeof err)) {
+            ct_cli_fail("%s", err); /* two computations of the rebound disagree: a defect */
+            return EXIT_FAILED;
+        }
+        if (rows[k].status && !failed++)
+            first_failed = &rows[k];
+        if (f)
+            write_e_row(f, sc, &rows[k], cmp ? cmp + ncmp * k : NULL, ncmp);
+    }
+    if (failed && !quiet)
+        fprintf(stderr,
+                "cantact: %zu of %zu impacts failed or not run (first: V* = %g, impact %ld: %s)\n",
+                failed, nrows, first_failed->V_star, first_failed->impact, first_failed->message);
+    return EXIT_DONE;
+}
+
+/* ---- run ---- */
+
+/* impact.sequence = bounce: impacts at falling speeds, the state carried (src/cli/history.c). */
+static int run_bounce(ct_scene *sc, int quiet)
+{
+    ct_out out;
+    char err[512];
+    ct_bundle *b = NULL;
+    ct_plan_info info;
+    ct_build_request req;
+    int st;
+    if (ct_out_open(&out, sc->output, err, sizeof err)) {
+        ct_cli_fail("%s", err);
+        return EXIT_USAGE;
+    }
+    ct_scene_request(sc, 0, &req);
+    if ((st = ct_surface_build(sc->surface, &req, &b, &info))) {
+        ct_out_abort(&out);
+        ct_cli_fail("%s", ct_error_message());
+        return ct_cli_status_exit(st);
+    }
+    if (!quiet) {
+        char what[300];
+        ct_surface_describe(sc->surface, &info, what, sizeof what);
+        fprintf(stderr, "cantact: bounce sequence on %s, at most %ld impacts\n", what, sc->impacts);
+    }
+    st = ct_cli_bounce(out.f, sc, b, err, sizeof err);
+    ct_bundle_free(b);
+    if (st) {
+        ct_out_abort(&out);
+        ct_cli_fail("%s", err);
+        return ct_cli_status_exit(st);
+    }
+    if (ct_out_commit(&out, err, sizeof err)) {
+        ct_cli_fail("%s", err);
+        return EXIT_USAGE;
+    }
+    return EXIT_DONE;
+}
+
+/* The kind's comparison columns for every row (what = compare): NULL when not asked or when
+ * they cannot be computed (said on stderr; their fields stay empty). */
+static double *compare_columns(ct_scene *sc, const ct_sweep_row *rows, size_t nrows, size_t *ncmp,
+                               int quiet, int *oom)
+{
+    const char *const *names;
+    *oom = 0;
+    *ncmp = (sc->what & CT_OUT_COMPARE) ? ct_surface_compare_columns(sc->surface, &names) : 0;
+    if (!*ncmp)
+        return NULL;
+    double *cmp = malloc((nrows ? nrows : 1) * *ncmp * sizeof(double));
+    if (!cmp) {
+        *oom = 1;
+        return NULL;
+    }
+    if (ct_surface_compare(sc->surface, rows, nrows, cmp)) {
+        if (!quiet)
+            fprintf(stderr, "cantact: compare: %s (its columns stay empty)\n", ct_error_message());
+        for (size_t k = 0; k < nrows * *ncmp; k++)
+            cmp[k] = NAN;
+    }
+    return cmp;
+}
+
+/* The sweep with its observer, then the outputs written after it. */
+static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, int quiet)
+{
+    const size_t nrows = sc->nvel * (size_t)sc->impacts;
+    const int state_profile =
+        (sc->what & CT_OUT_PROFILE) && ct_surface_profile_shows_state(sc->surface);
+    run_observer obs = {.sc = sc,
+                        .curve = output_file(outs, CT_OUT_CURVE),
+                        .profile = state_profile ? output_file(outs, CT_OUT_PROFILE) : NULL,
+                        .history = output_file(outs, CT_OUT_HISTORY),
+                        .compare = !!(sc->what & CT_OUT_COMPARE)};
+    int st, rc = EXIT_DONE, oom;
+    ct_sweep_row *rows = malloc((nrows ? nrows : 1) * sizeof *rows);
+    if (!rows) {
+        ct_cli_fail("%zu result rows: out of memory", nrows);
+        return EXIT_FAILED;
+    }
+    if (obs.curve) {
+        const char *const *names;
+        const size_t m = obs.compare ? ct_surface_curve_compare_columns(sc->surface, &names) : 0;
+        fputs("V_star,impact,u_over_h0,P_over_PY,branch", obs.curve);
+        for (size_t k = 0; k < m; k++)
+            fprintf(obs.curve, ",%s", names[k]);
+        fputc('\n', obs.curve);
+    }
+    if (obs.history)
+        ct_cli_history_header(obs.history, sc);
+    if (obs.curve && (st = ct_curve_alloc(&obs.post))) {
+        free(rows);
+        ct_cli_fail("%s", ct_error_message());
+        return ct_cli_status_exit(st);
+    }
+    ct_progress prog;
+    ct_progress_start(&prog, sc->nvel);
+    ct_sweep_spec spec = {
+        .V_star = sc->V_star,
+        .nvel = sc->nvel,
+        .impacts = sc->impacts,
+        .opts = sc->opts,
+        .stop_on_error = !sc->skip_failed,
+        .progress = show_progress,
+        .progress_ctx = &prog,
+        .observe = (obs.curve || obs.profile || obs.history) ? observe : NULL,
+        .observe_ctx = &obs,
+        .path = sc->path,
+        .dynamics = !!(sc->what & CT_OUT_TIME),
+    };
+    st = ct_sweep(b, &spec, rows);
+    ct_progress_end(&prog);
+    ct_curve_free(obs.post);
+    FILE *fp = output_file(outs, CT_OUT_PROFILE), *fb = output_file(outs, CT_OUT_BEARING);
+    if (!st)
+        st = ct_surface_after_sweep(sc->surface, rows, nrows);
+    ct_cli_notes(sc->surface, quiet);
+    if (!st && fb)
+        st = ct_surface_write_bearing(sc->surface, fb);
+    if (!st && fp && !state_profile)
+        st = ct_surface_write_profile(sc->surface, b, fp);
+    if (st) {
+        ct_cli_fail("%s", ct_error_message());
+        free(rows);
+        return ct_cli_status_exit(st);
+    }
+    size_t ncmp;
+    double *cmp = compare_columns(sc, rows, nrows, &ncmp, quiet, &oom);
+    if (oom)
+        ct_cli_fail("compare: out of memory");
+    else
+        rc = write_e_table(output_file(outs, CT_OUT_E), sc, rows, nrows, cmp, ncmp, quiet);
+    free(cmp);
+    free(rows);
+    return oom ? EXIT_FAILED : rc;
+}
+
+static int run_sweep(ct_scene *sc, int quiet);
+
+int ct_cli_run(int argc, char **argv, const char *help)
+{
+    static const ct_opt opts[] = {{"--realisations", NULL}, {NULL, NULL}};
+    ct_args a;
+    ct_scene sc;
+    int rc = ct_args_parse(&a, argc, argv, "run", opts, 1);
+    if (rc < 0 && a.help) {
+        fputs(help, stdout);
+        rc = EXIT_DONE;
+    }
+    if (rc < 0)
+        rc = ct_cli_load_scene(&a, "run", &sc);
+    if (rc >= 0) {
+        ct_args_free(&a);
+        return rc;
+    }
+    const char *range = ct_args_extra(&a, "--realisations");
+    if (sc.realisations) { /* an ensemble of random realisations (src/cli/ensemble.c) */
+        rc = ct_cli_ensemble_run(&sc, a.quiet, range);
+    } else if (range || ct_mpi_size() > 1) {
+        ct_cli_fail(range ? "--realisations: the scene has no [ensemble] realisations"
+                          : "under MPI only ensembles ([ensemble] realisations) are shared "
+                            "among processes");
+        rc = EXIT_USAGE;
+    } else if (sc.bounce) { /* a bounce sequence: its own table */
+        rc = run_bounce(&sc, a.quiet);
+    } else {
+        rc = run_sweep(&sc, a.quiet);
+    }
+    ct_scene_free(&sc);
+    ct_args_free(&a);
+    return rc;
+}
+
+static int run_sweep(ct_scene *sc, int quiet)
+{
+    output_list outs;
+    char err[512];
+    ct_bundle *b = NULL;
+    ct_plan_info info;
+    ct_build_request req;
+    int st, rc;
+    /* the result rows (speeds x impacts) are held in memory: refuse up front what would not
+     * fit, with the figure (1e6 speeds x 1e6 impacts are allowed by the scene's ranges) */
+    const double bytes = (double)sc->nvel * (double)sc->impacts * (double)sizeof(ct_sweep_row);
+    const double avail = (double)ct_available_memory();
+    if (bytes > 0.9 * avail) {
+        ct_cli_fail("%zu speeds x %ld impacts = %.3g result rows need %.3g GiB, more than the "
+                    "%.3g GiB of memory available: split the scene",
+                    sc->nvel, sc->impacts, (double)sc->nvel * (double)sc->impacts,
+                    bytes / 1073741824.0, avail / 1073741824.0);
+        return EXIT_FAILED;
+    }
+    if (open_outputs(&outs, sc, err, sizeof err)) {
+        ct_cli_fail("%s", err);
+        close_outputs(&outs);
+        return EXIT_USAGE;
+    }
+    ct_scene_request(sc, !!(sc->what & CT_OUT_PROFILE), &req);
+    if ((st = ct_surface_build(sc->surface, &req, &b, &info))) {
+        ct_cli_fail("%s", ct_error_message());
+        close_outputs(&outs);
+        return ct_cli_status_exit(st);
+    }
+    if (!quiet) {
+        char what[300];
+        ct_surface_describe(sc->surface, &info, what, sizeof what);
+        fprintf(stderr, "cantact: %s, %d thread(s)\n", what, ct_bundle_set_threads(b, sc->threads));
+    }
+    FILE *fe = output_file(&outs, CT_OUT_E);
+    if (fe)
+        write_e_header(fe, sc);
+    rc = sweep_and_write(sc, &outs, b, quiet);
+    ct_bundle_free(b);
+    if (rc == EXIT_DONE && commit_outputs(&outs, err, sizeof err)) {
+        ct_cli_fail("%s", err);
+        rc = EXIT_USAGE;
+    }
+    close_outputs(&outs);
+    return rc;
+}

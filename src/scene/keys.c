@@ -1,0 +1,393 @@
+/* Scene keys as data: one parser for every row of every key table (the CLI's sections, each
+ * kind of surface's keys), so that a value is accepted or refused with the same words
+ * whichever front-end reads it. Numbers are read in the C locale (a decimal comma would make
+ * "1.5" fail and "1,5" pass): uselocale is per thread, and restored. */
+#include "internal.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <locale.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int ct_word_index(const char *words, const char *word)
+{
+    if (!words || !word)
+        return -1;
+    const size_t n = strlen(word);
+    int k = 0;
+    for (const char *w = words;; k++) {
+        const char *bar = strchr(w, '|');
+        const size_t len = bar ? (size_t)(bar - w) : strlen(w);
+        if (len == n && !strncmp(w, word, n))
+            return k;
+        if (!bar)
+            return -1;
+        w = bar + 1;
+    }
+}
+
+/* "a, b or c" from "a|b|c" */
+static void words_list(const char *words, char *buf, size_t len)
+{
+    size_t n = 0, count = 1;
+    for (const char *c = words; *c; c++)
+        count += *c == '|';
+    size_t k = 0;
+    buf[0] = '\0';
+    for (const char *w = words; w && n < len; k++) {
+        const char *bar = strchr(w, '|');
+        const int wl = (int)(bar ? (size_t)(bar - w) : strlen(w));
+        const char *sep = k == 0 ? "" : k + 1 == count ? " or " : ", ";
+        n += (size_t)snprintf(buf + n, len - n, "%s%.*s", sep, wl, w);
+        w = bar ? bar + 1 : NULL;
+    }
+}
+
+/* A number the whole text spells (white space around it allowed), finite and representable;
+ * else 0 with *why saying what is wrong. */
+static int read_number(const char *text, double *out, const char **why)
+{
+    char *end;
+    while (isspace((unsigned char)*text))
+        text++;
+    const char *nan_why = "not a finite number";
+    if (!*text) {
+        *why = nan_why;
+        return 0;
+    }
+    errno = 0;
+    double v = strtod(text, &end);
+    while (isspace((unsigned char)*end))
+        end++;
+    if (*end || end == text || (!isfinite(v) && errno != ERANGE)) { /* inf, nan spelled out */
+        *why = nan_why;
+        return 0;
+    }
+    if (errno == ERANGE) {
+        *why = fabs(v) >= 1.0 ? "overflows double precision (|value| > 1.8e308)"
+                              : "underflows double precision (0 < |value| < 2.2e-308)";
+        return 0;
+    }
+    *out = v;
+    return 1;
+}
+
+static int read_integer(const char *text, long *out)
+{
+    char *end;
+    while (isspace((unsigned char)*text))
+        text++;
+    if (!*text)
+        return 0;
+    errno = 0;
+    long v = strtol(text, &end, 10);
+    while (isspace((unsigned char)*end))
+        end++;
+    if (*end || end == text || errno == ERANGE)
+        return 0;
+    *out = v;
+    return 1;
+}
+
+static int read_count(const char *text, uint64_t *out)
+{
+    char *end;
+    while (isspace((unsigned char)*text))
+        text++;
+    errno = 0;
+    unsigned long long x = strtoull(text, &end, 10);
+    while (isspace((unsigned char)*end))
+        end++;
+    if (!isdigit((unsigned char)*text) || *end || errno == ERANGE)
+        return 0;
+    *out = (uint64_t)x;
+    return 1;
+}
+
+static int in_range(const ct_key *row, double v)
+{
+    const int lo = row->flags & CT_KEY_LO_CLOSED ? v >= row->lo : v > row->lo;
+    const int hi = row->flags & CT_KEY_HI_CLOSED ? v <= row->hi : v < row->hi;
+    return lo && hi;
+}
+
+/* from:to:count[:log] */
+static int speeds_range(const char *v, ct_speeds *out)
+{
+    char buf[256];
+    if (strlen(v) >= sizeof buf)
+        return ct_error_set(CT_EINVAL, "from:to:count[:log] longer than 255 characters");
+    snprintf(buf, sizeof buf, "%s", v);
+    char *parts[4];
+    int np = 0;
+    for (char *f = buf;;) { /* exactly three or four fields, none skipped */
+        char *colon = strchr(f, ':');
+        if (colon)
+            *colon = '\0';
+        if (np == 4)
+            return ct_error_set(CT_EINVAL, "expected from:to:count[:log] (too many fields)");
+        parts[np++] = f;
+        if (!colon)
+            break;
+        f = colon + 1;
+    }
+    double ends[2];
+    long cnt;
+    const char *why;
+    if (np < 3)
+        return ct_error_set(CT_EINVAL, "expected from:to:count[:log]");
+    for (int k = 0; k < 2; k++)
+        if (!read_number(parts[k], &ends[k], &why))
+            return ct_error_set(CT_EINVAL, "expected from:to:count[:log]: %s field %s",
+                                k ? "the second" : "the first", why);
+    if (!read_integer(parts[2], &cnt))
+        return ct_error_set(CT_EINVAL, "expected from:to:count[:log]: count is no integer");
+    int logscale = 0;
+    if (np == 4) {
+        char *m = parts[3], *end = m + strlen(m);
+        while (isspace((unsigned char)*m))
+            m++;
+        while (end > m && isspace((unsigned char)end[-1]))
+            end--;
+        if (end - m != 3 || strncmp(m, "log", 3))
+            return ct_error_set(CT_EINVAL, "the fourth field may only be 'log'");
+        logscale = 1;
+    }
+    if (cnt < 1 || cnt > CT_MAX_SPEEDS)
+        return ct_error_set(CT_EINVAL, "count must satisfy 1 <= count <= 1000000");
+    const double from = ends[0], to = ends[1];
+    if (!(from > 0.0) || !(to > 0.0))
+        return ct_error_set(CT_EINVAL, "from and to must be > 0");
+    double *vals = malloc((size_t)cnt * sizeof(double));
+    if (!vals)
+        return ct_error_set(CT_ENOMEM, "out of memory");
+    for (long k = 0; k < cnt; k++) {
+        double t = cnt == 1 ? 0.0 : (double)k / (double)(cnt - 1);
+        vals[k] = logscale ? from * exp(t * (log(to) - log(from))) : from + t * (to - from);
+    }
+    vals[cnt - 1] = to;
+    out->v = vals;
+    out->n = (size_t)cnt;
+    return CT_OK;
+}
+
+/* a, b, c: every value finite and > 0 */
+static int speeds_list(const char *v, ct_speeds *out)
+{
+    size_t cap = 1, n = 0;
+    for (const char *c = v; *c; c++)
+        cap += *c == ',';
+    if (cap > CT_MAX_SPEEDS)
+        return ct_error_set(CT_EINVAL, "at most 1000000 values");
+    double *vals = malloc(cap * sizeof(double));
+    char *buf = strdup(v);
+    if (!vals || !buf) {
+        free(vals);
+        free(buf);
+        return ct_error_set(CT_ENOMEM, "out of memory");
+    }
+    for (char *start = buf;;) {
+        char *comma = strchr(start, ',');
+        if (comma)
+            *comma = '\0';
+        const char *why = "must be > 0";
+        vals[n] = NAN;
+        if (!read_number(start, &vals[n], &why) || !(vals[n] > 0.0)) {
+            free(vals);
+            free(buf);
+            return ct_error_set(CT_EINVAL, "value %zu: %s", n + 1, why);
+        }
+        n++;
+        if (!comma)
+            break;
+        start = comma + 1;
+    }
+    free(buf);
+    out->v = vals;
+    out->n = n;
+    return CT_OK;
+}
+
+static int parse_range2(const ct_key *row, const char *v, double *out)
+{
+    const char *colon = strchr(v, ':');
+    char first[128];
+    const char *why = "not a finite number";
+    (void)row;
+    if (!colon || strchr(colon + 1, ':') || (size_t)(colon - v) >= sizeof first)
+        return ct_error_set(CT_EINVAL, "expected from:to (two numbers, 0 < from < to)");
+    memcpy(first, v, (size_t)(colon - v));
+    first[colon - v] = '\0';
+    double a, b;
+    if (!read_number(first, &a, &why) || !read_number(colon + 1, &b, &why))
+        return ct_error_set(CT_EINVAL, "%s", why);
+    if (!(a > 0.0 && b > a))
+        return ct_error_set(CT_EINVAL, "expected from:to with 0 < from < to");
+    out[0] = a;
+    out[1] = b;
+    return CT_OK;
+}
+
+static int parse_words(const ct_key *row, const char *v, unsigned *out)
+{
+    unsigned bits = 0;
+    char *buf = strdup(v);
+    if (!buf)
+        return ct_error_set(CT_ENOMEM, "out of memory");
+    char *save = NULL;
+    for (char *tok = strtok_r(buf, ", \t", &save); tok; tok = strtok_r(NULL, ", \t", &save)) {
+        int k = ct_word_index(row->words, tok);
+        if (k < 0) {
+            free(buf);
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        }
+        bits |= 1u << k;
+    }
+    free(buf);
+    if (!bits)
+        return ct_error_set(CT_EINVAL, "%s", row->range);
+    *out = bits;
+    return CT_OK;
+}
+
+static int parse_value(const ct_key *row, const char *v, void *at)
+{
+    double x;
+    long l;
+    const char *why;
+    switch (row->type) {
+    case CT_KEY_NUMBER:
+        if (!read_number(v, &x, &why))
+            return ct_error_set(CT_EINVAL, "%s", why);
+        if (!in_range(row, x))
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        *(double *)at = x;
+        return CT_OK;
+    case CT_KEY_INTEGER:
+        if (!read_integer(v, &l))
+            return ct_error_set(CT_EINVAL, "not an integer (%s)", row->range);
+        if ((double)l < row->lo || (double)l > row->hi)
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        *(long *)at = l;
+        return CT_OK;
+    case CT_KEY_DEPTH: {
+        int w = ct_word_index(row->words, v);
+        if (w >= 0) {
+            *(long *)at = -1 - (long)w;
+            return CT_OK;
+        }
+        if (!read_integer(v, &l)) {
+            char words[128];
+            words_list(row->words, words, sizeof words);
+            return ct_error_set(CT_EINVAL, "must be an integer, %s", words);
+        }
+        if ((double)l < row->lo || (double)l > row->hi)
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        *(long *)at = l;
+        return CT_OK;
+    }
+    case CT_KEY_COUNT:
+        if (!read_count(v, (uint64_t *)at))
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        return CT_OK;
+    case CT_KEY_WORD: {
+        int w = ct_word_index(row->words, v);
+        if (w < 0)
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        *(int *)at = w;
+        return CT_OK;
+    }
+    case CT_KEY_WORDS:
+        return parse_words(row, v, (unsigned *)at);
+    case CT_KEY_TEXT: {
+        if (!*v)
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        char *copy = strdup(v);
+        if (!copy)
+            return ct_error_set(CT_ENOMEM, "out of memory");
+        free(*(char **)at);
+        *(char **)at = copy;
+        return CT_OK;
+    }
+    case CT_KEY_SPEEDS: {
+        ct_speeds s = {0};
+        int st = strchr(v, ':') ? speeds_range(v, &s) : speeds_list(v, &s);
+        if (st)
+            return st;
+        free(((ct_speeds *)at)->v);
+        *(ct_speeds *)at = s;
+        return CT_OK;
+    }
+    case CT_KEY_RANGE:
+        return parse_range2(row, v, (double *)at);
+    }
+    return ct_error_set(CT_EINVAL, "key %s.%s: unknown type %d", row->section, row->name,
+                        (int)row->type);
+}
+
+int ct_key_parse(const ct_key *row, const char *text, void *settings)
+{
+    CT_NEED(row);
+    CT_NEED(text);
+    CT_NEED(settings);
+    locale_t c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    locale_t before = c_locale ? uselocale(c_locale) : (locale_t)0;
+    int st = parse_value(row, text, (char *)settings + row->offset);
+    if (c_locale) {
+        uselocale(before);
+        freelocale(c_locale);
+    }
+    return st;
+}
+
+void ct_key_clear(const ct_key *row, void *settings)
+{
+    void *at = (char *)settings + row->offset;
+    if (row->type == CT_KEY_TEXT) {
+        free(*(char **)at);
+        *(char **)at = NULL;
+    } else if (row->type == CT_KEY_SPEEDS) {
+        free(((ct_speeds *)at)->v);
+        ((ct_speeds *)at)->v = NULL;
+        ((ct_speeds *)at)->n = 0;
+    }
+}
+
+void ct_key_describe(const ct_key *row, char *buf, size_t len)
+{
+    char words[256];
+    if (row->words)
+        words_list(row->words, words, sizeof words);
+    switch (row->type) {
+    case CT_KEY_NUMBER:
+        snprintf(buf, len, "number: %s", row->range);
+        break;
+    case CT_KEY_INTEGER:
+        snprintf(buf, len, "integer: %s", row->range);
+        break;
+    case CT_KEY_DEPTH:
+        snprintf(buf, len, "integer or %s: %s", words, row->range);
+        break;
+    case CT_KEY_COUNT:
+        snprintf(buf, len, "integer 0 <= n < 2^64");
+        break;
+    case CT_KEY_WORD:
+        snprintf(buf, len, "%s", words);
+        break;
+    case CT_KEY_WORDS:
+        snprintf(buf, len, "a list of %s", words);
+        break;
+    case CT_KEY_TEXT:
+        snprintf(buf, len, "text (a path)");
+        break;
+    case CT_KEY_SPEEDS:
+        snprintf(buf, len, "numbers > 0: a, b, c or from:to:count[:log]");
+        break;
+    case CT_KEY_RANGE:
+        snprintf(buf, len, "from:to, 0 < from < to");
+        break;
+    }
+}

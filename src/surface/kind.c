@@ -1,0 +1,517 @@
+/* The registry of kinds of surface and the surface handle every front-end uses: keys set as
+ * text through the kind's rows, checked together, prepared, built into rods; the outputs
+ * only some kinds give are asked of the kind's descriptor. */
+#include "kind.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const ct_kind *const registry[] = {&ct_kind_cantor, &ct_kind_random_cantor, &ct_kind_profile,
+                                          &ct_kind_rods};
+#define NKINDS (sizeof registry / sizeof registry[0])
+
+/* Every kind gives these; the others are the kind's to give or refuse. */
+static const char generic_outputs[] = "e time curve history bounce table";
+static const char all_outputs[] = "e time curve history bounce table profile compare bearing "
+                                  "ensemble realisations geometry fit merge";
+
+size_t ct_surface_kind_count(void)
+{
+    return NKINDS;
+}
+
+const char *ct_surface_kind_name(size_t k)
+{
+    return k < NKINDS ? registry[k]->name : NULL;
+}
+
+const char *ct_surface_kind_summary(size_t k)
+{
+    return k < NKINDS ? registry[k]->summary : NULL;
+}
+
+const ct_key *ct_surface_kind_keys(size_t k, size_t *n)
+{
+    if (k >= NKINDS) {
+        *n = 0;
+        return NULL;
+    }
+    *n = registry[k]->nkeys;
+    return registry[k]->keys;
+}
+
+const char *ct_surface_outputs(void)
+{
+    return all_outputs;
+}
+
+/* 1 when word is one of the blank-separated words of list. */
+static int in_list(const char *list, const char *word)
+{
+    const size_t n = strlen(word);
+    for (const char *p = list; p && *p;) {
+        while (*p == ' ')
+            p++;
+        const char *end = strchr(p, ' ');
+        const size_t len = end ? (size_t)(end - p) : strlen(p);
+        if (len == n && n && !strncmp(p, word, n))
+            return 1;
+        p = end;
+    }
+    return 0;
+}
+
+int ct_surface_kind_supports(size_t k, const char *output, const char **why)
+{
+    static const char unknown[] = "not an output of cantact";
+    const char *dummy;
+    if (!why)
+        why = &dummy;
+    *why = NULL;
+    if (k >= NKINDS || !output || !in_list(all_outputs, output)) {
+        *why = unknown;
+        return 0;
+    }
+    const ct_kind *kind = registry[k];
+    if (in_list(generic_outputs, output) || in_list(kind->gives, output))
+        return 1;
+    for (const ct_refusal *r = kind->refusals; r && r->output; r++)
+        if (!strcmp(r->output, output)) {
+            *why = r->why;
+            return 0;
+        }
+    *why = "not given by this kind of surface";
+    return 0;
+}
+
+const ct_key *ct_kind_key(const ct_kind *kind, const char *section, const char *name, size_t *k)
+{
+    for (size_t i = 0; i < kind->nkeys; i++)
+        if (!strcmp(kind->keys[i].section, section) && !strcmp(kind->keys[i].name, name)) {
+            if (k)
+                *k = i;
+            return &kind->keys[i];
+        }
+    return NULL;
+}
+
+int ct_surface_new(ct_surface **out, const char *kind)
+{
+    CT_NEED(out);
+    CT_NEED(kind);
+    *out = NULL;
+    const ct_kind *d = NULL;
+    size_t index = 0;
+    for (size_t k = 0; k < NKINDS; k++)
+        if (!strcmp(registry[k]->name, kind)) {
+            d = registry[k];
+            index = k;
+        }
+    if (!d) {
+        char names[200] = "";
+        size_t n = 0;
+        for (size_t k = 0; k < NKINDS; k++)
+            n += (size_t)snprintf(names + n, sizeof names - n, "%s%s",
+                                  k == 0            ? ""
+                                  : k + 1 == NKINDS ? " or "
+                                                    : ", ",
+                                  registry[k]->name);
+        return ct_error_set(CT_EINVAL, "must be %s", names);
+    }
+    ct_surface *s = calloc(1, sizeof *s);
+    if (!s || !(s->config = calloc(1, d->config_size)) ||
+        !(s->given = calloc(d->nkeys ? d->nkeys : 1, sizeof(char *))) ||
+        !(s->where = calloc(d->nkeys ? d->nkeys : 1, sizeof(char *)))) {
+        if (s) {
+            free(s->config);
+            free(s->given);
+        }
+        free(s);
+        return ct_error_set(CT_ENOMEM, "surface: out of memory");
+    }
+    s->kind = d;
+    s->index = index;
+    d->defaults(s->config);
+    *out = s;
+    return CT_OK;
+}
+
+void ct_surface_free(ct_surface *s)
+{
+    if (!s)
+        return;
+    const ct_kind *d = s->kind;
+    if (d->release)
+        d->release(s->config);
+    for (size_t k = 0; k < d->nkeys; k++) {
+        ct_key_clear(&d->keys[k], s->config);
+        free(s->given[k]);
+        free(s->where[k]);
+    }
+    free(s->given);
+    free(s->where);
+    free(s->config);
+    free(s);
+}
+
+size_t ct_surface_kind_index(const ct_surface *s)
+{
+    return s->index;
+}
+
+const char *ct_surface_kind(const ct_surface *s)
+{
+    return s->kind->name;
+}
+
+const ct_key *ct_surface_key(const ct_surface *s, const char *section, const char *name)
+{
+    return ct_kind_key(s->kind, section, name, NULL);
+}
+
+/* "a, b or c" of the kinds that have section.name */
+static void kinds_with(const char *section, const char *name, char *buf, size_t len)
+{
+    size_t n = 0, found = 0, total = 0;
+    for (size_t k = 0; k < NKINDS; k++)
+        total += ct_kind_key(registry[k], section, name, NULL) != NULL;
+    buf[0] = '\0';
+    for (size_t k = 0; k < NKINDS && n < len; k++)
+        if (ct_kind_key(registry[k], section, name, NULL)) {
+            n += (size_t)snprintf(buf + n, len - n, "%s%s",
+                                  found == 0           ? ""
+                                  : found + 1 == total ? " or "
+                                                       : ", ",
+                                  registry[k]->name);
+            found++;
+        }
+}
+
+static void shown_value(const char *value, char *buf, size_t len)
+{
+    const size_t n = strlen(value);
+    snprintf(buf, len, "%.*s%s", (int)(n > 80 ? 72 : n), value, n > 80 ? "..." : "");
+}
+
+int ct_surface_set(ct_surface *s, const char *section, const char *name, const char *value,
+                   const char *where)
+{
+    CT_NEED(s);
+    CT_NEED(section);
+    CT_NEED(name);
+    CT_NEED(value);
+    const char *at = where && *where ? where : "";
+    const char *colon = *at ? ": " : "";
+    char shown[96];
+    shown_value(value, shown, sizeof shown);
+    size_t k;
+    const ct_key *row = ct_kind_key(s->kind, section, name, &k);
+    if (!row) {
+        char kinds[200];
+        kinds_with(section, name, kinds, sizeof kinds);
+        if (!kinds[0])
+            return ct_error_set(CT_EINVAL, "%s%s%s.%s: unknown key", at, colon, section, name);
+        return ct_error_set(CT_EINVAL, "%s%s%s.%s = %s: only for surface.type = %s (not %s)", at,
+                            colon, section, name, shown, kinds, s->kind->name);
+    }
+    char *given = strdup(value), *w = strdup(at);
+    if (!given || !w) {
+        free(given);
+        free(w);
+        return ct_error_set(CT_ENOMEM, "surface: out of memory");
+    }
+    int st = ct_key_parse(row, value, s->config);
+    if (st) {
+        free(given);
+        free(w);
+        if (st == CT_ENOMEM)
+            return st;
+        char why[400];
+        snprintf(why, sizeof why, "%s", ct_error_message());
+        return ct_error_set(st, "%s%s%s.%s = %s: %s", at, colon, section, name, shown, why);
+    }
+    free(s->given[k]);
+    free(s->where[k]);
+    s->given[k] = given;
+    s->where[k] = w;
+    s->checked = s->prepared = 0;
+    return CT_OK;
+}
+
+int ct_surface_value(const ct_surface *s, const char *section, const char *name, double *out)
+{
+    CT_NEED(s);
+    CT_NEED(out);
+    const ct_key *row = ct_kind_key(s->kind, section, name, NULL);
+    if (!row)
+        return ct_error_set(CT_EINVAL, "%s.%s: not a key of type = %s", section, name,
+                            s->kind->name);
+    const char *at = (const char *)s->config + row->offset;
+    switch (row->type) {
+    case CT_KEY_NUMBER:
+        *out = *(const double *)at;
+        return CT_OK;
+    case CT_KEY_INTEGER:
+    case CT_KEY_DEPTH:
+        *out = (double)*(const long *)at;
+        return CT_OK;
+    case CT_KEY_COUNT:
+        *out = (double)*(const uint64_t *)at;
+        return CT_OK;
+    case CT_KEY_WORD:
+        *out = (double)*(const int *)at;
+        return CT_OK;
+    default:
+        return ct_error_set(CT_EINVAL, "%s.%s: not a number", section, name);
+    }
+}
+
+int ct_surface_is_set(const ct_surface *s, const char *section, const char *name)
+{
+    return ct_surface_given(s, section, name);
+}
+
+int ct_surface_given(const ct_surface *s, const char *section, const char *name)
+{
+    size_t k;
+    return ct_kind_key(s->kind, section, name, &k) && s->given[k];
+}
+
+int ct_surface_key_error(const ct_surface *s, const char *section, const char *name, int status,
+                         const char *fmt, ...)
+{
+    char why[400], shown[96] = "";
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    size_t k;
+    const char *at = "";
+    int given = ct_kind_key(s->kind, section, name, &k) && s->given[k];
+    if (given) {
+        at = s->where[k];
+        shown_value(s->given[k], shown, sizeof shown);
+    }
+    return ct_error_set(status, "%s%s%s.%s%s%s: %s", at, *at ? ": " : "", section, name,
+                        given ? " = " : "", shown, why);
+}
+
+void ct_surface_note_set(ct_surface *s, const char *fmt, ...)
+{
+    char text[sizeof s->note];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    size_t n = strlen(s->note);
+    snprintf(s->note + n, sizeof s->note - n, "%s%s", n ? "\n" : "", text);
+}
+
+const char *ct_surface_note(ct_surface *s)
+{
+    return s->note;
+}
+
+void ct_surface_note_clear(ct_surface *s)
+{
+    s->note[0] = '\0';
+}
+
+int ct_surface_check(ct_surface *s, const char *scene)
+{
+    CT_NEED(s);
+    const ct_kind *d = s->kind;
+    for (size_t k = 0; k < d->nkeys; k++)
+        if ((d->keys[k].flags & CT_KEY_REQUIRED) && !s->given[k])
+            return ct_error_set(CT_EINVAL, "%s%s%s.%s: required key missing%s%s%s",
+                                scene ? scene : "", scene ? ": " : "", d->keys[k].section,
+                                d->keys[k].name, " (type = ", d->name, ")");
+    int st = d->check(s, scene ? scene : "");
+    s->checked = st == CT_OK;
+    return st;
+}
+
+int ct_surface_prepare(ct_surface *s, const char *dir)
+{
+    CT_NEED(s);
+    int st;
+    if (!s->checked && (st = ct_surface_check(s, NULL)))
+        return st;
+    if (s->prepared)
+        return CT_OK;
+    if ((st = s->kind->prepare(s, dir)))
+        return st;
+    s->prepared = 1;
+    return CT_OK;
+}
+
+static int need_prepared(const ct_surface *s)
+{
+    if (!s->prepared)
+        return ct_error_set(CT_EINVAL, "surface %s: not prepared (ct_surface_prepare)",
+                            s->kind->name);
+    return CT_OK;
+}
+
+void ct_surface_scales(const ct_surface *s, ct_scales *out)
+{
+    *out = s->scales;
+}
+
+void ct_scales_of(ct_scales *sc, const ct_layer *built, const ct_layer *physical)
+{
+    sc->layer = *built;
+    sc->physical = *physical;
+    sc->force_unit = built->sigma_y * built->l0;
+    sc->energy_unit = built->sigma_y * built->l0 * built->h0;
+    sc->energy_scale = built->l0 * built->E * built->h0;
+    sc->physical_energy_scale = physical->l0 * physical->E * physical->h0;
+}
+
+double ct_speed_to_V_star(const ct_scales *sc, double m, double v)
+{
+    return sqrt(m / (2.0 * sc->physical_energy_scale)) * v;
+}
+
+double ct_time_scale(const ct_scales *sc, double m)
+{
+    const ct_layer *p = &sc->physical;
+    return sqrt(m * p->h0 / (p->E * p->l0));
+}
+
+int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                     ct_plan_info *info)
+{
+    CT_NEED(s);
+    CT_NEED(req);
+    CT_NEED(out);
+    *out = NULL;
+    int st;
+    if ((st = need_prepared(s)))
+        return st;
+    ct_plan_info dummy;
+    if ((st = s->kind->build(s, req, out, info ? info : &dummy)))
+        return st;
+    ct_bundle_set_threads(*out, req->threads);
+    return CT_OK;
+}
+
+int ct_surface_ready(ct_surface *s, const char *output)
+{
+    CT_NEED(s);
+    CT_NEED(output);
+    const char *why;
+    if (!ct_surface_kind_supports(s->index, output, &why))
+        return ct_error_set(CT_EINVAL, "%s: %s", output, why);
+    int st = need_prepared(s);
+    if (st)
+        return st;
+    return s->kind->ready ? s->kind->ready(s, output) : CT_OK;
+}
+
+int ct_surface_profile_shows_state(const ct_surface *s)
+{
+    return s->kind->profile_shows_state;
+}
+
+void ct_surface_describe(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    s->kind->describe(s, info, buf, len);
+}
+
+void ct_surface_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    s->kind->table_line(s, info, buf, len);
+}
+
+/* An optional output the kind does not give: CT_EINVAL with its refusal. */
+static int refused(const ct_surface *s, const char *output)
+{
+    const char *why;
+    ct_surface_kind_supports(s->index, output, &why);
+    return ct_error_set(CT_EINVAL, "%s: %s", output, why ? why : "not given");
+}
+
+int ct_surface_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
+{
+    CT_NEED(s);
+    CT_NEED(b);
+    CT_NEED(f);
+    return s->kind->write_profile ? s->kind->write_profile(s, b, f) : refused(s, "profile");
+}
+
+size_t ct_surface_compare_columns(const ct_surface *s, const char *const **names)
+{
+    *names = s->kind->compare_names;
+    return s->kind->compare ? s->kind->ncompare : 0;
+}
+
+int ct_surface_compare(ct_surface *s, const ct_sweep_row *rows, size_t nrows, double *out)
+{
+    CT_NEED(s);
+    if (!s->kind->compare)
+        return refused(s, "compare");
+    for (size_t k = 0; k < nrows * s->kind->ncompare; k++)
+        out[k] = NAN;
+    return s->kind->compare(s, rows, nrows, out);
+}
+
+size_t ct_surface_curve_compare_columns(const ct_surface *s, const char *const **names)
+{
+    *names = s->kind->curve_compare_names;
+    return s->kind->curve_compare ? s->kind->ncurve_compare : 0;
+}
+
+void ct_surface_curve_compare(const ct_surface *s, int unload, double u_max, double u, double *out)
+{
+    if (s->kind->curve_compare)
+        s->kind->curve_compare(s, unload, u_max, u, out);
+}
+
+int ct_surface_after_sweep(ct_surface *s, const ct_sweep_row *rows, size_t nrows)
+{
+    CT_NEED(s);
+    return s->kind->after_sweep ? s->kind->after_sweep(s, rows, nrows) : CT_OK;
+}
+
+int ct_surface_write_bearing(const ct_surface *s, FILE *f)
+{
+    CT_NEED(s);
+    CT_NEED(f);
+    return s->kind->write_bearing ? s->kind->write_bearing(s, f) : refused(s, "bearing");
+}
+
+int ct_surface_write_geometry(const ct_surface *s, const ct_build_request *req, FILE *f)
+{
+    CT_NEED(s);
+    CT_NEED(f);
+    return s->kind->write_geometry ? s->kind->write_geometry(s, req, f) : refused(s, "geometry");
+}
+
+int ct_surface_write_fit(ct_surface *s, FILE *f)
+{
+    CT_NEED(s);
+    CT_NEED(f);
+    int st = need_prepared(s);
+    if (st)
+        return st;
+    return s->kind->write_fit ? s->kind->write_fit(s, f) : refused(s, "fit");
+}
+
+char *ct_path_join(const char *dir, const char *path)
+{
+    if (path[0] == '/' || !dir || !*dir)
+        return strdup(path);
+    size_t n = strlen(dir), m = strlen(path);
+    char *out = malloc(n + m + 2);
+    if (!out)
+        return NULL;
+    memcpy(out, dir, n);
+    size_t k = n;
+    if (out[k - 1] != '/')
+        out[k++] = '/';
+    memcpy(out + k, path, m + 1);
+    return out;
+}

@@ -1,0 +1,87 @@
+/* The seam between kinds of surface and everything else: a kind is one descriptor (its name,
+ * its keys as rows, how it checks, prepares and builds, and the outputs only it can give);
+ * src/surface/kind.c keeps the registry and the handle. Nothing outside src/surface/ asks
+ * which kind a surface is: it asks the descriptor. */
+#ifndef CT_SURFACE_KIND_H
+#define CT_SURFACE_KIND_H
+
+#include "internal.h"
+
+#include <stdio.h>
+
+/* An output a kind does not give, and what to use instead. */
+typedef struct {
+    const char *output;
+    const char *why;
+} ct_refusal;
+
+typedef struct ct_kind ct_kind;
+
+struct ct_surface {
+    const ct_kind *kind;
+    size_t index; /* in the registry */
+    void *config; /* the kind's settings: its rows' offsets point here */
+    char **given; /* per row: the value as given (NULL: not given) */
+    char **where; /* per row: where it was given, for messages */
+    int checked, prepared;
+    ct_scales scales; /* after prepare */
+    char note[600];   /* what the front-end may print (not an error; "" when none) */
+};
+
+struct ct_kind {
+    const char *name;
+    const char *summary; /* one line */
+    const ct_key *keys;  /* sections surface, material, and any the kind owns */
+    size_t nkeys;
+    size_t config_size;
+    void (*defaults)(void *config);
+    /* The kind-specific outputs it gives (space separated; e, time, curve, history, bounce
+     * and table are every kind's) and, for each it does not, why and what to use instead. */
+    const char *gives;
+    const ct_refusal *refusals;
+    /* Keys together; scene names the scene for messages about no single key. */
+    int (*check)(ct_surface *s, const char *scene);
+    /* Files read, levelled; s->scales set. dir: where relative paths start (NULL: cwd). */
+    int (*prepare)(ct_surface *s, const char *dir);
+    int (*build)(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                 ct_plan_info *info);
+    void (*release)(void *config); /* what prepare allocated (text keys are freed by kind.c) */
+    /* Makes ready what an output needs before any impact (a profile's fit); NULL: nothing. */
+    int (*ready)(ct_surface *s, const char *output);
+    /* 1 when what = profile shows the state after the impacts (written by the sweep's
+     * observer at the last impact), 0 when it does not depend on the state. */
+    int profile_shows_state;
+    /* The run's summary line ("stage rods, depth 65 (auto: ...)"), and the table file's. */
+    void (*describe)(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len);
+    void (*table_line)(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len);
+    /* Optional outputs; NULL where the kind gives none. */
+    int (*write_profile)(const ct_surface *s, const ct_bundle *b, FILE *f);
+    size_t ncompare;
+    const char *const *compare_names;
+    int (*compare)(ct_surface *s, const ct_sweep_row *rows, size_t n, double *out);
+    size_t ncurve_compare;
+    const char *const *curve_compare_names;
+    void (*curve_compare)(const ct_surface *s, int unload, double u_max, double u, double *out);
+    int (*after_sweep)(ct_surface *s, const ct_sweep_row *rows, size_t n);
+    int (*write_bearing)(const ct_surface *s, FILE *f);
+    int (*write_geometry)(const ct_surface *s, const ct_build_request *req, FILE *f);
+    int (*write_fit)(ct_surface *s, FILE *f);
+};
+
+extern const ct_kind ct_kind_cantor, ct_kind_random_cantor, ct_kind_profile, ct_kind_rods;
+
+/* The row of section.name among the kind's keys, its index in *k. */
+const ct_key *ct_kind_key(const ct_kind *kind, const char *section, const char *name, size_t *k);
+/* "where: section.name = value: reason" for row k of s (where and value as given). */
+int ct_surface_key_error(const ct_surface *s, const char *section, const char *name, int status,
+                         const char *fmt, ...) CT_PRINTF(5, 6);
+/* 1 when row section.name was given. */
+int ct_surface_given(const ct_surface *s, const char *section, const char *name);
+/* Sets the front-end's note (appends with "; " when one is there). */
+void ct_surface_note_set(ct_surface *s, const char *fmt, ...) CT_PRINTF(2, 3);
+/* A relative path joined to dir (malloc'ed; NULL on failure). */
+char *ct_path_join(const char *dir, const char *path);
+/* Fills scales from a layer as built and the layer as given. */
+void ct_scales_of(ct_scales *sc, const ct_layer *built, const ct_layer *physical);
+
+#endif

@@ -1,0 +1,436 @@
+/* A user's own rod set (docs/model.md §12): rods given as a file (CSV or blank-separated
+ * columns top, area and optionally length) or inline (surface.rods = top:area[:length], ...),
+ * in one Winkler layer. Everything of §3, §4, §7 and §11 holds rod by rod. Scales: h0 the
+ * deepest top (a rod set whose tops are all 0 needs surface.h0 or surface.Hstar), l0 the total
+ * area, so V* = sqrt(m v^2 / (2 l0 E h0)) and forces are in P_Y = sigma_y l0. A rod's length,
+ * when given, replaces H* - top; the layer's H* is then the shallowest rod bottom,
+ * min(top + length), where the first rod would reach strain 1 (the crushed-layer limit). */
+#include "kind.h"
+#include "number.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A rod file's line is a few numbers: anything longer is not a rod file. */
+#define MAX_LINE 4096
+
+typedef struct {
+    char *file, *rods; /* [surface]: one of them */
+    int unit;          /* index into "m|mm|um|nm" when given */
+    double Hstar, H;   /* H* [unit], or H* / h0 */
+    double h0, l0;     /* reference depth and length [unit] (defaults: deepest top, total area) */
+    double E, sigma_y; /* [material] */
+    /* prepared */
+    size_t n;
+    double *top, *area, *length; /* length NULL: H* - top */
+    ct_layer layer;
+    char source[160];
+} rods_config;
+
+static const double unit_metres[] = {1.0, 1e-3, 1e-6, 1e-9};
+
+#define AT(field) offsetof(rods_config, field)
+static const ct_key rods_keys[] = {
+    {"surface", "file", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a path", "",
+     "a file of rods: columns top, area and optionally length (a header naming them may come "
+     "first); relative to the scene's directory",
+     AT(file)},
+    {"surface", "rods", CT_KEY_TEXT, 0, 0, 0, NULL, "must be top:area[:length], ...", "",
+     "rods inline: top:area[:length], ... (or give file)", AT(rods)},
+    {"surface", "unit", CT_KEY_WORD, 0, 0, 0, "m|mm|um|nm", "must be m, mm, um or nm",
+     "the scene's units", "the unit of tops, areas, lengths, Hstar, h0 and l0", AT(unit)},
+    {"surface", "Hstar", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
+     "layer thickness H* [unit] (or give H; neither when the rods give their lengths)", AT(Hstar)},
+    {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, 0, NULL, "must satisfy H > 1 (H* = H h0)", "",
+     "H* as a multiple of h0", AT(H)},
+    {"surface", "h0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "the deepest top",
+     "reference depth [unit]: results are per h0", AT(h0)},
+    {"surface", "l0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "the total area",
+     "reference length [unit]: forces are per sigma_y l0", AT(l0)},
+    {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
+     "Young's modulus", AT(E)},
+    {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
+     "yield stress", AT(sigma_y)},
+};
+#undef AT
+
+static void rods_defaults(void *config)
+{
+    rods_config *c = config;
+    c->sigma_y = 1.0;
+}
+
+static void rods_release(void *config)
+{
+    rods_config *c = config;
+    free(c->top);
+    free(c->area);
+    free(c->length);
+    c->top = c->area = c->length = NULL;
+    c->n = 0;
+}
+
+static int rods_check(ct_surface *s, const char *scene)
+{
+    rods_config *c = s->config;
+    const int file = ct_surface_given(s, "surface", "file"),
+              inline_ = ct_surface_given(s, "surface", "rods");
+    if (file == inline_)
+        return ct_error_set(CT_EINVAL,
+                            "%s: type = rods needs one of surface.file (a file of rods) and "
+                            "surface.rods (top:area[:length], ...)",
+                            scene);
+    if (ct_surface_given(s, "surface", "H") && ct_surface_given(s, "surface", "Hstar"))
+        return ct_surface_key_error(s, "surface", "H", CT_EINVAL, "give H or Hstar, not both");
+    if (!(c->E > c->sigma_y))
+        return ct_surface_key_error(s, "material", "E", CT_EINVAL,
+                                    "must be > sigma_y (yield strain sigma_y/E < 1)");
+    return CT_OK;
+}
+
+/* Appends one rod; cap grows. */
+static int push(rods_config *c, size_t *cap, const double *v, int nv)
+{
+    if (c->n == *cap) {
+        size_t grown = *cap ? 2 * *cap : 64;
+        double *t = realloc(c->top, grown * sizeof *t);
+        if (t)
+            c->top = t;
+        double *a = t ? realloc(c->area, grown * sizeof *a) : NULL;
+        if (a)
+            c->area = a;
+        double *l = a ? realloc(c->length, grown * sizeof *l) : NULL;
+        if (l)
+            c->length = l;
+        if (!l)
+            return ct_error_set(CT_ENOMEM, "rods: out of memory at %zu rods", c->n);
+        *cap = grown;
+    }
+    c->top[c->n] = v[0];
+    c->area[c->n] = v[1];
+    c->length[c->n] = nv == 3 ? v[2] : NAN;
+    c->n++;
+    return CT_OK;
+}
+
+/* The numbers of a line split at commas, semicolons, tabs and blanks: at most 3. */
+static int split_numbers(char *line, double *v, int *nv, char **bad)
+{
+    *nv = 0;
+    for (char *p = line; *p;) {
+        while (*p && (isspace((unsigned char)*p) || *p == ',' || *p == ';'))
+            p++;
+        if (!*p)
+            break;
+        char *end;
+        errno = 0;
+        double x = strtod(p, &end);
+        if (end == p || errno == ERANGE || !isfinite(x) ||
+            (*end && !isspace((unsigned char)*end) && *end != ',' && *end != ';')) {
+            *bad = p;
+            return -1;
+        }
+        if (*nv == 3) {
+            *bad = p;
+            return -2;
+        }
+        v[(*nv)++] = x;
+        p = end;
+    }
+    return 0;
+}
+
+/* A header: the column names top, area, length in some order. */
+static int header(char *line, int col[3], int *ncol)
+{
+    static const char *const names[] = {"top", "area", "length"};
+    *ncol = 0;
+    for (char *tok = strtok(line, ",; \t\r\n"); tok; tok = strtok(NULL, ",; \t\r\n")) {
+        int k = 0;
+        while (k < 3 && strcmp(tok, names[k]))
+            k++;
+        if (k == 3 || *ncol == 3)
+            return -1;
+        col[(*ncol)++] = k;
+    }
+    int seen = 0;
+    for (int i = 0; i < *ncol; i++)
+        seen |= 1 << col[i];
+    return (seen & 3) == 3 ? 0 : -1;
+}
+
+static int read_file(rods_config *c, const char *path, const char *shown)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return ct_error_set(CT_EIO, "%s: cannot open: %s", shown, strerror(errno));
+    char *line = malloc(MAX_LINE + 2);
+    if (!line) {
+        fclose(f);
+        return ct_error_set(CT_ENOMEM, "rods: out of memory");
+    }
+    size_t cap = 0, lineno = 0;
+    int col[3] = {0, 1, 2}, width = 0, st = CT_OK; /* width: numbers per row, once known */
+    while (!st && fgets(line, MAX_LINE + 2, f)) {
+        lineno++;
+        if (strlen(line) > MAX_LINE) {
+            st = ct_error_set(CT_EINVAL, "%s:%zu: a line longer than %d bytes: not a rod file",
+                              shown, lineno, MAX_LINE);
+            break;
+        }
+        char *p = line;
+        while (isspace((unsigned char)*p))
+            p++;
+        if (!*p || *p == '#' || *p == ';')
+            continue;
+        double v[3], row[3];
+        int nv;
+        char *bad, copy[MAX_LINE + 2];
+        snprintf(copy, sizeof copy, "%s", p);
+        int r = split_numbers(p, v, &nv, &bad);
+        if (r == -1 && !width && c->n == 0) { /* a header before the first rod */
+            if (header(copy, col, &width)) {
+                st = ct_error_set(CT_EINVAL,
+                                  "%s:%zu: neither rod numbers nor a header naming top, area "
+                                  "(and length)",
+                                  shown, lineno);
+                break;
+            }
+            continue;
+        }
+        if (!width && !r && (nv == 2 || nv == 3))
+            width = nv;
+        if (r || nv != width) {
+            st = ct_error_set(CT_EINVAL, "%s:%zu: expected %d numbers (top, area%s) on every row",
+                              shown, lineno, width ? width : 2, width == 3 ? ", length" : "");
+            break;
+        }
+        for (int i = 0; i < nv; i++)
+            row[col[i]] = v[i];
+        st = push(c, &cap, row, nv);
+    }
+    if (!st && ferror(f))
+        st = ct_error_set(CT_EIO, "%s: read error", shown);
+    fclose(f);
+    free(line);
+    if (!st && c->n == 0)
+        st = ct_error_set(CT_EINVAL, "%s: no rods", shown);
+    return st;
+}
+
+static int read_inline(rods_config *c, const char *text)
+{
+    size_t cap = 0, k = 0;
+    char *buf = strdup(text);
+    if (!buf)
+        return ct_error_set(CT_ENOMEM, "rods: out of memory");
+    int st = CT_OK;
+    char *save = NULL;
+    for (char *item = strtok_r(buf, ",", &save); item && !st; item = strtok_r(NULL, ",", &save)) {
+        k++;
+        double v[3];
+        int nv = 0;
+        for (char *p = item;;) {
+            char *end;
+            errno = 0;
+            double x = strtod(p, &end);
+            while (isspace((unsigned char)*end))
+                end++;
+            if (end == p || errno == ERANGE || !isfinite(x) || nv == 3 || (*end && *end != ':')) {
+                nv = -1;
+                break;
+            }
+            v[nv++] = x;
+            if (!*end)
+                break;
+            p = end + 1;
+        }
+        if (nv < 2 || (c->n && (nv == 3) != !isnan(c->length[0])))
+            st = ct_error_set(CT_EINVAL,
+                              "surface.rods: rod %zu: expected top:area or top:area:length "
+                              "(numbers; every rod with a length or none)",
+                              k);
+        else
+            st = push(c, &cap, v, nv);
+    }
+    free(buf);
+    if (!st && c->n == 0)
+        st = ct_error_set(CT_EINVAL, "surface.rods: no rods");
+    return st;
+}
+
+static int rods_prepare(ct_surface *s, const char *dir)
+{
+    rods_config *c = s->config;
+    rods_release(c);
+    int st;
+    if (c->file) {
+        char *path = ct_path_join(dir, c->file);
+        if (!path)
+            return ct_error_set(CT_ENOMEM, "out of memory");
+        st = read_file(c, path, c->file);
+        free(path);
+        snprintf(c->source, sizeof c->source, "%s", c->file);
+    } else {
+        st = read_inline(c, c->rods);
+        snprintf(c->source, sizeof c->source, "surface.rods");
+    }
+    if (st)
+        return st;
+    const int lengths = !isnan(c->length[0]);
+    if (!lengths) {
+        free(c->length);
+        c->length = NULL;
+    }
+    const double u = ct_surface_given(s, "surface", "unit") ? unit_metres[c->unit] : 1.0;
+    double deepest = 0.0, total = 0.0, bottom = INFINITY;
+    for (size_t k = 0; k < c->n; k++) {
+        c->top[k] *= u;
+        c->area[k] *= u;
+        if (!(c->top[k] >= 0.0) || !isfinite(c->top[k]))
+            return ct_error_set(CT_EINVAL, "%s: rod %zu: top = %g: must be finite and >= 0",
+                                c->source, k + 1, c->top[k]);
+        if (!(c->area[k] > 0.0) || !isfinite(c->area[k]))
+            return ct_error_set(CT_EINVAL, "%s: rod %zu: area = %g: must be finite and > 0",
+                                c->source, k + 1, c->area[k]);
+        if (lengths) {
+            c->length[k] *= u;
+            if (!(c->length[k] > 0.0) || !isfinite(c->length[k]))
+                return ct_error_set(CT_EINVAL, "%s: rod %zu: length = %g: must be finite and > 0",
+                                    c->source, k + 1, c->length[k]);
+            bottom = fmin(bottom, c->top[k] + c->length[k]);
+        }
+        deepest = fmax(deepest, c->top[k]);
+        total += c->area[k];
+    }
+    const int given_H = ct_surface_given(s, "surface", "H"),
+              given_Hstar = ct_surface_given(s, "surface", "Hstar");
+    if (lengths && (given_H || given_Hstar))
+        return ct_surface_key_error(s, "surface", given_H ? "H" : "Hstar", CT_EINVAL,
+                                    "not with rods that give their lengths (H* is where the "
+                                    "first of them reaches strain 1)");
+    if (!lengths && !given_H && !given_Hstar)
+        return ct_error_set(CT_EINVAL,
+                            "%s: type = rods needs surface.Hstar or surface.H (or a length "
+                            "for every rod)",
+                            c->source);
+    double h0 = ct_surface_given(s, "surface", "h0") ? c->h0 * u : deepest;
+    const double l0 = ct_surface_given(s, "surface", "l0") ? c->l0 * u : total;
+    double Hstar = lengths ? bottom : given_Hstar ? c->Hstar * u : NAN;
+    if (!(h0 > 0.0)) {
+        if (given_H)
+            return ct_surface_key_error(s, "surface", "H", CT_EINVAL,
+                                        "every top is 0: give surface.h0 (or Hstar)");
+        h0 = Hstar; /* every top is 0: depths are per H* */
+    }
+    if (given_H)
+        Hstar = c->H * h0;
+    for (size_t k = 0; k < c->n; k++)
+        if (!(c->top[k] < Hstar))
+            return ct_error_set(CT_EINVAL, "%s: rod %zu: top = %g: must be < H* = %g", c->source,
+                                k + 1, c->top[k], Hstar);
+    c->layer = (ct_layer){.E = c->E, .sigma_y = c->sigma_y, .Hstar = Hstar, .l0 = l0, .h0 = h0};
+    if ((st = ct_layer_validate(&c->layer)))
+        return st;
+    ct_scales_of(&s->scales, &c->layer, &c->layer);
+    return CT_OK;
+}
+
+static int rods_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
+                      ct_plan_info *info)
+{
+    (void)r;
+    const rods_config *c = s->config;
+    ct_bundle *b;
+    int st = ct_bundle_create(&b, &c->layer, c->n, "rods");
+    if (st)
+        return st;
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays(b, &top, &length, &area, &eps_p);
+    for (size_t k = 0; k < c->n; k++) {
+        top[k] = c->top[k];
+        length[k] = c->length ? c->length[k] : c->layer.Hstar - c->top[k];
+        area[k] = c->area[k];
+        eps_p[k] = 0.0;
+    }
+    *out = b;
+    info->depth = -1;
+    info->bound = 0.0;
+    info->rods = c->n;
+    info->omitted = 0;
+    info->u_reach = INFINITY;
+    return CT_OK;
+}
+
+static void rods_describe(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    const rods_config *c = s->config;
+    snprintf(buf, len, "rods of %s, %zu rods", c->source, info->rods);
+}
+
+static void rods_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
+{
+    const rods_config *c = s->config;
+    const ct_layer *L = &c->layer;
+    snprintf(buf, len,
+             "rods: %s, %zu rods, l0 = %.17g, h0 = %.17g, H* = %.17g, E = %.17g, sigma_y = %.17g",
+             c->source, info->rods, L->l0, L->h0, L->Hstar, L->E, L->sigma_y);
+}
+
+/* what = profile: every rod in input order, its top after the impacts beside its top. */
+static int rods_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
+{
+    (void)s;
+    const ct_layer *L = ct_bundle_layer(b);
+    fputs("rod,top_over_h0,area_over_l0,length_over_h0,residual_top_over_h0\n", f);
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        ct_rod_info info;
+        ct_bundle_rod(b, k, &info);
+        ct_put_long(f, (long)k + 1);
+        const double v[4] = {info.top / L->h0, info.area / L->l0, info.length / L->h0,
+                             (info.top + info.plastic_strain * info.length) / L->h0};
+        for (int i = 0; i < 4; i++) {
+            fputc(',', f);
+            ct_put_double(f, v[i]);
+        }
+        fputc('\n', f);
+    }
+    return CT_OK;
+}
+
+static const ct_refusal rods_refusals[] = {
+    {"compare", "the paper's laws model a Cantor surface (type = cantor); a rod set has no "
+                "fitted one"},
+    {"bearing", "a bearing-area curve is written for measured surfaces (type = profile)"},
+    {"geometry", "a rod set has no Cantor stages: what = profile lists its rods"},
+    {"fit", "cantact fit fits a Cantor surface to a measured profile (type = profile or a "
+            "profile file)"},
+    {"ensemble", "ensembles are of random surfaces: surface.type = random_cantor"},
+    {"realisations", "ensembles are of random surfaces: surface.type = random_cantor"},
+    {"merge", "merge combines the parts of an ensemble of a random_cantor surface"},
+    {NULL, NULL},
+};
+
+const ct_kind ct_kind_rods = {
+    .name = "rods",
+    .summary = "your own rods: a file or a list of tops, areas and optionally lengths",
+    .keys = rods_keys,
+    .nkeys = sizeof rods_keys / sizeof rods_keys[0],
+    .config_size = sizeof(rods_config),
+    .defaults = rods_defaults,
+    .gives = "profile",
+    .refusals = rods_refusals,
+    .check = rods_check,
+    .prepare = rods_prepare,
+    .build = rods_build,
+    .release = rods_release,
+    .describe = rods_describe,
+    .table_line = rods_table_line,
+    .write_profile = rods_write_profile,
+    .profile_shows_state = 1,
+};
