@@ -652,7 +652,10 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
     put_value(f, "V_star_crit", in.V_star_crit);
     put_value(f, "tolerance", meta->tolerance);
     put_value(f, "worst_error", in.worst_error);
-    put_value(f, "worst_error_at_V_star", in.worst_V_star);
+    if (isfinite(in.worst_V_star))
+        put_value(f, "worst_error_at_V_star", in.worst_V_star);
+    else
+        fputs("# worst_error_at_V_star = none (no point above V_star_crit in the range)\n", f);
     fprintf(f,
             "# checked = %zu points against the exact model (%zu equally spaced in ln V_star "
             "inside every interval above V_star_crit; the nodes are exact)\n",

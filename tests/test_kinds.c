@@ -1,0 +1,249 @@
+/* The registry of kinds of surface (src/surface/kind.c) and the rods kind (src/surface/rods.c):
+ * every kind's rows and outputs are complete, and a user's rods give the closed forms of
+ * docs/model.md §3 rod by rod (one rod: W_load, W_unload and e; lengths given: the crushed
+ * limit at the shallowest bottom; the scales h0 = deepest top, l0 = total area). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "cantact.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static void registry_complete(void **state)
+{
+    (void)state;
+    const size_t n = ct_surface_kind_count();
+    assert_true(n >= 4);
+    for (size_t k = 0; k < n; k++) {
+        const char *name = ct_surface_kind_name(k);
+        assert_non_null(name);
+        assert_true(strlen(ct_surface_kind_summary(k)) > 10);
+        for (size_t j = 0; j < k; j++)
+            assert_string_not_equal(name, ct_surface_kind_name(j));
+        size_t m;
+        const ct_key *rows = ct_surface_kind_keys(k, &m);
+        assert_true(m > 0);
+        for (size_t r = 0; r < m; r++) {
+            assert_true(rows[r].section[0] && rows[r].name[0] && rows[r].doc[0]);
+            if (rows[r].type == CT_KEY_WORD || rows[r].type == CT_KEY_WORDS ||
+                rows[r].type == CT_KEY_DEPTH)
+                assert_non_null(rows[r].words);
+            if (rows[r].type == CT_KEY_NUMBER || rows[r].type == CT_KEY_INTEGER)
+                assert_true(rows[r].range && rows[r].range[0]);
+            for (size_t q = 0; q < r; q++) /* one row per key */
+                assert_false(!strcmp(rows[r].section, rows[q].section) &&
+                             !strcmp(rows[r].name, rows[q].name));
+        }
+        /* every output is given, or refused with a reason and what to use instead */
+        char outputs[256];
+        snprintf(outputs, sizeof outputs, "%s", ct_surface_outputs());
+        for (char *o = strtok(outputs, " "); o; o = strtok(NULL, " ")) {
+            const char *why = NULL;
+            if (!ct_surface_kind_supports(k, o, &why))
+                assert_true(why && strlen(why) > 20);
+        }
+        const char *why;
+        assert_false(ct_surface_kind_supports(k, "nonsense", &why));
+    }
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "voxels"), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "cantor"));
+}
+
+static ct_surface *rods(const char *list, const char *Hstar, const char *E, const char *sigma_y)
+{
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "rods", list, "test"), CT_OK);
+    if (Hstar)
+        assert_int_equal(ct_surface_set(s, "surface", "Hstar", Hstar, "test"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", E, "test"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "sigma_y", sigma_y, "test"), CT_OK);
+    assert_int_equal(ct_surface_check(s, "test"), CT_OK);
+    int st = ct_surface_prepare(s, NULL);
+    if (st)
+        fail_msg("%s", ct_error_message());
+    return s;
+}
+
+/* first impacts at the speeds V: rows */
+static void sweep(const ct_surface *s, const double *V, size_t n, ct_sweep_row *rows)
+{
+    ct_build_request req = {.V_star = V, .nvel = n, .impacts = 1, .depth_tolerance = 1e-12};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    ct_plan_info info;
+    assert_int_equal(ct_surface_build(s, &req, &b, &info), CT_OK);
+    ct_sweep_spec spec = {.V_star = V, .nvel = n, .impacts = 1, .opts = req.opts};
+    assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+    ct_bundle_free(b);
+}
+
+static void one_rod_closed_forms(void **state)
+{
+    (void)state;
+    /* a rod of area s = 2, length L = H* = 4, E = 1000, sigma_y = 1: eps_y = 1e-3, its top at
+     * 0, so h0 = H* (every top is 0) and l0 = s */
+    ct_surface *s = rods("0:2", "4", "1000", "1");
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    assert_true(sc.layer.h0 == 4.0 && sc.layer.l0 == 2.0 && sc.layer.Hstar == 4.0);
+    assert_true(sc.force_unit == 2.0 && sc.energy_scale == 2.0 * 1000.0 * 4.0);
+    const double E = 1000, A = 2, L = 4, ey = 1e-3, Wy = E * A * L * ey * ey / 2;
+    double V[3];
+    const double W[3] = {0.5 * Wy, 4 * Wy, 100 * Wy};
+    for (int k = 0; k < 3; k++)
+        V[k] = sqrt(W[k] / sc.energy_scale);
+    ct_sweep_row r[3];
+    sweep(s, V, 3, r);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(r[k].status, CT_OK);
+        /* W <= Wy: elastic, u = L sqrt(2 W / (E A L)); else eps = (W / (E A L) + ey^2/2) / ey,
+         * e = sqrt(Wy / W) */
+        const double u = W[k] <= Wy ? L * sqrt(2 * W[k] / (E * A * L))
+                                    : L * (W[k] / (E * A * L) + ey * ey / 2) / ey;
+        const double e = W[k] <= Wy ? 1.0 : sqrt(Wy / W[k]);
+        assert_true(fabs(r[k].r.u_max - u) <= 1e-14 * u);
+        assert_true(fabs(r[k].r.e - e) <= 1e-14);
+        assert_int_equal(r[k].r.elastic, W[k] <= Wy);
+    }
+    ct_surface_free(s);
+}
+
+static void lengths_set_the_crushed_limit(void **state)
+{
+    (void)state;
+    /* rods 0:1:1 and 0.5:1:2: H* is the shallowest bottom, min(0 + 1, 0.5 + 2) = 1 */
+    ct_surface *s = rods("0:1:1, 0.5:1:2", NULL, "100", "1");
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    assert_true(sc.layer.Hstar == 1.0 && sc.layer.h0 == 0.5 && sc.layer.l0 == 2.0);
+    ct_bundle *b;
+    ct_build_request req = {.V_star = (double[]){1e-3}, .nvel = 1, .impacts = 1};
+    ct_impact_opts_default(&req.opts);
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    ct_rod_info info;
+    assert_int_equal(ct_bundle_rod(b, 1, &info), CT_OK);
+    assert_true(info.top == 0.5 && info.length == 2.0);
+    /* loading to u = 1 does W(1) = rod 1 plastic from 0 to 1 plus rod 2 from 0.5 to 1: an
+     * energy beyond it crushes rod 1 (strain 1): refused as outside the model */
+    double W1 = ct_bundle_work(b, 0.0, 1.0);
+    ct_impact_opts o;
+    ct_impact_opts_default(&o);
+    ct_impact_result res;
+    assert_int_equal(ct_impact(b, 1.01 * W1, &o, &res), CT_ERANGE);
+    ct_bundle_reset(b);
+    assert_int_equal(ct_impact(b, 0.5 * W1, &o, &res), CT_OK);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    /* lengths with a layer given: refused, H* is the rods' */
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "rods", "0:1:1", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "Hstar", "3", "--set"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+    assert_int_equal(ct_surface_check(s, "t"), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "--set: surface.Hstar = 3: not with rods"));
+    ct_surface_free(s);
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static int file_rods(const char *path, ct_scales *sc)
+{
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "unit", "mm", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+    assert_int_equal(ct_surface_check(s, "t"), CT_OK);
+    int st = ct_surface_prepare(s, NULL);
+    if (!st)
+        ct_surface_scales(s, sc);
+    ct_surface_free(s);
+    return st;
+}
+
+static void rod_files(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/cantact_rods_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    ct_scales sc;
+    /* a header naming the columns in its own order, comments, blank-separated numbers; mm */
+    write_file(path, "# two rods\narea;top\n\n3 0.5\n1,0\n");
+    assert_int_equal(file_rods(path, &sc), CT_OK);
+    assert_true(sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3 && sc.layer.Hstar == 10 * 0.5e-3);
+    const char *bad[][2] = {
+        {"0 1\n2\n", ":2: expected 2 numbers"},
+        {"depth,area\n0,1\n", ":1: neither rod numbers nor a header"},
+        {"0 1 2 3\n", ":1: expected"},
+        {"0 -1\n", "area = -0.001: must be finite and > 0"},
+        {"0 x\n", ":1:"},
+        {"", "no rods"},
+        {"-1 1\n", "top = -0.001: must be finite and >= 0"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        write_file(path, bad[k][0]);
+        assert_int_equal(file_rods(path, &sc), CT_EINVAL);
+        if (!strstr(ct_error_message(), bad[k][1]))
+            fail_msg("'%s': message '%s' lacks '%s'", bad[k][0], ct_error_message(), bad[k][1]);
+    }
+    unlink(path);
+    assert_int_equal(file_rods("/nonexistent/rods.csv", &sc), CT_EIO);
+}
+
+static void keys_of_other_kinds(void **state)
+{
+    (void)state;
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "fx", "1.5", "s.ini:3"), CT_EINVAL);
+    assert_string_equal(ct_error_message(), "s.ini:3: surface.fx = 1.5: only for surface.type = "
+                                            "cantor or random_cantor (not rods)");
+    assert_int_equal(ct_surface_set(s, "surface", "colour", "red", "s.ini:4"), CT_EINVAL);
+    assert_string_equal(ct_error_message(), "s.ini:4: surface.colour: unknown key");
+    assert_int_equal(ct_surface_set(s, "surface", "Hstar", "-1", "--set"), CT_EINVAL);
+    assert_string_equal(ct_error_message(), "--set: surface.Hstar = -1: must be > 0");
+    /* neither file nor rods, or both */
+    assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+    assert_int_equal(ct_surface_check(s, "t.ini"), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "t.ini: type = rods needs one of surface.file"));
+    /* outputs only other kinds give: refused, before anything is read */
+    assert_int_equal(ct_surface_set(s, "surface", "rods", "0:1", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "Hstar", "2", ""), CT_OK);
+    assert_int_equal(ct_surface_check(s, "t.ini"), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    assert_int_equal(ct_surface_ready(s, "compare"), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "compare: the paper's laws model a Cantor"));
+    assert_int_equal(ct_surface_write_geometry(s, NULL, stdout), CT_EINVAL);
+    ct_surface_free(s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(registry_complete),
+        cmocka_unit_test(one_rod_closed_forms),
+        cmocka_unit_test(lengths_set_the_crushed_limit),
+        cmocka_unit_test(rod_files),
+        cmocka_unit_test(keys_of_other_kinds),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
