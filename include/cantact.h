@@ -978,6 +978,9 @@ void ct_surface_scales(const ct_surface *s, ct_scales *out);
 /* V* of a body of mass m [mass/length; a grid: mass] at speed v [length/time], in the
  * surface's physical units: sqrt(m / (2 l0 E h0)) v. */
 double ct_speed_to_V_star(const ct_scales *sc, double m, double v);
+/* V* = sqrt(m / (2 l0 E h0)) v of a body of mass m at speed v on a surface of scales l0, E,
+ * h0 (consistent units): the one conversion of every front-end. */
+double ct_V_star_of(double m, double v, double l0, double E, double h0);
 /* tau = sqrt(m h0 / (E l0)) [time] of a body of mass m in the physical units. */
 double ct_time_scale(const ct_scales *sc, double m);
 
@@ -1028,6 +1031,10 @@ int ct_surface_write_bearing(const ct_surface *s, FILE *f);
 int ct_surface_write_geometry(const ct_surface *s, const ct_build_request *req, FILE *f);
 /* cantact fit: the Cantor surface a profile looks like, as a table. */
 int ct_surface_write_fit(ct_surface *s, FILE *f);
+/* A rods surface's rods from arrays, instead of surface.file or surface.rods: n tops, areas
+ * and lengths (NULL: H* - top), copied; in surface.unit when given. */
+int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,
+                        const double *length);
 /* A random_cantor surface's generator settings (dimensionless parameters) and realisation. */
 int ct_surface_random_cantor(const ct_surface *s, ct_random_cantor *rc, uint64_t *realisation);
 /* A prepared profile surface's levelled profile and (fit not NULL) its fit. */

@@ -370,9 +370,15 @@ void ct_scales_of(ct_scales *sc, const ct_layer *built, const ct_layer *physical
     sc->physical_energy_scale = physical->l0 * physical->E * physical->h0;
 }
 
+double ct_V_star_of(double m, double v, double l0, double E, double h0)
+{
+    return sqrt(m / (2.0 * (l0 * E * h0))) * v;
+}
+
 double ct_speed_to_V_star(const ct_scales *sc, double m, double v)
 {
-    return sqrt(m / (2.0 * sc->physical_energy_scale)) * v;
+    const ct_layer *p = &sc->physical;
+    return ct_V_star_of(m, v, p->l0, p->E, p->h0);
 }
 
 double ct_time_scale(const ct_scales *sc, double m)

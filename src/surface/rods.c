@@ -25,6 +25,9 @@ typedef struct {
     double Hstar, H;   /* H* [unit], or H* / h0 */
     double h0, l0;     /* reference depth and length [unit] (defaults: deepest top, total area) */
     double E, sigma_y; /* [material] */
+    /* rods from arrays (ct_surface_set_rods), instead of file or rods */
+    size_t given_n;
+    double *given_top, *given_area, *given_length;
     /* prepared */
     size_t n;
     double *top, *area, *length; /* length NULL: H* - top */
@@ -65,9 +68,17 @@ static void rods_defaults(void *config)
     c->sigma_y = 1.0;
 }
 
-static void rods_release(void *config)
+static void rods_release_given(rods_config *c)
 {
-    rods_config *c = config;
+    free(c->given_top);
+    free(c->given_area);
+    free(c->given_length);
+    c->given_top = c->given_area = c->given_length = NULL;
+    c->given_n = 0;
+}
+
+static void rods_prepared_release(rods_config *c)
+{
     free(c->top);
     free(c->area);
     free(c->length);
@@ -75,15 +86,21 @@ static void rods_release(void *config)
     c->n = 0;
 }
 
+static void rods_release(void *config)
+{
+    rods_prepared_release(config);
+    rods_release_given(config);
+}
+
 static int rods_check(ct_surface *s, const char *scene)
 {
     rods_config *c = s->config;
     const int file = ct_surface_given(s, "surface", "file"),
-              inline_ = ct_surface_given(s, "surface", "rods");
-    if (file == inline_)
+              inline_ = ct_surface_given(s, "surface", "rods"), arrays = c->given_top != NULL;
+    if (file + inline_ + arrays != 1)
         return ct_error_set(CT_EINVAL,
-                            "%s: type = rods needs one of surface.file (a file of rods) and "
-                            "surface.rods (top:area[:length], ...)",
+                            "%s: type = rods needs one of surface.file (a file of rods), "
+                            "surface.rods (top:area[:length], ...) and rods as arrays",
                             scene);
     if (ct_surface_given(s, "surface", "H") && ct_surface_given(s, "surface", "Hstar"))
         return ct_surface_key_error(s, "surface", "H", CT_EINVAL, "give H or Hstar, not both");
@@ -267,9 +284,20 @@ static int read_inline(rods_config *c, const char *text)
 static int rods_prepare(ct_surface *s, const char *dir)
 {
     rods_config *c = s->config;
-    rods_release(c);
+    rods_prepared_release(c);
     int st;
-    if (c->file) {
+    if (c->given_top) {
+        size_t cap = 0;
+        st = CT_OK;
+        for (size_t k = 0; k < c->given_n && !st; k++) {
+            double v[3] = {c->given_top[k], c->given_area[k],
+                           c->given_length ? c->given_length[k] : NAN};
+            st = push(c, &cap, v, c->given_length ? 3 : 2);
+        }
+        if (!st && c->n == 0)
+            st = ct_error_set(CT_EINVAL, "rods: no rods");
+        snprintf(c->source, sizeof c->source, "arrays");
+    } else if (c->file) {
         char *path = ct_path_join(dir, c->file);
         if (!path)
             return ct_error_set(CT_ENOMEM, "out of memory");
@@ -338,6 +366,33 @@ static int rods_prepare(ct_surface *s, const char *dir)
     if ((st = ct_layer_validate(&c->layer)))
         return st;
     ct_scales_of(&s->scales, &c->layer, &c->layer);
+    return CT_OK;
+}
+
+int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,
+                        const double *length)
+{
+    CT_NEED(s);
+    if (s->kind != &ct_kind_rods)
+        return ct_error_set(CT_EINVAL, "ct_surface_set_rods: a surface of type %s, not rods",
+                            s->kind->name);
+    if (!n || !top || !area)
+        return ct_error_set(CT_EINVAL, "ct_surface_set_rods: %zu rods (tops, areas NULL?)", n);
+    rods_config *c = s->config;
+    rods_release_given(c);
+    c->given_top = malloc(n * sizeof(double));
+    c->given_area = malloc(n * sizeof(double));
+    c->given_length = length ? malloc(n * sizeof(double)) : NULL;
+    if (!c->given_top || !c->given_area || (length && !c->given_length)) {
+        rods_release_given(c);
+        return ct_error_set(CT_ENOMEM, "rods: out of memory for %zu rods", n);
+    }
+    memcpy(c->given_top, top, n * sizeof(double));
+    memcpy(c->given_area, area, n * sizeof(double));
+    if (length)
+        memcpy(c->given_length, length, n * sizeof(double));
+    c->given_n = n;
+    s->checked = s->prepared = 0;
     return CT_OK;
 }
 
