@@ -2,10 +2,10 @@
 """The exact rod model of cantact, one velocity at a time with scipy.optimize.brentq.
 
 The baseline of issue 11: how a researcher would write the sweep in NumPy without thinking
-about speed. Stage rods of a depth-N prefractal (MODEL.md sections 2-4: rod i < N has its top
+about speed. Stage rods of a depth-N prefractal (docs/model.md sections 2-4: rod i < N has its top
 at h_i = h0 fz^-i and area s_i = l0 (1 - 1/fx) fx^-i, the tip rod N has area l_N = l0 fx^-N;
 every rod reaches down to H*, so L_i = H* - h_i), elastic-perfectly-plastic, virgin before
-the impact; units sigma_y = l0 = h0 = 1, kinetic energy W = V*^2 l0 E h0 (MODEL.md section 1).
+the impact; units sigma_y = l0 = h0 = 1, kinetic energy W = V*^2 l0 E h0 (docs/model.md section 1).
 For each velocity: if W is at most the work to first yield (u_y = min_i h_i + eps_y L_i),
 e = 1; otherwise u_max solves
 
@@ -14,7 +14,7 @@ e = 1; otherwise u_max solves
 
 found by scipy.optimize.brentq on [0, H*) (rtol = 4 eps, the smallest brentq accepts, and a
 tiny xtol, so u_max is within a few ulps), and e = sqrt(sum_i E s_i L_i min(d_i, eps_y)^2/2 / W)
-(MODEL.md section 7). It shares no code with cantact nor with numpy_sweep.py (the vectorised
+(docs/model.md section 7). It shares no code with cantact nor with numpy_sweep.py (the vectorised
 bisection): scripts/bench compares its e with cantact's row by row, besides timing it.
 
 Timing covers the computation only (building the rods and solving every velocity), as in

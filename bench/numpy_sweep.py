@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The exact rod model of cantact, vectorised with NumPy, for the speed comparison of issue 6.
 
-Stage rods of a depth-N prefractal (MODEL.md sections 2-4: rod i < N has its top at
+Stage rods of a depth-N prefractal (docs/model.md sections 2-4: rod i < N has its top at
 h_i = h0 fz^-i, area s_i = l0 (1 - 1/fx) fx^-i, the tip rod N has area l_N = l0 fx^-N; all
 rods reach down to H*), elastic-perfectly-plastic, virgin before each impact. For every
 velocity at once: u_max from the closed-form loading work W(u) = sum E s L w((u - h)/L) by

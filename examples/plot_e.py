@@ -19,7 +19,7 @@ E_over_sigma_y, H = 500.0, 10.0
 
 # a rough profile of our own: a random walk (a self-affine profile, D = 1.5) sampled at
 # 4096 points over l0 = 1, levelled so that its peak-to-valley depth is h0 = 1; every sample
-# is a rod whose top lies (peak - z) below the highest point (MODEL.md §9)
+# is a rod whose top lies (peak - z) below the highest point (docs/model.md §9)
 rng = np.random.default_rng(2)
 z = np.cumsum(rng.standard_normal(4096))
 z -= np.polyval(np.polyfit(np.arange(z.size), z, 1), np.arange(z.size))  # detrend

@@ -1,5 +1,5 @@
 /* cantact: coefficient of restitution of a Cantor-fractal rough surface made of
- * elastic-perfectly-plastic rods on a Winkler foundation (see MODEL.md).
+ * elastic-perfectly-plastic rods on a Winkler foundation (see docs/model.md).
  *
  * Conventions: every fallible function returns an int status (CT_OK = 0); results come
  * back through pointer arguments; ct_error_message() holds the detail of the last error
@@ -56,7 +56,7 @@ const char *ct_strerror(int status);
 /* Returns the detailed message of the last error raised in this thread ("" if none). */
 const char *ct_error_message(void);
 
-/* ---- parameters (MODEL.md §1) ---------------------------------------------------- */
+/* ---- parameters (docs/model.md §1) ---------------------------------------------------- */
 
 typedef struct {
     double fx;      /* horizontal Cantor ratio, dimensionless, > 1 */
@@ -94,7 +94,7 @@ int ct_piece_extent(const ct_params *p, long depth, long stage, size_t j, double
 /* Returns the critical speed parameter's energy scale l0 E h0 [energy]: V*^2 = W / scale. */
 double ct_energy_scale(const ct_params *p);
 
-/* ---- rod sets (MODEL.md §3-4) ---------------------------------------------------- */
+/* ---- rod sets (docs/model.md §3-4) ---------------------------------------------------- */
 /* A bundle is a set of rods (top, length = H* - top, area, plastic strain) in one Winkler
  * layer. It knows nothing of the surface that made it: every kind of surface (Cantor below,
  * measured and random ones) only makes rods. */
@@ -191,7 +191,7 @@ double ct_bundle_first_yield(const ct_bundle *b);
 /* Advances every rod's state along the displacement path to u (Eq. 10). */
 void ct_bundle_advance(ct_bundle *b, double u);
 
-/* ---- the load curve P(u) (MODEL.md §4) ------------------------------------------- */
+/* ---- the load curve P(u) (docs/model.md §4) ------------------------------------------- */
 /* For a bundle's state P(u) is continuous and piecewise linear, with breakpoints at each
  * rod's contact and yield points. A curve holds it exactly: sorted breakpoints x_j, P_j, the
  * cumulative work W_j = int_{x_0}^{x_j} P du (the trapezoid rule on the breakpoints, exact for
@@ -250,7 +250,7 @@ int ct_integrate_batch(ct_batch_function f, void *ctx, double a, double b, ct_qu
 /* Returns the rule's name, or NULL for an unknown rule. */
 const char *ct_quad_rule_name(ct_quad_rule rule);
 
-/* ---- impact (MODEL.md §7) -------------------------------------------------------- */
+/* ---- impact (docs/model.md §7) -------------------------------------------------------- */
 
 typedef struct {
     ct_quad_rule rule; /* how W_load and W_unload are computed */
@@ -295,7 +295,7 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
  * without changing the state. */
 int ct_solve_umax(const ct_bundle *b, double W, double tolerance, double *u_max);
 
-/* ---- the impact in time (MODEL.md §11, src/dynamics.c) -------------------------- */
+/* ---- the impact in time (docs/model.md §11, src/dynamics.c) -------------------------- */
 /* The body (mass m per unit depth) obeys m u'' = -P(u) while in contact. P is piecewise
  * linear, so the motion is exact piece by piece: harmonic with omega = sqrt(k/m) on a piece of
  * slope k > 0, uniform deceleration on a plateau (k = 0). The time across a piece of width du
@@ -342,7 +342,7 @@ void ct_history_free(ct_history *h);
 int ct_bounce(const ct_bundle *b, double m, double v1, size_t nmax, double v_stop,
               ct_impact_result *res, ct_dynamics *dyn, size_t *n);
 
-/* ---- the Cantor surface (MODEL.md §2, src/surface/cantor.c) ---------------------- */
+/* ---- the Cantor surface (docs/model.md §2, src/surface/cantor.c) ---------------------- */
 
 typedef enum {
     CT_REP_STAGES = 0,   /* one rod per Cantor stage (pieces merged): N + 1 rods */
@@ -455,7 +455,7 @@ typedef struct {
  * so each costs O(log n) plus the closed-form check. Returns CT_OK when the sweep ran (rows
  * carry their own statuses), a row's status under stop_on_error, or CT_ENOMEM. */
 int ct_sweep(const ct_bundle *b, const ct_sweep_spec *spec, ct_sweep_row *rows);
-/* ---- the paper's laws (MODEL.md §5-6) -------------------------------------------- */
+/* ---- the paper's laws (docs/model.md §5-6) -------------------------------------------- */
 /* Loads P [force] at displacement u [length] of the infinite fractal. Each function returns
  * CT_OK, CT_EINVAL (invalid parameters; u or u_max not finite or negative) or CT_ERANGE
  * (outside the law's domain); on error it leaves its output untouched. Thread-safe. */
@@ -488,7 +488,7 @@ typedef enum { CT_LAW_SERIES = 0, CT_LAW_ASYMPTOTIC = 1, CT_LAW_ASYMPTOTIC_CONSI
 int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e);
 const char *ct_law_name(ct_law law);
 
-/* ---- random Cantor surfaces (MODEL.md §10, src/surface/random_cantor.c) ---------- */
+/* ---- random Cantor surfaces (docs/model.md §10, src/surface/random_cantor.c) ---------- */
 /* Every split draws its own ratios: child k of a piece of width w whose middle stays at
  * depth h has width w / (2 fx_k) and depth h / fz_k, with fx_k and fz_k drawn independently
  * around the centres fx and fz. Each piece is its own rod (the segments layout: piece j of
@@ -693,7 +693,7 @@ typedef struct {
  * V_star,e,de_dlnV_star rows (round-trip digits). CT_EIO on a write error. */
 int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta);
 
-/* ---- measured surfaces (MODEL.md §9, src/surface/profile.c, profile_read.c, fit.c) --- */
+/* ---- measured surfaces (docs/model.md §9, src/surface/profile.c, profile_read.c, fit.c) --- */
 /* A measured line profile z(x_j) or areal topography z(x_i, y_j) is a rod set directly: after
  * levelling, the plane touches the highest point; sample j is a rod with top depth
  * t_j = max z - z_j, its share of the x-axis (a line) or the pixel area (a grid) as its area,
@@ -784,7 +784,7 @@ typedef enum {
     CT_DIM_SPECTRUM = 2,
 } ct_dimension_method;
 
-/* The Cantor surface a profile looks like (MODEL.md §9): alpha and h0 from the bearing curve
+/* The Cantor surface a profile looks like (docs/model.md §9): alpha and h0 from the bearing curve
  * (ln phi = alpha ln d - alpha ln h0), D by the method asked for (all three reported), then
  * Eq. 3 inverted: ln fz = ln 2 (2 - D) / (1 + alpha (D - 1)), ln fx = alpha ln fz; l0 the
  * profile's length (a grid: its length along x). A grid is read along x, row by row. */

@@ -1,4 +1,4 @@
-/* The paper's asymptotic law (MODEL.md §6, Eqs. 25-38) and its energies in closed form. The
+/* The paper's asymptotic law (docs/model.md §6, Eqs. 25-38) and its energies in closed form. The
  * public functions check their inputs and return a status; the static *_value functions below
  * them assume checked parameters and 0 <= u <= u_max <= h0. */
 #include "internal.h"

@@ -1,4 +1,4 @@
-/* Rod sets (MODEL.md §3-4): rods as arrays, rod-by-rod force assembly, state advance,
+/* Rod sets (docs/model.md §3-4): rods as arrays, rod-by-rod force assembly, state advance,
  * closed-form energies. A bundle knows nothing of the surface that made it. This file and
  * the event sort of curve.c are the only ones with OpenMP pragmas.
  *

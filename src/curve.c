@@ -1,4 +1,4 @@
-/* The load curve P(u) of a bundle's state (MODEL.md §4), held as the piecewise-linear
+/* The load curve P(u) of a bundle's state (docs/model.md §4), held as the piecewise-linear
  * function it is.
  *
  * Each rod contributes two events: at its contact point c = top + eps_p L the slope of P

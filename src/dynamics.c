@@ -1,4 +1,4 @@
-/* The impact in time (MODEL.md §11): m u'' = -P(u) while in contact, P piecewise linear, so
+/* The impact in time (docs/model.md §11): m u'' = -P(u) while in contact, P piecewise linear, so
  * the motion is exact piece by piece.
  *
  * On a piece [x_a, x_b] with P = P_a + k (u - x_a), k >= 0, energy conservation fixes the

@@ -1,4 +1,4 @@
-/* Ensembles of random Cantor realisations (MODEL.md §10): every realisation is built, swept
+/* Ensembles of random Cantor realisations (docs/model.md §10): every realisation is built, swept
  * and dropped, its samples stored at its own index; statistics are computed afterwards from
  * the samples in realisation order. So the output depends neither on the thread count nor on
  * the split (whole realisations per thread, or one realisation's rods shared by the threads),

@@ -1,4 +1,4 @@
-/* The Cantor surface a measured profile looks like (MODEL.md §9).
+/* The Cantor surface a measured profile looks like (docs/model.md §9).
  *
  * Bearing-area curve: for the Cantor prefractal phi(h0 fz^-i) = fx^-i, a staircase on
  * phi(d) = (d / h0)^alpha, alpha = ln fx / ln fz: ln phi = alpha ln d - alpha ln h0 is fitted

@@ -1,4 +1,4 @@
-/* Energy balance of one impact (MODEL.md §7, Eqs. 39-41): u_max, unloading, e; the
+/* Energy balance of one impact (docs/model.md §7, Eqs. 39-41): u_max, unloading, e; the
  * critical velocity. The load curve of the pre-impact state answers everything the
  * breakpoint rule needs in O(log n); the bundle is read for the release point, the
  * closed-form check and the composite rules. */

@@ -1,4 +1,4 @@
-/* The rod law of MODEL.md §3, for any displacement history (Eqs. 4-11).
+/* The rod law of docs/model.md §3, for any displacement history (Eqs. 4-11).
  *
  * A rod has its top at depth `top` below the reference plane, length L = H* - top, area s,
  * and plastic strain eps_p (state, starts at 0). With strain eps = (u - top)/L (Eq. 4) the

@@ -1,4 +1,4 @@
-/* The paper's series (MODEL.md §5, Eqs. 12-24) for the infinite fractal, and the impact
+/* The paper's series (docs/model.md §5, Eqs. 12-24) for the infinite fractal, and the impact
  * energy balance (Eqs. 39-41) under the series and asymptotic laws. */
 #include "internal.h"
 

@@ -1,7 +1,7 @@
 /* libFuzzer target: impacts on arbitrary surfaces, every rule and path. The bytes choose a
  * Cantor surface over the whole valid range (fx up to 1e3, fz in (1, 2), H* / h0 up to 1e6,
  * E/sigma_y up to 1e9), its representation and depth, up to 8 speeds, 1-4 impacts, the rule,
- * its nodes and the sweep path. Whatever the library computes must hold what MODEL.md says:
+ * its nodes and the sweep path. Whatever the library computes must hold what docs/model.md says:
  * e finite in [0, 1], exactly 1 for an elastic impact, u_max finite and below H*, and the
  * energy balance W(u_max) = kinetic energy to the solve's tolerance or the rounding floor of u.
  * A refusal (a status with a message) is fine; a wrong number is a crash here.

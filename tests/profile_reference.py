@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""An independent reference for a measured line profile (MODEL.md section 9), in NumPy: it
+"""An independent reference for a measured line profile (docs/model.md section 9), in NumPy: it
 shares no code with cantact. Reads a two-column profile (non-numeric lines skipped), removes
 the least-squares line (every sample weighing the same), Rq = the width-weighted rms about the
 width-weighted mean (the integral definition on a non-uniform sampling), builds the rods (top depth t_j = max z - z_j, width: half the distance

@@ -94,7 +94,7 @@ static void dimension_at_known_points(void **state)
     p.fx = 1.0 + 1e-12;
     p.fz = 1.0 + 1e-12;
     assert_close(ct_dimension(&p), 2.0L, 1e-11);
-    /* D falls as fx rises (MODEL.md §8) */
+    /* D falls as fx rises (docs/model.md §8) */
     p.fz = 1.3;
     p.fx = 1.2;
     double d1 = ct_dimension(&p);

@@ -1,4 +1,4 @@
-/* The impact in time (MODEL.md §11, src/dynamics.c): a single linear rod (t_c = pi sqrt(m/k)
+/* The impact in time (docs/model.md §11, src/dynamics.c): a single linear rod (t_c = pi sqrt(m/k)
  * exactly, a symmetric history), an elastic impact (t_load = t_unload, e_kinematic = 1), a
  * plateau worked by hand, a deep surface against GSL's adaptive ODE integration of
  * m u'' = -P(u) with P summed rod by rod (loading, then unloading from the state the rods

@@ -22,7 +22,7 @@ static ct_params base(void)
     return p;
 }
 
-/* ---- an independent virgin-surface model, straight from MODEL.md §2-3 ---- */
+/* ---- an independent virgin-surface model, straight from docs/model.md §2-3 ---- */
 typedef struct {
     ct_params p;
     long N;
@@ -149,7 +149,7 @@ static void critical_velocity(void **state)
     ref_model m = {p, N};
     double eps_y = p.sigma_y / p.E;
     double hN = p.h0 * pow(p.fz, -(double)N);
-    double u_c = eps_y * p.Hstar + (1.0 - eps_y) * hN; /* MODEL.md §7 at depth N */
+    double u_c = eps_y * p.Hstar + (1.0 - eps_y) * hN; /* docs/model.md §7 at depth N */
     double V_c = sqrt(ref_work(u_c, &m) / ct_energy_scale(&p));
     ct_bundle *b;
     assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, N, INFINITY), CT_OK);
@@ -166,7 +166,7 @@ static void critical_velocity(void **state)
     ct_bundle_free(b);
 }
 
-/* MODEL.md §8: e falls with V* in the paper's range u_max/h0 < 0.04. */
+/* docs/model.md §8: e falls with V* in the paper's range u_max/h0 < 0.04. */
 static void e_non_increasing_in_V(void **state)
 {
     (void)state;

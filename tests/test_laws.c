@@ -1,4 +1,4 @@
-/* The paper's series and asymptotic laws (MODEL.md §5-8): against direct stage sums, against
+/* The paper's series and asymptotic laws (docs/model.md §5-8): against direct stage sums, against
  * each other at the nodes, their energies against GSL quadrature, the paper's qualitative
  * claims in the paper's range, and the plastic-range power law of e. */
 #include <setjmp.h>
@@ -116,7 +116,7 @@ static void eq33_equals_eq21_at_nodes(void **state)
         }
 }
 
-/* Eqs. 22-24 summed stage by stage in long double, as MODEL.md §5 reads them: a stage that
+/* Eqs. 22-24 summed stage by stage in long double, as docs/model.md §5 reads them: a stage that
  * yielded on the way to u_max (exact test, Eq. 29: h_i <= chi_M h0) pushes
  * E s_i ((u - u_max)/H* + eps_y) while u >= h-bar_i = u_max - eps_y (H* - h_i) (Eq. 24); every
  * other stage stays on its loading line (E/H*) s_i (u - h_i) while u > h_i (Eq. 22). */
@@ -341,7 +341,7 @@ static double deviation(const ct_params *p, double u1, double u2)
     return m;
 }
 
-/* MODEL.md §8 (paper's Fig. 4): deviation < 10 % for u/h0 < 0.04, growing with u and with fz */
+/* docs/model.md §8 (paper's Fig. 4): deviation < 10 % for u/h0 < 0.04, growing with u and with fz */
 static void paper_fig4_claims(void **state)
 {
     (void)state;
@@ -483,7 +483,7 @@ static void paper_fig7_fig8_claims(void **state)
     }
 }
 
-/* MODEL.md §7: where eps_y H* << u_max << h0 the asymptotic e ~ V*^(-1/(1+alpha)). */
+/* docs/model.md §7: where eps_y H* << u_max << h0 the asymptotic e ~ V*^(-1/(1+alpha)). */
 static void asymptotic_e_power_law(void **state)
 {
     (void)state;
@@ -528,7 +528,7 @@ static void law_impact_u_max_solves_eq39(void **state)
                 ct_params p = make(fxs[a], fzs[b], Es[c], 10.0);
                 double eps_y = 1.0 / Es[c], uy = eps_y * p.Hstar, alpha = ct_alpha(&p);
                 double W_top = asym_work_load(&p, p.h0), W_y = asym_work_load(&p, uy);
-                /* Eq. 33 integrated: P_Y K x^(2+a) h0 / ((2+a) eps_y fx H), K as in MODEL.md */
+                /* Eq. 33 integrated: P_Y K x^(2+a) h0 / ((2+a) eps_y fx H), K as in docs/model.md */
                 double K = (1.0 - 1.0 / p.fz) / (1.0 - 1.0 / (p.fx * p.fz));
                 double pre = K / ((2.0 + alpha) * eps_y * p.fx * p.Hstar);
                 for (int k = 0; k <= 40; k++) {

@@ -1,4 +1,4 @@
-/* Measured surfaces (MODEL.md §9): rods from a profile (areas, tops, the layer), the
+/* Measured surfaces (docs/model.md §9): rods from a profile (areas, tops, the layer), the
  * bearing-area curve by hand, levelling against exact polynomials, trimming, the readers
  * (text, one column, Dektak, X3P written here with libzip) and their errors with line numbers,
  * and the fit: a smooth profile built with a known bearing law, a Weierstrass-Mandelbrot

@@ -1,4 +1,4 @@
-/* Random Cantor surfaces (src/surface/random_cantor.c, MODEL.md §10): the generator and its
+/* Random Cantor surfaces (src/surface/random_cantor.c, docs/model.md §10): the generator and its
  * keying, each rod against the geometry recomputed here in long double from the drawn ratios,
  * the ratio distributions' moments, clipping and its count, spread 0 against the
  * deterministic surface, and independence of the thread count. */

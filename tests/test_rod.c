@@ -1,4 +1,4 @@
-/* The rod law (MODEL.md §3) against its closed forms, Eqs. 4-11. */
+/* The rod law (docs/model.md §3) against its closed forms, Eqs. 4-11. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The quick validation grid (tools/validate.c): it must run, and what it prints must hold what
-# the paper claims where the paper claims it (MODEL.md §8: the asymptotic law within 10 % of
+# the paper claims where the paper claims it (docs/model.md §8: the asymptotic law within 10 % of
 # the series for u/h0 <= 0.04 on these soft surfaces) and stay in range elsewhere.
 # Usage: validate_smoke.sh CT_VALIDATE
 set -u

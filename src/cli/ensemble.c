@@ -378,10 +378,74 @@ static void show_progress(size_t done, size_t total, void *ctx)
         ct_progress_step(prog);
 }
 
+/* This rank's realisations my_a .. my_b - 1 into *mine (NULL when none); msg gets the error. */
+static int run_block(const ct_scene *sc, const ct_random_cantor *surface, uint64_t my_a,
+                     uint64_t my_b, ct_ensemble_samples **mine, char *msg, size_t msglen)
+{
+    const size_t nrows = sc->nvel * (size_t)sc->impacts;
+    ct_progress prog;
+    ct_progress_start(&prog, ct_mpi_rank() == 0 ? (size_t)(my_b - my_a) : 0);
+    int st = CT_OK;
+    if (my_b > my_a) {
+        st = ct_ensemble_samples_alloc(mine, my_a, my_b - my_a, nrows);
+        if (!st) {
+            ct_ensemble_spec spec = {.surface = *surface,
+                                     .first = my_a,
+                                     .count = my_b - my_a,
+                                     .V_star = sc->V_star,
+                                     .nvel = sc->nvel,
+                                     .impacts = sc->impacts,
+                                     .opts = sc->opts,
+                                     .path = sc->path,
+                                     .stop_on_error = !sc->skip_failed,
+                                     .threads = sc->threads,
+                                     .split = sc->split,
+                                     .progress = ct_mpi_rank() == 0 ? show_progress : NULL,
+                                     .progress_ctx = &prog};
+            st = ct_ensemble(&spec, *mine);
+            /* a failed impact is a sample: rank 0 reports the lowest of all ranks */
+            if (st && (*mine)->failed_realisation != UINT64_MAX)
+                st = CT_OK;
+        }
+        if (st)
+            snprintf(msg, msglen, "%s", ct_error_message());
+    }
+    ct_progress_end(&prog);
+    return st;
+}
+
+/* Rank 0: the samples of every rank (or their failure) into the outputs. */
+static int report(outputs *o, const ct_scene *sc, const ct_ensemble_samples *all, int st,
+                  const char *err, int quiet)
+{
+    const size_t nrows = sc->nvel * (size_t)sc->impacts;
+    table t;
+    if (st) {
+        fail_line(err);
+        return status_exit(st);
+    }
+    if (!sc->skip_failed && all->failed_realisation != UINT64_MAX) {
+        /* solver.on_error = stop: the lowest failing realisation, then row */
+        const size_t k = (size_t)(all->failed_realisation - all->first) * nrows + all->failed_row;
+        fail_line(all->message);
+        return status_exit(all->status[k]);
+    }
+    if (table_from_samples(&t, all, sc->scales.layer.h0)) {
+        fail_line("ensemble: out of memory");
+        return EXIT_FAILED;
+    }
+    int rc = write_outputs(o, sc, &t, quiet);
+    if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max))
+        fprintf(stderr, "cantact: closed-form check: max |e - e_closed_form| = %.3g\n",
+                all->quad_error_max);
+    table_free(&t);
+    return rc;
+}
+
 int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
 {
     const int rank = ct_mpi_rank(), size = ct_mpi_size();
-    char err[512] = "";
+    char err[512] = "", msg[300] = "";
     uint64_t a = 0, b = sc->realisations;
     int rc = EXIT_DONE;
     if (range && parse_range(range, sc->realisations, &a, &b, err, sizeof err)) {
@@ -391,7 +455,6 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
     }
     /* a range writes its samples, for cantact merge */
     const unsigned what = range ? CT_OUT_REALISATIONS : sc->what;
-    const size_t nrows = sc->nvel * (size_t)sc->impacts;
     outputs o;
     memset(&o, 0, sizeof o);
     int ok = 1;
@@ -403,8 +466,8 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
         close_outputs(&o);
         return EXIT_USAGE;
     }
-    ct_random_cantor rc_surface;
-    ct_surface_random_cantor(sc->surface, &rc_surface, NULL);
+    ct_random_cantor surface;
+    ct_surface_random_cantor(sc->surface, &surface, NULL);
     /* this rank's block of realisations */
     const uint64_t n = b - a;
     const uint64_t my_a = a + n * (uint64_t)rank / (uint64_t)size;
@@ -413,70 +476,23 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
         fprintf(stderr,
                 "cantact: random cantor surface, depth %ld (%zu rods per realisation), "
                 "realisations %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
-                rc_surface.depth, ((size_t)2 << rc_surface.depth) - 1, (unsigned long long)a,
+                surface.depth, ((size_t)2 << surface.depth) - 1, (unsigned long long)a,
                 (unsigned long long)(b - 1), (unsigned long long)sc->realisations, size,
                 sc->threads > 0 ? sc->threads : ct_default_threads());
     ct_ensemble_samples *mine = NULL, *all = NULL;
-    int st = CT_OK;
-    char msg[300] = "";
-    ct_progress prog;
-    ct_progress_start(&prog, rank == 0 ? (size_t)(my_b - my_a) : 0);
-    if (my_b > my_a) {
-        st = ct_ensemble_samples_alloc(&mine, my_a, my_b - my_a, nrows);
-        if (!st) {
-            ct_ensemble_spec spec = {.surface = rc_surface,
-                                     .first = my_a,
-                                     .count = my_b - my_a,
-                                     .V_star = sc->V_star,
-                                     .nvel = sc->nvel,
-                                     .impacts = sc->impacts,
-                                     .opts = sc->opts,
-                                     .path = sc->path,
-                                     .stop_on_error = !sc->skip_failed,
-                                     .threads = sc->threads,
-                                     .split = sc->split,
-                                     .progress = rank == 0 ? show_progress : NULL,
-                                     .progress_ctx = &prog};
-            st = ct_ensemble(&spec, mine);
-            /* a failed impact is a sample: rank 0 reports the lowest of all ranks */
-            if (st && mine->failed_realisation != UINT64_MAX)
-                st = CT_OK;
-        }
-        if (st)
-            snprintf(msg, sizeof msg, "%s", ct_error_message());
-    }
-    ct_progress_end(&prog);
+    int st = run_block(sc, &surface, my_a, my_b, &mine, msg, sizeof msg);
     if (size > 1) {
-        st = ct_mpi_gather(mine, st, msg, a, n, nrows, &all, err, sizeof err);
+        st = ct_mpi_gather(mine, st, msg, a, n, sc->nvel * (size_t)sc->impacts, &all, err,
+                           sizeof err);
         if (rank == 0 && all)
-            all->draws = ((uint64_t)2 << rc_surface.depth) - 2;
+            all->draws = ((uint64_t)2 << surface.depth) - 2;
     } else {
         all = mine;
         mine = NULL;
         snprintf(err, sizeof err, "%s", msg);
     }
-    if (rank == 0) {
-        table t;
-        if (st) {
-            fail_line(err);
-            rc = status_exit(st);
-        } else if (!sc->skip_failed && all->failed_realisation != UINT64_MAX) {
-            /* solver.on_error = stop: the lowest failing realisation, then row */
-            const size_t k =
-                (size_t)(all->failed_realisation - all->first) * nrows + all->failed_row;
-            fail_line(all->message);
-            rc = status_exit(all->status[k]);
-        } else if (table_from_samples(&t, all, sc->scales.layer.h0)) {
-            fail_line("ensemble: out of memory");
-            rc = EXIT_FAILED;
-        } else {
-            rc = write_outputs(&o, sc, &t, quiet);
-            if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max))
-                fprintf(stderr, "cantact: closed-form check: max |e - e_closed_form| = %.3g\n",
-                        all->quad_error_max);
-            table_free(&t);
-        }
-    }
+    if (rank == 0)
+        rc = report(&o, sc, all, st, err, quiet);
     close_outputs(&o);
     ct_ensemble_samples_free(mine);
     ct_ensemble_samples_free(all);

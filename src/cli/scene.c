@@ -304,6 +304,80 @@ static int is_comment_start(char c)
     return c == ';' || c == '#';
 }
 
+/* A section header line "[name]" (then only a comment): its name, known, handed to inih. */
+static char *section_line(parse_state *s, const char *p, size_t n, char *buf, int size)
+{
+    const char *close = memchr(p, ']', n), *end = p + n;
+    char name[64], shown[64];
+    snprintf(shown, sizeof shown, "%.*s", (int)(n < 60 ? n : 60), p);
+    if (!close)
+        return reader_error(s, "%s:%d: %s: malformed section header (expected [name])", shown);
+    const char *after = close + 1;
+    while (after < end && isspace((unsigned char)*after))
+        after++;
+    if (after < end && !is_comment_start(*after))
+        return reader_error(s, "%s:%d: %s: text after the section header", shown);
+    const char *a = p + 1, *b = close;
+    while (a < b && isspace((unsigned char)*a))
+        a++;
+    while (b > a && isspace((unsigned char)b[-1]))
+        b--;
+    if (b == a || (size_t)(b - a) >= sizeof name || memchr(a, '[', (size_t)(b - a)))
+        return reader_error(s, "%s:%d: %s: not a section name", shown);
+    memcpy(name, a, (size_t)(b - a));
+    name[b - a] = '\0';
+    if (!section_known(name)) {
+        char msg[400], known[200];
+        section_list(known, sizeof known);
+        snprintf(msg, sizeof msg, "%%s:%%d: [%%s]: unknown section (known: %s)", known);
+        return reader_error(s, msg, name);
+    }
+    s->section_line = s->line;
+    snprintf(buf, (size_t)size, "[%s]\n", name);
+    return buf;
+}
+
+/* A key line longer than inih's buffer: split here as inih would (at the first '=' or ':',
+ * an inline comment starts at ';' after white space), the value held aside and handed over
+ * as "key = <mark><index>". */
+static char *long_key_line(parse_state *s, const char *p, size_t n, char *buf, int size)
+{
+    const char *sep = p;
+    while (sep < p + n && *sep != '=' && *sep != ':')
+        sep++;
+    if (sep == p + n)
+        return reader_error(s, "%s:%d: malformed line (expected [section] or key = value)%s", "");
+    const char *kend = sep;
+    while (kend > p && isspace((unsigned char)kend[-1]))
+        kend--;
+    if ((size_t)(kend - p) + 32 > (size_t)size)
+        return reader_error(s, "%s:%d: key longer than %s characters", "160");
+    const char *v = sep + 1, *vend = p + n;
+    while (v < vend && isspace((unsigned char)*v))
+        v++;
+    for (const char *c = v + 1; c < vend; c++)
+        if (*c == ';' && isspace((unsigned char)c[-1])) {
+            vend = c;
+            break;
+        }
+    while (vend > v && isspace((unsigned char)vend[-1]))
+        vend--;
+    char **grown = realloc(s->long_values, (s->nlong + 1) * sizeof *grown);
+    char *value = grown ? malloc((size_t)(vend - v) + 1) : NULL;
+    if (grown)
+        s->long_values = grown;
+    if (!value) {
+        s->status = scene_error(CT_ENOMEM, "scene: out of memory");
+        return NULL;
+    }
+    memcpy(value, v, (size_t)(vend - v));
+    value[vend - v] = '\0';
+    s->long_values[s->nlong] = value;
+    snprintf(buf, (size_t)size, "%.*s = %c%zu\n", (int)(kend - p), p, LONG_VALUE_MARK, s->nlong);
+    s->nlong++;
+    return buf;
+}
+
 static char *read_string_line(char *buf, int size, void *stream)
 {
     parse_state *s = stream;
@@ -340,77 +414,13 @@ static char *read_string_line(char *buf, int size, void *stream)
         snprintf(buf, (size_t)size, "\n");
         return buf;
     }
-    if (*p == '[') {
-        const char *close = memchr(p, ']', n), *end = p + n;
-        char name[64], shown[64];
-        snprintf(shown, sizeof shown, "%.*s", (int)(n < 60 ? n : 60), p);
-        if (!close)
-            return reader_error(s, "%s:%d: %s: malformed section header (expected [name])", shown);
-        const char *after = close + 1;
-        while (after < end && isspace((unsigned char)*after))
-            after++;
-        if (after < end && !is_comment_start(*after))
-            return reader_error(s, "%s:%d: %s: text after the section header", shown);
-        const char *a = p + 1, *b = close;
-        while (a < b && isspace((unsigned char)*a))
-            a++;
-        while (b > a && isspace((unsigned char)b[-1]))
-            b--;
-        if (b == a || (size_t)(b - a) >= sizeof name || memchr(a, '[', (size_t)(b - a)))
-            return reader_error(s, "%s:%d: %s: not a section name", shown);
-        memcpy(name, a, (size_t)(b - a));
-        name[b - a] = '\0';
-        if (!section_known(name)) {
-            char msg[400], known[200];
-            section_list(known, sizeof known);
-            snprintf(msg, sizeof msg, "%%s:%%d: [%%s]: unknown section (known: %s)", known);
-            return reader_error(s, msg, name);
-        }
-        s->section_line = s->line;
-        snprintf(buf, (size_t)size, "[%s]\n", name);
-        return buf;
-    }
-    if (n + 2 <= (size_t)size) {
-        memcpy(buf, p, n);
-        buf[n] = '\n';
-        buf[n + 1] = '\0';
-        return buf;
-    }
-    /* a key line longer than inih's buffer: split it here as inih would (at the first '='
-     * or ':', an inline comment starts at ';' after white space) */
-    const char *sep = p;
-    while (sep < p + n && *sep != '=' && *sep != ':')
-        sep++;
-    if (sep == p + n)
-        return reader_error(s, "%s:%d: malformed line (expected [section] or key = value)%s", "");
-    const char *kend = sep;
-    while (kend > p && isspace((unsigned char)kend[-1]))
-        kend--;
-    if ((size_t)(kend - p) + 32 > (size_t)size)
-        return reader_error(s, "%s:%d: key longer than %s characters", "160");
-    const char *v = sep + 1, *vend = p + n;
-    while (v < vend && isspace((unsigned char)*v))
-        v++;
-    for (const char *c = v + 1; c < vend; c++)
-        if (*c == ';' && isspace((unsigned char)c[-1])) {
-            vend = c;
-            break;
-        }
-    while (vend > v && isspace((unsigned char)vend[-1]))
-        vend--;
-    char **grown = realloc(s->long_values, (s->nlong + 1) * sizeof *grown);
-    char *value = grown ? malloc((size_t)(vend - v) + 1) : NULL;
-    if (grown)
-        s->long_values = grown;
-    if (!value) {
-        s->status = scene_error(CT_ENOMEM, "scene: out of memory");
-        return NULL;
-    }
-    memcpy(value, v, (size_t)(vend - v));
-    value[vend - v] = '\0';
-    s->long_values[s->nlong] = value;
-    snprintf(buf, (size_t)size, "%.*s = %c%zu\n", (int)(kend - p), p, LONG_VALUE_MARK, s->nlong);
-    s->nlong++;
+    if (*p == '[')
+        return section_line(s, p, n, buf, size);
+    if (n + 2 > (size_t)size)
+        return long_key_line(s, p, n, buf, size);
+    memcpy(buf, p, n);
+    buf[n] = '\n';
+    buf[n + 1] = '\0';
     return buf;
 }
 

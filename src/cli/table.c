@@ -43,6 +43,30 @@ const char *const ct_cli_table_help =
     "  -q                        no summary on stderr\n"
     "  -h, --help                this help\n";
 
+/* The surface planned for the table's range (depth auto from its smallest speed, the rods its
+ * largest reaches) and the table built on it. */
+static int build_table(const ct_scene *sc, ct_bundle **b, ct_table **t, ct_plan_info *info)
+{
+    double range[2] = {sc->table_V_min, sc->table_V_max};
+    ct_build_request req;
+    ct_scene_request(sc, 0, &req);
+    req.V_star = range;
+    req.nvel = 2;
+    req.impacts = 1;
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = range[0];
+    spec.V_max = range[1];
+    spec.tolerance = sc->table_tolerance;
+    spec.interpolation = sc->table_interpolation;
+    spec.max_nodes = (size_t)sc->table_max_nodes;
+    spec.check_points = (size_t)sc->table_check_points;
+    spec.opts = sc->opts;
+    spec.path = sc->path;
+    int st = ct_surface_build(sc->surface, &req, b, info);
+    return st ? st : ct_table_build(t, *b, &spec);
+}
+
 int ct_cli_table(int argc, char **argv)
 {
     ct_args a;
@@ -64,6 +88,7 @@ int ct_cli_table(int argc, char **argv)
     int opened = 0, st;
     ct_bundle *b = NULL;
     ct_table *t = NULL;
+    ct_plan_info info;
     char err[600];
     if (sc.realisations) {
         ct_cli_fail("table: %s has [ensemble] realisations: a table is of one surface (without "
@@ -76,27 +101,7 @@ int ct_cli_table(int argc, char **argv)
         goto done;
     }
     opened = 1;
-    /* the surface, planned for the table's range (depth auto from its smallest speed, the
-     * rods its largest reaches) */
-    ct_plan_info info;
-    double range[2] = {sc.table_V_min, sc.table_V_max};
-    ct_build_request req;
-    ct_scene_request(&sc, 0, &req);
-    req.V_star = range;
-    req.nvel = 2;
-    req.impacts = 1;
-    ct_table_spec spec;
-    ct_table_spec_default(&spec);
-    spec.V_min = range[0];
-    spec.V_max = range[1];
-    spec.tolerance = sc.table_tolerance;
-    spec.interpolation = sc.table_interpolation;
-    spec.max_nodes = (size_t)sc.table_max_nodes;
-    spec.check_points = (size_t)sc.table_check_points;
-    spec.opts = sc.opts;
-    spec.path = sc.path;
-    if ((st = ct_surface_build(sc.surface, &req, &b, &info)) ||
-        (st = ct_table_build(&t, b, &spec))) {
+    if ((st = build_table(&sc, &b, &t, &info))) {
         ct_cli_fail("%s", ct_error_message());
         rc = ct_cli_status_exit(st);
         goto done;
@@ -119,9 +124,9 @@ int ct_cli_table(int argc, char **argv)
                 "cantact: table of %zu nodes (%zu at kinks) on V* %.6g .. %.6g, %s: worst "
                 "|e_table - e| = %.3g at V* = %.6g over %zu checked points (tolerance %.3g; "
                 "%zu exact impacts, %zu rounds)\n",
-                ct_table_size(t), in.kinks, range[0], range[1], ct_interp_name(spec.interpolation),
-                in.worst_error, in.worst_V_star, in.checked, spec.tolerance, in.evaluations,
-                in.rounds);
+                ct_table_size(t), in.kinks, sc.table_V_min, sc.table_V_max,
+                ct_interp_name(ct_table_interpolation(t)), in.worst_error, in.worst_V_star,
+                in.checked, sc.table_tolerance, in.evaluations, in.rounds);
     opened = 0;
     if (ct_out_commit(&out, err, sizeof err)) {
         ct_cli_fail("%s", err);

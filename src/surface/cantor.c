@@ -1,4 +1,4 @@
-/* The Cantor surface (MODEL.md §1-2): parameter validation, the geometry of Eqs. 1-3, 16-18,
+/* The Cantor surface (docs/model.md §1-2): parameter validation, the geometry of Eqs. 1-3, 16-18,
  * 28, the prefractal as rods (stages or segments) with its metadata, and the truncation depth. */
 #include "kind.h"
 

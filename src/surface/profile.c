@@ -1,4 +1,4 @@
-/* Measured surfaces (MODEL.md §9): a line profile z(x_j) or a grid z(x_i, y_j) as rods.
+/* Measured surfaces (docs/model.md §9): a line profile z(x_j) or a grid z(x_i, y_j) as rods.
  *
  * After levelling, the plane touches the highest point; sample j is a rod with top depth
  * t_j = max z - z_j and length H* - t_j. Its area: on a line, its share of the x-axis (the
@@ -143,7 +143,7 @@ int ct_profile_from_grid(ct_profile **out, size_t nx, size_t ny, double dx, doub
     return st;
 }
 
-/* Sample j's area [length or length^2] (MODEL.md §9). */
+/* Sample j's area [length or length^2] (docs/model.md §9). */
 static double share(const ct_profile *p, size_t j)
 {
     if (p->ny > 1)

@@ -1,4 +1,4 @@
-/* Random Cantor surfaces (MODEL.md §10): every split draws its own width and depth ratios
+/* Random Cantor surfaces (docs/model.md §10): every split draws its own width and depth ratios
  * around f_x and f_z, so the pieces of one stage sit at different depths and every piece is
  * its own rod. A realisation is a pure function of (seed, realisation index): the ratios of
  * piece g are one Philox4x64-10 block (Random123, counter-based) with key (seed, realisation)
@@ -10,7 +10,7 @@
  * rods 2g + 1 (left) and 2g + 2 (right). A stage-i piece of width w and depth h keeps its
  * children at its two ends, child k of width w / (2 f_x,k) at depth h / f_z,k; its middle, of
  * width w - w/(2 f_x,1) - w/(2 f_x,2), stays at h. The 2^N tips of stage N carry their whole
- * width (the prefractal of depth N, MODEL.md §2).
+ * width (the prefractal of depth N, docs/model.md §2).
  *
  * Spread 0 gives the deterministic surface's rods in the same order, each top and area equal
  * to a few ulps per stage (not bitwise: cantor.c computes h0 f^-i in one exp/log so that deep
@@ -34,7 +34,7 @@ static double unit_open(uint64_t r)
     return ((double)(r >> 11) + 0.5) * 0x1p-53;
 }
 
-/* The nearest doubles inside the open valid ranges (MODEL.md §1): f_x > 1, 1 < f_z < 2. */
+/* The nearest doubles inside the open valid ranges (docs/model.md §1): f_x > 1, 1 < f_z < 2. */
 #define RATIO_LOW (1.0 + DBL_EPSILON)
 #define FZ_HIGH (2.0 - DBL_EPSILON)
 

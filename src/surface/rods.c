@@ -281,23 +281,22 @@ static int read_inline(rods_config *c, const char *text)
     return st;
 }
 
-static int rods_prepare(ct_surface *s, const char *dir)
+/* The rods from arrays, a file or the inline list; *lengths: whether they give lengths. */
+static int read_rods(rods_config *c, const char *dir, int *lengths)
 {
-    rods_config *c = s->config;
-    rods_prepared_release(c);
-    int st;
+    int st = CT_OK;
     if (c->given_top) {
         size_t cap = 0;
-        st = CT_OK;
         for (size_t k = 0; k < c->given_n && !st; k++) {
             double v[3] = {c->given_top[k], c->given_area[k],
                            c->given_length ? c->given_length[k] : NAN};
             st = push(c, &cap, v, c->given_length ? 3 : 2);
         }
-        if (!st && c->n == 0)
-            st = ct_error_set(CT_EINVAL, "rods: no rods");
         snprintf(c->source, sizeof c->source, "arrays");
-    } else if (c->file) {
+        *lengths = c->given_length != NULL;
+        return st;
+    }
+    if (c->file) {
         char *path = ct_path_join(dir, c->file);
         if (!path)
             return ct_error_set(CT_ENOMEM, "out of memory");
@@ -308,15 +307,17 @@ static int rods_prepare(ct_surface *s, const char *dir)
         st = read_inline(c, c->rods);
         snprintf(c->source, sizeof c->source, "surface.rods");
     }
-    if (st)
-        return st;
-    const int lengths = !isnan(c->length[0]);
-    if (!lengths) {
-        free(c->length);
-        c->length = NULL;
-    }
-    const double u = ct_surface_given(s, "surface", "unit") ? unit_metres[c->unit] : 1.0;
-    double deepest = 0.0, total = 0.0, bottom = INFINITY;
+    *lengths = !st && !isnan(c->length[0]); /* read numbers are finite: NaN means none */
+    return st;
+}
+
+/* Every rod in the unit u [m per unit; 1: as given] and checked; the deepest top, the total
+ * area and the shallowest bottom (top + length; infinite without lengths). */
+static int check_rods(rods_config *c, int lengths, double u, double *deepest, double *total,
+                      double *bottom)
+{
+    *deepest = *total = 0.0;
+    *bottom = INFINITY;
     for (size_t k = 0; k < c->n; k++) {
         c->top[k] *= u;
         c->area[k] *= u;
@@ -331,11 +332,31 @@ static int rods_prepare(ct_surface *s, const char *dir)
             if (!(c->length[k] > 0.0) || !isfinite(c->length[k]))
                 return ct_error_set(CT_EINVAL, "%s: rod %zu: length = %g: must be finite and > 0",
                                     c->source, k + 1, c->length[k]);
-            bottom = fmin(bottom, c->top[k] + c->length[k]);
+            *bottom = fmin(*bottom, c->top[k] + c->length[k]);
         }
-        deepest = fmax(deepest, c->top[k]);
-        total += c->area[k];
+        *deepest = fmax(*deepest, c->top[k]);
+        *total += c->area[k];
     }
+    return CT_OK;
+}
+
+static int rods_prepare(ct_surface *s, const char *dir)
+{
+    rods_config *c = s->config;
+    rods_prepared_release(c);
+    int lengths = 0, st = read_rods(c, dir, &lengths);
+    if (!st && c->n == 0)
+        st = ct_error_set(CT_EINVAL, "%s: no rods", c->source);
+    if (st)
+        return st;
+    if (!lengths) {
+        free(c->length);
+        c->length = NULL;
+    }
+    const double u = ct_surface_given(s, "surface", "unit") ? unit_metres[c->unit] : 1.0;
+    double deepest, total, bottom;
+    if ((st = check_rods(c, lengths, u, &deepest, &total, &bottom)))
+        return st;
     const int given_H = ct_surface_given(s, "surface", "H"),
               given_Hstar = ct_surface_given(s, "surface", "Hstar");
     if (lengths && (given_H || given_Hstar))
