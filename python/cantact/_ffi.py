@@ -376,6 +376,69 @@ typedef struct {
 int ct_profile_fit_of(const ct_profile *p, double d_lo, double d_hi, double tau_lo, double tau_hi,
                       ct_profile_fit *fit);
 int ct_profile_fit_bearing(const ct_profile *p, double d_lo, double d_hi, ct_profile_fit *fit);
+int ct_profile_fit_on_reach(const ct_profile *p, const ct_profile_fit *fit, const double *u_max,
+                            size_t n, ct_profile_fit *out);
+int ct_profile_fitted_e(const ct_profile *p, const ct_profile_fit *fit, const ct_layer *layer,
+                        const double *W, size_t n, int threads, double *e_fit, double *e_asym,
+                        double *V_fit);
+typedef enum {
+    CT_UNIT_ONE = 0,
+    CT_UNIT_LENGTH = 1,
+    CT_UNIT_FORCE = 2,
+    CT_UNIT_ENERGY = 3,
+    CT_UNIT_TIME = 4,
+    CT_UNIT_COUNT = 5,
+} ct_unit;
+typedef struct {
+    const char *name;
+    const char *group;
+    ct_unit unit;
+    char type;
+    int digits;
+    const char *physical;
+    double divisor;
+    size_t offset;
+    const char *doc;
+} ct_column;
+size_t ct_sweep_columns(const ct_column **cols);
+double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer);
+typedef struct ct_surface ct_surface;
+size_t ct_surface_kind_count(void);
+const char *ct_surface_kind_name(size_t k);
+int ct_surface_new(ct_surface **out, const char *kind);
+void ct_surface_free(ct_surface *s);
+const char *ct_surface_kind(const ct_surface *s);
+int ct_surface_set(ct_surface *s, const char *section, const char *name, const char *value,
+                   const char *where);
+int ct_surface_value(const ct_surface *s, const char *section, const char *name, double *out);
+int ct_surface_is_set(const ct_surface *s, const char *section, const char *name);
+int ct_surface_check(ct_surface *s, const char *scene);
+int ct_surface_prepare(ct_surface *s, const char *dir);
+typedef struct {
+    ct_layer layer;
+    ct_layer physical;
+    double force_unit;
+    double energy_unit;
+    double energy_scale;
+    double physical_energy_scale;
+} ct_scales;
+void ct_surface_scales(const ct_surface *s, ct_scales *out);
+double ct_speed_to_V_star(const ct_scales *sc, double m, double v);
+double ct_V_star_of(double m, double v, double l0, double E, double h0);
+double ct_time_scale(const ct_scales *sc, double m);
+typedef struct {
+    const double *V_star;
+    size_t nvel;
+    long impacts;
+    ct_impact_opts opts;
+    int keep_all_rods;
+    int threads;
+    double depth_tolerance;
+} ct_build_request;
+int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                     ct_plan_info *info);
+int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,
+                        const double *length);
 """
 
 ffi = cffi.FFI()
