@@ -2,6 +2,7 @@
 # of the realisations, the median, and e of the deterministic surface (spread 0).
 # Usage: gnuplot -e "csv='a.csv'; png='a.png'" plot_ensemble.gp
 set datafile separator ','
+set datafile columnheaders   # columns by the names of the header row
 set terminal pngcairo size 900,600 noenhanced
 set output png
 set logscale x
@@ -9,13 +10,13 @@ set format x '%.0e'
 set autoscale xfix
 set xlabel 'V* = sqrt(m v1^2 / (2 l0 E h0))'
 set ylabel 'coefficient of restitution e'
-stats csv using 3 every ::1::1 nooutput
+stats csv using 'realisations' every ::0::0 nooutput
 R = STATS_max
 set yrange [0:1.05]
 set grid
 set key bottom left
 set title sprintf('cantact: random Cantor surface, %d realisations per V* (%s)', R, csv)
-plot csv using 2:7:9 skip 1 with filledcurves fc rgb '#9ecae1' fs transparent solid 0.6 title '5-95 % of the realisations', \
-     '' using 2:8 skip 1 with lines dashtype 3 lw 1.5 lc rgb '#08519c' title 'median', \
-     '' using 2:4:6 skip 1 with yerrorlines pt 7 ps 0.5 lw 1.5 lc rgb '#08519c' title 'mean +- standard error', \
-     '' using 2:22 skip 1 with lines lw 2 dashtype 2 lc rgb '#d62728' title 'deterministic surface (spread 0)'
+plot csv using 'V_star':'e_q05':'e_q95' with filledcurves fc rgb '#9ecae1' fs transparent solid 0.6 title '5-95 % of the realisations', \
+     '' using 'V_star':'e_q50' with lines dashtype 3 lw 1.5 lc rgb '#08519c' title 'median', \
+     '' using 'V_star':'e_mean':'e_sem' with yerrorlines pt 7 ps 0.5 lw 1.5 lc rgb '#08519c' title 'mean +- standard error', \
+     '' using 'V_star':'e_deterministic' with lines lw 2 dashtype 2 lc rgb '#d62728' title 'deterministic surface (spread 0)'
