@@ -15,7 +15,7 @@ from ._errors import (Error, InvalidInput, IOFailure, NoConvergence, NotRun, Out
                       OutsideModel, strerror)
 from ._ffi import LIBRARY_PATH, ffi, lib
 from ._surfaces import Cantor, Profile, RandomCantor, Rods
-from ._api import (ROW_FIELDS, Ensemble, LoadCurve, Restitution, Table, asym_load,
+from ._api import (COLUMNS, ROW_FIELDS, Ensemble, LoadCurve, Restitution, Table, asym_load,
                    asym_unload, ensemble, law_restitution, load_curve, read_table, restitution,
                    series_load, series_unload, table)
 
@@ -23,6 +23,6 @@ __all__ = [
     "Cantor", "RandomCantor", "Rods", "Profile", "restitution", "Restitution", "ensemble", "Ensemble",
     "load_curve", "LoadCurve", "series_load", "series_unload", "asym_load", "asym_unload",
     "law_restitution", "table", "Table", "read_table", "Error", "InvalidInput", "OutOfMemory",
-    "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS",
+    "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS", "COLUMNS",
     "LIBRARY_PATH",
 ]

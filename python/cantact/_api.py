@@ -1,7 +1,5 @@
 """Restitution, ensembles, the load curve, the paper's laws and e(V*) tables: NumPy arrays in,
 NumPy arrays out, every call through libcantact's own path (the same as `cantact run`)."""
-import math
-
 import numpy as np
 
 from . import _check as chk
@@ -21,29 +19,68 @@ INTERPOLATIONS = {"monotone_cubic": lib.CT_INTERP_MONOTONE_CUBIC,
                   "linear": lib.CT_INTERP_LINEAR}
 ERRORS = {"raise": "raise", "rows": "rows"}
 
-# The per-row results: (attribute, field of ct_sweep_row, unit). Units: "1" dimensionless,
-# "u" a length (divided by h0), "W" an energy (divided by P_Y h0 = sigma_y l0 h0), "P" a force
-# (divided by P_Y = sigma_y l0). The sweep's times are t / tau already (its mass is E l0 / h0,
-# tau = sqrt(m h0 / (E l0)) = 1), its speeds in h0 / tau. The "dyn." fields are NaN unless
+# The per-row results are the library's output columns (ct_sweep_columns, src/columns.c):
+# every column of type 'd' but V_star is an attribute of Restitution with the column's name,
+# made dimensionless as ct_column_value makes it (the value / the unit's factor in the
+# bundle's layer when that is not 1, then / the column's divisor when that is not 1), so the
+# module's numbers are the bits of `cantact run`'s e table and time columns. The sweep's
+# times are t / tau already (its mass is E l0 / h0); the "time" group is NaN unless
 # restitution(..., time=True).
-ROW_FIELDS = (
-    ("e", "r.e", "1"),
-    ("u_max_over_h0", "r.u_max", "u"),
-    ("V_star_crit", "r.V_star_crit", "1"),
-    ("u_contact_over_h0", "r.u_contact", "u"),
-    ("u_release_over_h0", "r.u_release", "u"),
-    ("e_closed_form", "r.e_closed", "1"),
-    ("quadrature_error", "r.quad_error", "1"),
-    ("W_load_over_PY_h0", "r.W_load", "W"),
-    ("W_unload_over_PY_h0", "r.W_unload", "W"),
-    ("e_rounding", "r.e_rounding", "1"),
-    ("t_contact_over_tau", "dyn.t_contact", "1"),
-    ("t_load_over_tau", "dyn.t_load", "1"),
-    ("t_unload_over_tau", "dyn.t_unload", "1"),
-    ("P_peak_over_PY", "dyn.P_peak", "P"),
-    ("e_kinematic", "dyn.e_kinematic", "1"),
-    ("unload_period_over_tau", "dyn.period_min", "1"),
-)
+_UNIT_NAMES = {lib.CT_UNIT_ONE: "one", lib.CT_UNIT_LENGTH: "length",
+               lib.CT_UNIT_FORCE: "force", lib.CT_UNIT_ENERGY: "energy",
+               lib.CT_UNIT_TIME: "time", lib.CT_UNIT_COUNT: "count"}
+# ROW_FIELDS' unit codes, as before the table: "1" dimensionless as computed (times too),
+# "u" a length (/ h0), "P" a force (/ P_Y = sigma_y l0), "W" an energy (/ P_Y h0)
+_UNIT_CODES = {"one": "1", "time": "1", "length": "u", "force": "P", "energy": "W",
+               "count": "1"}
+
+
+def _field_of(offset):
+    """The ct_sweep_row field ("r.e", "dyn.t_contact", "V_star") at a byte offset."""
+    for name, f in ffi.typeof("ct_sweep_row").fields:
+        if f.type.kind == "struct":
+            for sub, g in f.type.fields:
+                if f.offset + g.offset == offset:
+                    return f"{name}.{sub}"
+        elif f.offset == offset:
+            return name
+    return None
+
+
+def _read_columns():
+    """The library's column table as a tuple of dicts (name, group, unit, type, digits,
+    physical, divisor, offset, field, doc)."""
+    p = ffi.new("const ct_column **")
+    n = lib.ct_sweep_columns(p)
+    out = []
+    for k in range(n):
+        c = p[0][k]
+
+        def text(ptr):
+            return ffi.string(ptr).decode() if ptr != ffi.NULL else None
+
+        out.append({"name": text(c.name), "group": text(c.group),
+                    "unit": _UNIT_NAMES.get(int(c.unit), str(int(c.unit))),
+                    "type": c.type.decode(), "digits": int(c.digits),
+                    "physical": text(c.physical), "divisor": float(c.divisor),
+                    "offset": int(c.offset), "field": _field_of(int(c.offset)),
+                    "doc": text(c.doc)})
+    return tuple(out)
+
+
+# Every column of the library's table (the e table, the time columns and the row-only ones).
+COLUMNS = _read_columns()
+# The columns that are Restitution's per-row float attributes.
+_ROW_COLUMNS = tuple(c for c in COLUMNS if c["type"] == "d" and c["name"] != "V_star")
+# (attribute, field of ct_sweep_row, unit code) of each, derived from the table: kept for
+# compatibility; COLUMNS has the rest (e.g. dem_time_step_over_tau's divisor, 50).
+ROW_FIELDS = tuple((c["name"], c["field"], _UNIT_CODES[c["unit"]]) for c in _ROW_COLUMNS)
+
+
+def _unit_factors(L):
+    """The factors that make each unit dimensionless in layer L, as ct_column_value's."""
+    return {"one": 1.0, "time": 1.0, "count": 1.0, "length": L.h0,
+            "force": L.sigma_y * L.l0, "energy": L.sigma_y * L.l0 * L.h0}
 
 
 def _units(b):
@@ -54,8 +91,9 @@ def _units(b):
 
 
 def _speeds(surface, V_star, mass, speed, name="V_star"):
-    """V* from V_star, or from mass and speed as the CLI computes it:
-    V* = sqrt(m / (2 l0 E h0)) v with the surface's parameters as given."""
+    """V* from V_star, or from mass and speed as the CLI computes it: the library's
+    ct_V_star_of(m, v, l0, E, h0) = sqrt(m / (2 l0 E h0)) v with the surface's physical l0, E
+    and h0 (its parameters as given)."""
     if V_star is not None:
         if mass is not None or speed is not None:
             raise invalid("give either V_star or mass and speed, not both")
@@ -64,7 +102,8 @@ def _speeds(surface, V_star, mass, speed, name="V_star"):
         raise invalid("needs V_star, or both mass and speed")
     m = chk.real("mass", mass, 0.0)
     v = chk.array("speed", speed, positive=True)
-    V = math.sqrt(m / (2.0 * surface._physical_energy_scale())) * v
+    l0, E, h0 = surface._physical_scales()
+    V = np.array([lib.ct_V_star_of(m, x, l0, E, h0) for x in v.tolist()], dtype=np.float64)
     bad = ~(np.isfinite(V) & (V > 0))
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
@@ -85,42 +124,60 @@ def _opts(quadrature, nodes, tolerance, check_):
     return o
 
 
-def _row_dtype():
-    """The rows of ct_sweep as a NumPy structured type (offsets from cffi's layout)."""
-    names, formats, offsets = [], [], []
-    fields = [(attr, field, "f8") for attr, field, _ in ROW_FIELDS]
-    fields += [("status", "status", "i4"), ("elastic", "r.elastic", "i4"),
-               ("message", "message", "S240")]
-    for attr, field, fmt in fields:
-        names.append(attr)
-        formats.append(fmt)
-        offsets.append(ffi.offsetof("ct_sweep_row", *field.split(".")))
-    return np.dtype({"names": names, "formats": formats, "offsets": offsets,
-                     "itemsize": ffi.sizeof("ct_sweep_row")})
+def _row_view(rows, n, offset, dtype):
+    """The field at byte offset of n ct_sweep_rows, as a strided NumPy view."""
+    buf = ffi.buffer(rows)
+    return np.ndarray(shape=(n,), dtype=dtype, buffer=buf, offset=offset,
+                      strides=(ffi.sizeof("ct_sweep_row"),))
 
 
 class Restitution:
     """The rows of a restitution sweep. Every per-row array has shape (len(V_star), impacts):
-    [speed, impact - 1]. Attributes: V_star; e, u_max_over_h0, V_star_crit, u_contact_over_h0,
-    u_release_over_h0, e_closed_form, quadrature_error (NaN with check=False),
-    W_load_over_PY_h0, W_unload_over_PY_h0, e_rounding (floats; NaN where a row failed);
-    elastic (bool); status (int: 0, or the library's status of a failed or not-run row);
-    message (str); info (depth, bound, rods, omitted of the surface built)."""
+    [speed, impact - 1]. Attributes: V_star; the library's output columns (cantact.COLUMNS)
+    of type double, with their names: e, u_max_over_h0, e_closed_form, quadrature_error (NaN
+    with check=False), V_star_crit, u_release_over_h0, u_contact_over_h0, W_load_over_PY_h0,
+    W_unload_over_PY_h0, e_rounding, and the time columns t_contact_over_tau,
+    t_load_over_tau, t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
+    dem_time_step_over_tau (NaN without time=True) (floats; NaN where a row failed);
+    kinetic_energy (the impact's energy in the library's units of the surface's rods: for a
+    Cantor surface the dimensionless l0 E h0 V*^2); elastic (bool); status (int: 0, or the
+    library's status of a failed or not-run row); message (str); info (depth, bound, rods,
+    omitted of the surface built)."""
 
-    def __init__(self, V_star, impacts, rows, units, info):
+    def __init__(self, V_star, impacts, rows, layer, info, surface=None, time=True):
         self.V_star = V_star
         self.impacts = impacts
         self.info = info
+        self._surface = surface
         shape = (V_star.size, impacts)
-        a = np.frombuffer(ffi.buffer(rows), dtype=_row_dtype()).reshape(shape)
-        self.status = np.array(a["status"], dtype=int)
+        n = V_star.size * impacts
+
+        def field(name, dtype):
+            return np.array(_row_view(rows, n, ffi.offsetof("ct_sweep_row", *name.split(".")),
+                                      dtype)).reshape(shape)
+
+        self.status = field("status", np.intc).astype(int)
         failed = self.status != 0
-        for attr, _, unit in ROW_FIELDS:
-            x = np.array(a[attr], dtype=np.float64) / units[unit]
+        factors = _unit_factors(layer)
+        for c in _ROW_COLUMNS:
+            if c["group"] == "time" and not time:
+                setattr(self, c["name"], np.full(shape, np.nan))
+                continue
+            x = np.array(_row_view(rows, n, c["offset"], np.float64)).reshape(shape)
+            u = factors[c["unit"]]
+            if u != 1.0:
+                x = x / u
+            if c["divisor"] != 1.0:
+                x = x / c["divisor"]
             x[failed] = np.nan
-            setattr(self, attr, x)
-        self.elastic = (np.array(a["elastic"]) != 0) & ~failed
-        self.message = np.array([m.decode(errors="replace") for m in a["message"].ravel()],
+            setattr(self, c["name"], x)
+        self.kinetic_energy = field("r.kinetic_energy", np.float64)
+        self.kinetic_energy[failed] = np.nan
+        self._u_max = field("r.u_max", np.float64)  # library units: a profile's refit
+        self._u_max[failed] = np.nan
+        self.elastic = (field("r.elastic", np.intc) != 0) & ~failed
+        msg = _row_view(rows, n, ffi.offsetof("ct_sweep_row", "message"), "S240")
+        self.message = np.array([m.decode(errors="replace") for m in msg],
                                 dtype=object).reshape(shape)
 
     def __repr__(self):
@@ -137,7 +194,8 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
     errors="raise" raises the first failed impact's error (the library's message, its V* and
     impact); errors="rows" returns failed rows with their status and message instead.
     time=True adds each impact in time (t_contact_over_tau, t_load_over_tau,
-    t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau; MODEL.md §11)."""
+    t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
+    dem_time_step_over_tau; MODEL.md §11)."""
     surface = surface_of("surface", surface)
     V = _speeds(surface, V_star, mass, speed)
     impacts = chk.integer("impacts", impacts, 1, 1000000)
@@ -158,12 +216,7 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
         raise invalid(f"time = {time!r}: must be True or False")
     spec.dynamics = 1 if time else 0
     _ok(lib.ct_sweep(b, spec, rows))
-    result = Restitution(V, impacts, rows, _units(b), info)
-    if not time:
-        for attr, field, _ in ROW_FIELDS:
-            if field.startswith("dyn."):
-                setattr(result, attr, np.full_like(result.e, np.nan))
-    return result
+    return Restitution(V, impacts, rows, lib.ct_bundle_layer(b), info, surface, bool(time))
 
 
 class Ensemble:

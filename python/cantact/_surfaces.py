@@ -3,9 +3,11 @@
 A Cantor or random Cantor surface is computed in dimensionless form, as the cantact program
 does (l0 = h0 = sigma_y = 1, H* = H, E = E/sigma_y): the model depends on its dimensionless
 groups alone, and the results (u/h0, P/P_Y, V*) are the same bits as `cantact run`'s. A rod set
-(Rods) is computed in the units given; its results are made dimensionless by its h0, sigma_y
-and l0. A new kind of surface is a class with the same four members: kind, _params (or None),
-_physical_energy_scale(), _build()."""
+(Rods) is the library's kind `rods` (ct_surface_*: its keys, defaults and checks are the
+program's `surface.type = rods`), computed in the units given; its results are made
+dimensionless by its h0, sigma_y and l0. A new kind of surface is a class with the same four
+members: kind, _params (or None), _physical_scales() (l0, E, h0 as given: V* from mass and
+speed), _build()."""
 import numpy as np
 
 from . import _check as chk
@@ -95,8 +97,9 @@ class Cantor:
         """The fractal dimension D (Eq. 3)."""
         return lib.ct_dimension(self._params)
 
-    def _physical_energy_scale(self):
-        return lib.ct_energy_scale(self._physical)
+    def _physical_scales(self):
+        p = self._physical[0]
+        return p.l0, p.E, p.h0
 
     def _build(self, V_star, impacts, opts, keep_all=False):
         V = np.ascontiguousarray(V_star, dtype=np.float64)
@@ -154,8 +157,9 @@ class RandomCantor:
     beta = Cantor.beta
     dimension = Cantor.dimension
 
-    def _physical_energy_scale(self):
-        return lib.ct_energy_scale(self._physical)
+    def _physical_scales(self):
+        p = self._physical[0]
+        return p.l0, p.E, p.h0
 
     def _build(self, V_star, impacts, opts, keep_all=False):
         out = ffi.new("ct_bundle **")
@@ -175,46 +179,115 @@ class RandomCantor:
                 f"fz_spread={rc.fz_spread!r}, seed={rc.seed}, realisation={self.realisation})")
 
 
+ROD_UNITS = ("m", "mm", "um", "nm")
+
+
+def _optional(name, value, lo, lo_closed=False):
+    return None if value is None else chk.real(name, value, lo, lo_closed=lo_closed)
+
+
 class Rods:
-    """Your own surface as rods (MODEL.md §3-4): top[k] is rod k's depth below the reference
-    plane (0 <= top < Hstar), area[k] its area (> 0), in one Winkler layer of thickness Hstar
-    with E and sigma_y; l0 and h0 are the reference length and depth of the outputs (V*,
-    u/h0, P/P_Y = P/(sigma_y l0)). Computed in the units given."""
+    """Your own surface as rods (MODEL.md §3-4, docs/model.md §12), the library's kind `rods`
+    (as `surface.type = rods` of the cantact program): top[k] is rod k's depth below the
+    reference plane (0 <= top < H*), area[k] its area (> 0), length[k] (optional, > 0) its
+    length (default H* - top), in one Winkler layer with E and sigma_y. The layer's thickness:
+    Hstar, or H = H*/h0, or, for rods that give their lengths, none of them (H* is then the
+    shallowest rod bottom, min(top + length), where the first rod reaches strain 1). l0 and h0
+    are the reference length and depth of the outputs (V*, u/h0, P/P_Y = P/(sigma_y l0)):
+    by default l0 is the total area and h0 the deepest top (H* when every top is 0). unit
+    ("m", "mm", "um", "nm"): the unit of tops, areas, lengths, Hstar, h0 and l0, converted to
+    metres (default: none, the units given). Computed in those units."""
 
     kind = "rods"
     _params = None
 
-    def __init__(self, top, area, E, Hstar, sigma_y=1.0, l0=1.0, h0=1.0, threads=0):
+    def __init__(self, top, area, E, Hstar=None, sigma_y=1.0, l0=None, h0=None, H=None,
+                 length=None, unit=None, threads=0):
+        # every argument checked before the library sees any of them
         top = chk.array("top", top, nonnegative=True)
         area = chk.array("area", area, positive=True)
         if top.size != area.size:
             raise invalid(f"top and area: {top.size} and {area.size} rods: must be as many")
-        self._layer = ffi.new("ct_layer *", {
-            "E": chk.real("E", E, 0.0), "sigma_y": chk.real("sigma_y", sigma_y, 0.0),
-            "Hstar": chk.real("Hstar", Hstar, 0.0), "l0": chk.real("l0", l0, 0.0),
-            "h0": chk.real("h0", h0, 0.0)})
-        check(lib.ct_layer_validate(self._layer))
-        if (top >= self._layer.Hstar).any():
-            k = int(np.flatnonzero(top >= self._layer.Hstar)[0])
-            raise invalid(f"top[{k}] = {top[k]!r}: must be < Hstar = {self._layer.Hstar!r}")
-        out = ffi.new("ct_bundle **")
-        check(lib.ct_bundle_from_rods(out, self._layer, top.size, ffi.from_buffer("double[]", top),
-                                      ffi.from_buffer("double[]", area)))
-        self._bundle = ffi.gc(out[0], lib.ct_bundle_free)
+        if length is not None:
+            length = chk.array("length", length, positive=True)
+            if length.size != top.size:
+                raise invalid(f"top and length: {top.size} and {length.size} rods: must be as "
+                              "many")
+        E = chk.real("E", E, 0.0)
+        sigma_y = chk.real("sigma_y", sigma_y, 0.0)
+        if not E > sigma_y:
+            raise invalid(f"E = {E!r}: must be > sigma_y = {sigma_y!r} (yield strain < 1)")
+        Hstar = _optional("Hstar", Hstar, 0.0)
+        H = _optional("H", H, 1.0)
+        h0 = _optional("h0", h0, 0.0)
+        l0 = _optional("l0", l0, 0.0)
+        if unit is not None:
+            chk.choice("unit", unit, dict.fromkeys(ROD_UNITS))
+        if Hstar is not None and H is not None:
+            raise invalid("H (a multiple of h0) or Hstar (a length): give one, not both")
+        if length is not None and (Hstar is not None or H is not None):
+            raise invalid(f"{'Hstar' if Hstar is not None else 'H'}: not with rods that give "
+                          "their lengths (H* is where the first of them reaches strain 1)")
+        if length is None and Hstar is None and H is None:
+            raise invalid("Hstar or H (or a length for every rod): give one")
+        if Hstar is not None and (top >= Hstar).any():
+            k = int(np.flatnonzero(top >= Hstar)[0])
+            raise invalid(f"top[{k}] = {top[k]!r}: must be < Hstar = {Hstar!r}")
         self.threads = _threads(threads)
-        lib.ct_bundle_set_threads(self._bundle, self.threads)
-        self.top, self.area = top, area
+        out = ffi.new("ct_surface **")
+        check(lib.ct_surface_new(out, b"rods"))
+        s = ffi.gc(out[0], lib.ct_surface_free)
+        where = b"Rods()"
+        check(lib.ct_surface_set_rods(
+            s, top.size, ffi.from_buffer("double[]", top), ffi.from_buffer("double[]", area),
+            ffi.NULL if length is None else ffi.from_buffer("double[]", length)))
+        for key, value in (("Hstar", Hstar), ("H", H), ("h0", h0), ("l0", l0)):
+            if value is not None:
+                check(lib.ct_surface_set(s, b"surface", key.encode(),
+                                         repr(float(value)).encode(), where))
+        if unit is not None:
+            check(lib.ct_surface_set(s, b"surface", b"unit", unit.encode(), where))
+        for key, value in (("E", E), ("sigma_y", sigma_y)):
+            check(lib.ct_surface_set(s, b"material", key.encode(),
+                                     repr(float(value)).encode(), where))
+        check(lib.ct_surface_check(s, where))
+        check(lib.ct_surface_prepare(s, ffi.NULL))
+        self._surface = s
+        self._scales = ffi.new("ct_scales *")
+        lib.ct_surface_scales(s, self._scales)
+        self.top, self.area, self.length, self.unit = top, area, length, unit
 
-    def _physical_energy_scale(self):
-        L = self._layer
-        return L.l0 * L.E * L.h0  # as the sweep computes it
+    @property
+    def layer(self):
+        """E, sigma_y, Hstar, l0 and h0 of the rods as built (in metres when a unit is given)."""
+        L = self._scales.layer
+        return {k: getattr(L, k) for k in ("E", "sigma_y", "Hstar", "l0", "h0")}
+
+    def _physical_scales(self):
+        L = self._scales.physical
+        return L.l0, L.E, L.h0
 
     def _build(self, V_star, impacts, opts, keep_all=False):
-        return self._bundle, _info(self._bundle)
+        V = np.ascontiguousarray(V_star, dtype=np.float64)
+        req = ffi.new("ct_build_request *")
+        speeds = ffi.from_buffer("double[]", V)
+        req.V_star = speeds
+        req.nvel = V.size
+        req.impacts = impacts
+        req.opts = opts[0]
+        req.keep_all_rods = 1 if keep_all else 0
+        req.threads = self.threads
+        req.depth_tolerance = 1e-12
+        out = ffi.new("ct_bundle **")
+        info = ffi.new("ct_plan_info *")
+        check(lib.ct_surface_build(self._surface, req, out, info))
+        b = ffi.gc(out[0], lib.ct_bundle_free)
+        return b, _info(b)
 
     def __repr__(self):
-        L = self._layer
-        return f"Rods({self.top.size} rods, E={L.E!r}, sigma_y={L.sigma_y!r}, Hstar={L.Hstar!r})"
+        L = self._scales.layer
+        return (f"Rods({self.top.size} rods, E={L.E!r}, sigma_y={L.sigma_y!r}, "
+                f"Hstar={L.Hstar!r}, l0={L.l0!r}, h0={L.h0!r})")
 
 
 DETRENDS = {"none": lib.CT_DETREND_NONE, "mean": lib.CT_DETREND_MEAN,
@@ -369,28 +442,99 @@ class Profile:
                                      ffi.from_buffer("double[]", phi)))
         return phi
 
-    def fit(self, dimension="variation", depths=None, lags=None):
-        """The Cantor surface the profile looks like (as `cantact fit`): alpha and h0 from the
-        bearing curve on `depths` (lo, hi) (default: the 20th highest point to phi = 0.1), D
-        three ways on `lags` (lo, hi) (default: 2 spacings to a tenth of the length), the one
-        `dimension` names in Eq. 3, then fx, fz and l0. A dict; the fits' bands, point counts,
-        r2 and rms residuals under "bearing", "variation", "structure", "spectrum"."""
+    def _own_rows(self, name, result):
+        """result, checked to be a Restitution of this profile."""
+        from ._api import Restitution  # _api imports this module
+        if not isinstance(result, Restitution):
+            raise invalid(f"{name}: must be a Restitution (cantact.restitution of this "
+                          f"profile), got {type(result).__name__}")
+        if result._surface is not self:
+            raise invalid(f"{name}: a Restitution of another surface: give "
+                          "cantact.restitution(this profile, ...)")
+        return result
+
+    def _fit_of(self, dimension, depths, lags, on_reach):
+        """The ct_profile_fit as `cantact run` makes it: on the bands given (default: the
+        defaults), then, with no depth band given and a Restitution on_reach, the bearing fit
+        redone on the depths its impacts reached (ct_profile_fit_on_reach on the u_max of
+        every impact that ran; the first fit kept when that band holds none). Returns the fit,
+        which band its bearing fit is on ("given", "impacts", "default") and the library's
+        reason when the refit was not made ("" otherwise)."""
         f = ffi.new("ct_profile_fit *")
         f.dimension = chk.choice("dimension", dimension, DIMENSIONS)
         d_lo, d_hi = _band("depths", depths)
         t_lo, t_hi = _band("lags", lags)
         check(lib.ct_profile_fit_of(self._profile, d_lo, d_hi, t_lo, t_hi, f))
+        if depths is not None:
+            return f, "given", ""
+        if on_reach is None:
+            return f, "default", ""
+        u = np.ascontiguousarray(on_reach._u_max.ravel(), dtype=np.float64)
+        g = ffi.new("ct_profile_fit *")
+        st = lib.ct_profile_fit_on_reach(self._profile, f, ffi.from_buffer("double[]", u),
+                                         u.size, g)
+        if st == lib.CT_ENOMEM:
+            check(st)
+        if st != lib.CT_OK:
+            return f, "default", ffi.string(lib.ct_error_message()).decode(errors="replace")
+        return g, "impacts", ""
+
+    def fit(self, dimension="variation", depths=None, lags=None, on_reach=None):
+        """The Cantor surface the profile looks like (as `cantact fit`): alpha and h0 from the
+        bearing curve on `depths` (lo, hi) (default: the 20th highest point to phi = 0.1), D
+        three ways on `lags` (lo, hi) (default: 2 spacings to a tenth of the length), the one
+        `dimension` names in Eq. 3, then fx, fz and l0. on_reach: a Restitution of this
+        profile: the bearing fit redone on the depths its impacts reached, as `cantact run`
+        does for compare and bearing (ct_profile_fit_on_reach; the default band kept when
+        those depths hold no fit); not with depths. A dict; the fits' bands, point counts, r2
+        and rms residuals under "bearing", "variation", "structure", "spectrum"; "band" says
+        which depths the bearing fit is on ("given", "impacts" or "default") and "note" why a
+        refit on the impacts' depths was not made ("" when it was, or not asked)."""
+        if on_reach is not None:
+            self._own_rows("on_reach", on_reach)
+            if depths is not None:
+                raise invalid("depths and on_reach: give one (the depths of the bearing fit, or "
+                              "the impacts whose depths set them)")
+        f, band, note = self._fit_of(dimension, depths, lags, on_reach)
         r = {k: getattr(f, k) for k in ("alpha", "h0", "D_variation", "D_structure",
                                          "D_spectrum", "D", "fx", "fz", "l0")}
         r["dimension"] = dimension
         for k in ("bearing", "variation", "structure", "spectrum"):
             r[k] = _line(getattr(f, k))
         r.update({k: getattr(f.stats, k) for k in ("Rq", "Ra", "Rt")})
+        r["band"] = band
+        r["note"] = note
         return r
 
-    def _physical_energy_scale(self):
+    def compare(self, result, dimension="variation", depths=None, lags=None):
+        """The fitted Cantor surface beside the profile, as `cantact run` writes what =
+        compare: for every first impact of result (cantact.restitution of this profile), e of
+        the fitted surface's exact rods at its fractal depth (e_cantor_fit), e of the
+        asymptotic law with the fitted parameters (e_asymptotic_fit) and the fitted surface's
+        V* (V_star_cantor_fit), at the impact's kinetic energy (ct_profile_fitted_e). The fit:
+        ct_profile_fit_of on the bands given (dimension, depths, lags as in fit()), then, with
+        no depths given, redone on the depths result's impacts reached (fit(on_reach=result)).
+        A dict of arrays shaped like result.e: NaN after the first impact, where a row failed
+        and where the law does not apply. Raises the library's error (e.g. OutsideModel)
+        when the fitted surface leaves the model's ranges."""
+        result = self._own_rows("result", result)
+        f, _, _ = self._fit_of(dimension, depths, lags, result)
+        shape = result.e.shape
+        W = np.ascontiguousarray(result.kinetic_energy, dtype=np.float64).copy()
+        W[:, 1:] = np.nan  # the first impact on the virgin surface only
+        W = W.ravel()
+        out = {k: np.full(W.size, np.nan) for k in ("e_cantor_fit", "e_asymptotic_fit",
+                                                      "V_star_cantor_fit")}
+        check(lib.ct_profile_fitted_e(
+            self._profile, f, lib.ct_bundle_layer(self._bundle), ffi.from_buffer("double[]", W),
+            W.size, self.threads, ffi.from_buffer("double[]", out["e_cantor_fit"]),
+            ffi.from_buffer("double[]", out["e_asymptotic_fit"]),
+            ffi.from_buffer("double[]", out["V_star_cantor_fit"])))
+        return {k: v.reshape(shape) for k, v in out.items()}
+
+    def _physical_scales(self):
         L = lib.ct_bundle_layer(self._bundle)
-        return L.l0 * L.E * L.h0  # as the sweep computes it
+        return L.l0, L.E, L.h0
 
     def _build(self, V_star, impacts, opts, keep_all=False):
         return self._bundle, _info(self._bundle)

@@ -8,7 +8,7 @@ import cantact
 
 def test_single_rod():
     # top 0.25, L = 1, E = 100, sigma_y = 1: k = 100, yields at 0.26, plateau 1
-    c = cantact.load_curve(cantact.Rods([0.25], [1.0], E=100.0, Hstar=1.25))
+    c = cantact.load_curve(cantact.Rods([0.25], [1.0], E=100.0, Hstar=1.25, l0=1.0, h0=1.0))
     np.testing.assert_allclose(c.breakpoints, [0.25, 0.26], rtol=1e-15)
     assert c.first_contact == 0.25 and c.first_yield == pytest.approx(0.26, rel=1e-15)
     u = np.array([0.1, 0.25, 0.255, 0.26, 0.5, 1.0])
@@ -20,7 +20,8 @@ def test_single_rod():
     np.testing.assert_allclose(c.release([0.5]), [0.49], rtol=1e-14)
     np.testing.assert_allclose(c.inverse_work(W[2:]), u[2:], rtol=1e-12)
     # after loading to 0.5: contact at 0.49, yield at 0.5
-    a = cantact.load_curve(cantact.Rods([0.25], [1.0], E=100.0, Hstar=1.25), after=0.5)
+    a = cantact.load_curve(cantact.Rods([0.25], [1.0], E=100.0, Hstar=1.25, l0=1.0, h0=1.0),
+                           after=0.5)
     np.testing.assert_allclose(a.breakpoints, [0.49, 0.5], rtol=1e-14)
     # units: h0 = 2, sigma_y = 3, l0 = 5 make u/h0 and P/(sigma_y l0)
     d = cantact.load_curve(cantact.Rods([0.5], [1.0], E=300.0, sigma_y=3.0, Hstar=2.5, h0=2.0,

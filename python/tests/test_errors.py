@@ -109,7 +109,8 @@ def test_library_failures_carry_status_and_message():
                V_star=(1e-5, 1e-2), max_nodes=3)
     assert e.status == CT.CT_ENOCONV
     # a penetration too small to resolve on very stiff rods
-    stiff = cantact.Rods([0.5], [1.0], E=1e12, sigma_y=1e9, Hstar=0.5 + 1e-9)
+    stiff = cantact.Rods([0.5], [1.0], E=1e12, sigma_y=1e9, Hstar=0.5 + 1e-9, l0=1.0,
+                         h0=1.0)
     raises(cantact.Error, "", cantact.restitution, stiff, V_star=[1e-30, 1e-3])
     # ct_strerror through the module
     assert cantact.strerror(CT.CT_ENOMEM) == "out of memory"

@@ -214,3 +214,52 @@ def test_bad_arrays_and_paths(dektak):
         g[0, 1] = np.nan
         assert cantact.Profile(z=g, dx=1.0, dy=1.0, **m).invalid == 1
         assert cantact.Profile(z=[0, 3, 1, 2], x=np.arange(4), **m).stats["Rt"] > 0
+
+
+def scene_speeds(lo, hi, count):
+    """impact.velocity = lo:hi:count:log as the scene parser makes the list."""
+    v = [lo * math.exp(k / (count - 1) * (math.log(hi) - math.log(lo))) for k in range(count)]
+    v[-1] = hi
+    return v
+
+
+def test_compare_as_the_cli(source, dektak, run_cli):
+    # scripts/scenes/dektak.ini: what = e,compare; the fit redone on the depths the impacts
+    # reach, then the fitted Cantor surface's e, the asymptotic law's and its V*
+    rows = list(csv.DictReader(open(run_cli("run", os.path.join(source, "scripts", "scenes",
+                                                                "dektak.ini")))))
+    p = cantact.Profile(file=dektak, E=2e11, sigma_y=4e8, H=10)
+    r = cantact.restitution(p, mass=0.01, speed=scene_speeds(0.001, 3.0, 30))
+    assert [float(x["V_star"]) for x in rows] == list(r.V_star)
+    assert [float(x["e"]) for x in rows] == list(r.e[:, 0])
+    c = p.compare(r)
+    assert set(c) == {"e_cantor_fit", "e_asymptotic_fit", "V_star_cantor_fit"}
+    for name, values in c.items():
+        assert values.shape == r.e.shape
+        cli = [math.nan if x[name] == "" else float(x[name]) for x in rows]
+        assert np.array_equal(cli, values[:, 0], equal_nan=True), name
+    assert not np.isnan(c["e_cantor_fit"]).any() and np.isnan(c["e_asymptotic_fit"]).any()
+    # the fit it used: the one on the depths the impacts reach
+    f = p.fit(on_reach=r)
+    assert f["band"] == "impacts" and f["note"] == ""
+    assert f["bearing"]["lo"] >= p.fit()["bearing"]["lo"] and f["alpha"] != p.fit()["alpha"]
+    W = r.kinetic_energy[:, 0]
+    assert np.array_equal(c["V_star_cantor_fit"][:, 0],
+                          np.sqrt(W / (f["l0"] * p.layer["E"] * f["h0"])))
+    # with a depth band given, no refit: as [fit] depths, that band's fit
+    band = (1e-7, 3e-7)
+    fb = p.fit(depths=band)
+    assert fb["band"] == "given" and fb["alpha"] != f["alpha"]
+    g = p.compare(r, depths=band)
+    assert np.array_equal(g["V_star_cantor_fit"][:, 0],
+                          np.sqrt(W / (fb["l0"] * p.layer["E"] * fb["h0"])))
+    # later impacts and failed rows have none
+    r2 = cantact.restitution(p, mass=0.01, speed=[0.01, 0.1], impacts=2)
+    c2 = p.compare(r2)
+    assert np.isnan(c2["e_cantor_fit"][:, 1]).all() and not np.isnan(c2["e_cantor_fit"][:, 0]).any()
+    with pytest.raises(cantact.InvalidInput, match="another surface"):
+        cantact.Profile(file=dektak, E=2e11, sigma_y=4e8, H=10).compare(r)
+    with pytest.raises(cantact.InvalidInput, match="must be a Restitution"):
+        p.compare(r.e)
+    with pytest.raises(cantact.InvalidInput, match="depths and on_reach"):
+        p.fit(depths=band, on_reach=r)

@@ -22,7 +22,7 @@ def g17(x):
 # elastically (0.005) and goes W - 0.005 further on the plateau: e again sqrt(0.005 / W).
 @pytest.mark.parametrize("top", [0.0, 0.25])
 def test_single_rod_closed_form(top):
-    rod = cantact.Rods([top], [1.0], E=100.0, Hstar=top + 1.0)
+    rod = cantact.Rods([top], [1.0], E=100.0, Hstar=top + 1.0, l0=1.0, h0=1.0)
     W = np.array([0.001, 0.005 * (1 - 1e-9), 0.02, 0.2, 0.45])
     V = np.sqrt(W / 100.0)
     r = cantact.restitution(rod, V_star=V, impacts=2)
@@ -62,7 +62,7 @@ def two_rods_expected(W):
 
 
 def test_two_rods_by_hand():
-    rods = cantact.Rods([0.0, 0.5], [1.0, 1.0], E=10.0, Hstar=2.0)
+    rods = cantact.Rods([0.0, 0.5], [1.0, 1.0], E=10.0, Hstar=2.0, l0=1.0, h0=1.0)
     W = np.array([0.05, 0.1, 0.2, 0.4, 0.5, 0.625, 1.0, 3.0])
     r = cantact.restitution(rods, V_star=np.sqrt(W / 10.0))
     for k, w in enumerate(W):
@@ -154,7 +154,7 @@ def test_failed_rows_when_asked():
 # 100, so omega = 1 / tau: the contact lasts pi tau exactly whatever the (elastic) speed; its
 # peak force is k u_max = k v1 / omega with v1 = sqrt(2) V* (in h0 / tau).
 def test_time_single_rod_closed_form():
-    rod = cantact.Rods([0.0], [1.0], E=100.0, Hstar=1.0)
+    rod = cantact.Rods([0.0], [1.0], E=100.0, Hstar=1.0, l0=1.0, h0=1.0)
     V = np.array([1e-4, 5e-4])  # W = 100 V*^2 <= W_c = 0.005
     r = cantact.restitution(rod, V_star=V, time=True)
     assert r.elastic.all()
@@ -181,3 +181,53 @@ def test_time_columns_as_the_cli(run_cli, source):
                     "P_peak_over_PY", "e_kinematic"):
             assert row[col] == g17(getattr(r, col)[k, i]), col
         assert row["unload_period_over_tau"] == g17(r.unload_period_over_tau[k, i])
+
+
+# The rods kind (src/surface/rods.c) from Python and from a scene: the same rods inline, the
+# same defaults (h0 the deepest top, l0 the total area), mass and speed through ct_V_star_of.
+def test_rods_as_the_cli_scene(run_cli, tmp_path):
+    top, area = [0.0, 0.2, 0.05], [0.5, 0.3, 0.2]
+    speeds = [0.01, 0.1, 0.3, 1.0, 1.5]
+    scene = tmp_path / "rods.ini"
+    scene.write_text("[surface]\ntype = rods\nrods = "
+                     + ", ".join(f"{t!r}:{a!r}" for t, a in zip(top, area))
+                     + "\nHstar = 3.0\n[material]\nE = 200.0\nsigma_y = 2.5\n[impact]\n"
+                     f"mass = 3.0\nvelocity = {', '.join(map(repr, speeds))}\nimpacts = 2\n")
+    rows = read_csv(run_cli("run", str(scene)))
+    rods = cantact.Rods(top, area, E=200.0, Hstar=3.0, sigma_y=2.5)
+    assert rods.layer["h0"] == 0.2 and rods.layer["l0"] == 1.0 and rods.layer["Hstar"] == 3.0
+    r = cantact.restitution(rods, mass=3.0, speed=speeds, impacts=2)
+    assert (r.status == 0).all() and not r.elastic[2:].any()
+    assert len(rows) == r.e.size
+    for q, row in enumerate(rows):
+        k, i = divmod(q, 2)
+        assert float(row["V_star"]) == r.V_star[k]
+        assert float(row["e"]) == r.e[k, i], (k, i)
+        assert float(row["u_max_over_h0"]) == r.u_max_over_h0[k, i], (k, i)
+
+
+def test_rods_defaults_of_the_kind():
+    # every top 0: h0 is H*; lengths given: H* the shallowest bottom, no Hstar
+    flat = cantact.Rods([0.0, 0.0], [1.0, 3.0], E=10.0, Hstar=2.0)
+    assert flat.layer == {"E": 10.0, "sigma_y": 1.0, "Hstar": 2.0, "l0": 4.0, "h0": 2.0}
+    own = cantact.Rods([0.1, 0.4], [1.0, 1.0], E=10.0, length=[1.0, 0.5])
+    assert own.layer["Hstar"] == 0.9 and own.layer["h0"] == 0.4
+    # lengths replace H* - top: at u = 0.15 (u/h0 = 0.375) rod 1 has strain 0.05 / 1.0 (not
+    # 0.05 / 0.8), stress 0.5, force 0.5 = 0.25 P_Y (P_Y = sigma_y l0 = 2)
+    c = cantact.load_curve(own)
+    assert c.force([0.375])[0] == pytest.approx(0.25, rel=1e-14)
+    mm = cantact.Rods([0.1, 0.4], [1.0, 1.0], E=10.0, H=3.0, unit="mm")
+    assert mm.layer["h0"] == 0.4e-3 and mm.layer["Hstar"] == pytest.approx(1.2e-3, rel=1e-15)
+    with pytest.raises(cantact.InvalidInput, match="not with rods that give their lengths"):
+        cantact.Rods([0.1], [1.0], E=10.0, Hstar=2.0, length=[1.0])
+    with pytest.raises(cantact.InvalidInput, match="Hstar or H"):
+        cantact.Rods([0.1], [1.0], E=10.0)
+    with pytest.raises(cantact.InvalidInput, match="unit = 'km'"):
+        cantact.Rods([0.1], [1.0], E=10.0, Hstar=2.0, unit="km")
+    with pytest.raises(cantact.InvalidInput, match="h0 = '1': must be a real number"):
+        cantact.Rods([0.1], [1.0], E=10.0, Hstar=2.0, h0="1")
+    with pytest.raises(cantact.InvalidInput, match=r"length\[0\] = 0.0: must be > 0"):
+        cantact.Rods([0.1], [1.0], E=10.0, length=[0.0])
+    # the library's own check, with its message
+    with pytest.raises(cantact.InvalidInput, match="every top is 0"):
+        cantact.Rods([0.0], [1.0], E=10.0, H=2.0)

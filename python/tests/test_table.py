@@ -30,7 +30,7 @@ def test_cubic_slopes_as_scipy_and_error_claimed():
 
 
 def test_linear_rule_and_the_hand_derived_surface():
-    rods = cantact.Rods([0.0, 0.5], [1.0, 1.0], E=10.0, Hstar=2.0)
+    rods = cantact.Rods([0.0, 0.5], [1.0, 1.0], E=10.0, Hstar=2.0, l0=1.0, h0=1.0)
     t = cantact.table(rods, V_star=(0.01, 0.5), tolerance=1e-5, interpolation="linear")
     assert t.V_star_crit == pytest.approx(0.1, rel=1e-15)
     for V in (0.1, 0.2, 0.25):  # V*_c and the two kinks are nodes
