@@ -159,6 +159,55 @@ static inline int ct_tab_number(const char *text, double *out)
     return 1;
 }
 
+/* 1 when a "# key = value" line names a key the loader reads. */
+static inline int ct_tab_key_used(const char *line)
+{
+    static const char *const used[] = {"interpolation", "V_star_crit", "tolerance", "worst_error",
+                                       "v_per_V_star"};
+    const char *k = line + 1;
+    while (*k == ' ')
+        k++;
+    for (size_t i = 0; i < sizeof used / sizeof used[0]; i++) {
+        size_t n = strlen(used[i]);
+        if (!strncmp(k, used[i], n) && (k[n] == ' ' || k[n] == '='))
+            return 1;
+    }
+    return 0;
+}
+
+/* What a monotone cubic table promises, checked on its nodes: every slope finite; on every
+ * interval above V*_c (below it e = 1 by the rule) whose nodes have equal e both slopes 0,
+ * else both of the secant's sign and at most three secants (Fritsch-Carlson), so that e stays
+ * between the interval's nodes. -1 and the interval's index (from 0) when one fails. */
+static inline int ct_tab_check_slopes(const ct_tab *t, size_t *bad)
+{
+    for (size_t i = 0; i < t->n; i++)
+        if (!isfinite(t->slope[i])) {
+            *bad = i;
+            return -1;
+        }
+    if (t->rule != CT_TAB_MONOTONE_CUBIC)
+        return 0;
+    for (size_t i = 0; i + 1 < t->n; i++) {
+        if (t->V_star[i + 1] <= t->V_star_crit)
+            continue; /* e = 1 there by the rule: this interval is never interpolated */
+        const double secant = (t->e[i + 1] - t->e[i]) / (t->ln_V_star[i + 1] - t->ln_V_star[i]);
+        const double a = t->slope[i], b = t->slope[i + 1];
+        int ok;
+        if (secant == 0.0)
+            ok = a == 0.0 && b == 0.0;
+        else {
+            const double ra = a / secant, rb = b / secant, lim = 3.0 * (1.0 + 1e-12);
+            ok = ra >= 0.0 && rb >= 0.0 && ra <= lim && rb <= lim;
+        }
+        if (!ok) {
+            *bad = i;
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /* Reads "# key = value" header lines and the rows "V_star,e,de_dlnV_star" of a table file.
  * Returns 0, or -1 with a one-line message naming file:line in err (the table is then empty
  * and needs no ct_tab_free). */
@@ -184,8 +233,16 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
     while (fgets(line, sizeof line, f)) {
         lineno++;
         size_t len = strlen(line);
-        if (len + 1 == sizeof line && line[len - 1] != '\n')
-            CT_TAB_FAIL("line longer than %d characters", (int)sizeof line - 2);
+        if (len + 1 == sizeof line && line[len - 1] != '\n') {
+            /* a long header line (a long scene path): prose and keys this reader does not use
+             * are skipped whole; a key it uses, and a row, are never that long */
+            int c;
+            if (line[0] != '#' || ct_tab_key_used(line))
+                CT_TAB_FAIL("line longer than %d characters", (int)sizeof line - 2);
+            while ((c = fgetc(f)) != EOF && c != '\n')
+                ;
+            continue;
+        }
         if (line[0] == '#') {
             char key[64];
             const char *eq = strchr(line, '=');
@@ -283,6 +340,16 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
         if (i && !(t->ln_V_star[i] > t->ln_V_star[i - 1]))
             CT_TAB_FAIL("nodes %lu and %lu: ln V_star not increasing", (unsigned long)i,
                         (unsigned long)i + 1);
+    }
+    size_t bad;
+    if (ct_tab_check_slopes(t, &bad)) {
+        snprintf(err, errlen,
+                 "%s: nodes %lu and %lu: slopes %.6g and %.6g are not those of a monotone cubic "
+                 "between e = %.6g and %.6g (a corrupted or foreign table)",
+                 path, (unsigned long)bad + 1, (unsigned long)bad + 2, t->slope[bad],
+                 bad + 1 < t->n ? t->slope[bad + 1] : NAN, t->e[bad],
+                 bad + 1 < t->n ? t->e[bad + 1] : NAN);
+        goto fail;
     }
 #undef CT_TAB_FAIL
     fclose(f);

@@ -229,6 +229,87 @@ static void expect_reader_error(const char *text, const char *message)
     unlink(path);
 }
 
+/* What a monotone cubic promises is checked on loading (issue: a slope of -500 gave e from
+ * -0.656 to 2.648): any slope of a node above V*_c set to -500, 1e300, its opposite or infinity
+ * is refused; the genuine table loads, also with a header line longer
+ * than the reader's buffer (a long scene path), and evaluates within [0, 1] everywhere. */
+static void reader_refuses_foreign_slopes(void **state)
+{
+    (void)state;
+    ct_bundle *b = two_rods();
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = 0.01;
+    spec.V_max = 0.5;
+    spec.tolerance = 1e-7;
+    ct_table *t;
+    assert_int_equal(ct_table_build(&t, b, &spec), CT_OK);
+    ct_table_info in;
+    ct_table_get_info(t, &in);
+    const size_t n = ct_table_size(t);
+    const double *V = ct_table_V_star(t), *e = ct_table_e(t), *d = ct_table_slope(t);
+    char path[] = "/tmp/ct_table_slopes_XXXXXX", err[512];
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    char scene[1200];
+    memset(scene, 'x', sizeof scene - 1);
+    scene[sizeof scene - 1] = '\0';
+    const double bad[] = {-500.0, 1e300, INFINITY, 0.0 /* its opposite */};
+    size_t refused = 0, tried = 0;
+    for (size_t k = 0; k < n; k++) {
+        if (!(V[k] > in.V_star_crit) || e[k] == 1.0)
+            continue;
+        for (size_t j = 0; j < sizeof bad / sizeof bad[0]; j++) {
+            const double slope = bad[j] == 0.0 ? -d[k] : bad[j];
+            if (slope == 0.0)
+                continue;
+            FILE *f = fopen(path, "w");
+            fprintf(f, "# scene = %s\n# interpolation = monotone_cubic\n# V_star_crit = %.17g\n",
+                    scene, in.V_star_crit);
+            fputs("V_star,e,de_dlnV_star\n", f);
+            for (size_t i = 0; i < n; i++)
+                fprintf(f, "%.17g,%.17g,%.17g\n", V[i], e[i], i == k ? slope : d[i]);
+            fclose(f);
+            ct_tab r;
+            tried++;
+            if (ct_tab_load(&r, path, err, sizeof err) == 0) {
+                ct_tab_free(&r);
+                fail_msg("node %zu slope %g accepted", k, slope);
+            }
+            refused += strstr(err, "not those of a monotone cubic") != NULL ||
+                       strstr(err, "not a number") != NULL || strstr(err, "three numbers") != NULL;
+        }
+    }
+    assert_true(tried > 10);
+    assert_int_equal(refused, tried);
+    /* the genuine table, with the long line, loads and stays in [0, 1] */
+    FILE *f = fopen(path, "w");
+    fprintf(f, "# scene = %s\n# interpolation = monotone_cubic\n# V_star_crit = %.17g\n", scene,
+            in.V_star_crit);
+    fputs("V_star,e,de_dlnV_star\n", f);
+    for (size_t i = 0; i < n; i++)
+        fprintf(f, "%.17g,%.17g,%.17g\n", V[i], e[i], d[i]);
+    fclose(f);
+    ct_tab r;
+    if (ct_tab_load(&r, path, err, sizeof err))
+        fail_msg("%s", err);
+    for (int k = 0; k <= 20000; k++) {
+        const double x = ct_tab_eval(&r, 0.005 * pow(0.6 / 0.005, k / 20000.0));
+        assert_true(x >= 0.0 && x <= 1.0);
+    }
+    ct_tab_free(&r);
+    /* a long line of a key the reader uses is refused, not skipped */
+    f = fopen(path, "w");
+    fprintf(f, "# interpolation = monotone_cubic %s\n", scene);
+    fclose(f);
+    assert_int_equal(ct_tab_load(&r, path, err, sizeof err), -1);
+    assert_non_null(strstr(err, "line longer than"));
+    unlink(path);
+    ct_table_free(t);
+    ct_bundle_free(b);
+}
+
 static void reader_round_trip(void **state)
 {
     (void)state;
@@ -438,9 +519,13 @@ static void bad_input(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(two_rods_cubic),   cmocka_unit_test(two_rods_linear),
-        cmocka_unit_test(pchip_conditions), cmocka_unit_test(reader_round_trip),
-        cmocka_unit_test(default_cantor),   cmocka_unit_test(rule_from_the_basis),
+        cmocka_unit_test(two_rods_cubic),
+        cmocka_unit_test(two_rods_linear),
+        cmocka_unit_test(pchip_conditions),
+        cmocka_unit_test(reader_round_trip),
+        cmocka_unit_test(reader_refuses_foreign_slopes),
+        cmocka_unit_test(default_cantor),
+        cmocka_unit_test(rule_from_the_basis),
         cmocka_unit_test(bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
