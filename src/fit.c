@@ -53,7 +53,8 @@ static int fit_line(const double *x, const double *y, size_t n, double lo, doubl
 }
 
 /* The heights on a uniform grid along x, row by row: a non-uniform line is interpolated
- * linearly onto its median spacing. */
+ * linearly onto its median spacing, at most RESAMPLE_MAX times as many points as it has. */
+#define RESAMPLE_MAX 8.0
 typedef struct {
     double *z; /* rows of nx, NaN where invalid */
     size_t nx, ny;
@@ -80,7 +81,18 @@ static int rows_of(const ct_profile *p, rows *r)
     /* the median gap (the upper one of an even count): GSL's quickselect, O(n) */
     r->dx = gsl_stats_select(gaps, 1, p->nx - 1, (p->nx - 1) / 2);
     free(gaps);
-    r->nx = (size_t)floor((p->x[p->nx - 1] - p->x[0]) / r->dx) + 1;
+    /* a grid much finer than the data holds interpolated lines, not the profile's roughness:
+     * refuse, with the figures, a spacing so uneven that the median gap would multiply the
+     * points by more than RESAMPLE_MAX (a few samples 1 nm apart and one 0.1 m away) */
+    const double span = p->x[p->nx - 1] - p->x[0], count = floor(span / r->dx) + 1.0;
+    if (!(count <= RESAMPLE_MAX * (double)p->nx))
+        return ct_error_set(CT_EINVAL,
+                            "fit: the profile's spacing is too uneven to resample: its median "
+                            "gap %.3g m over its length %.3g m would make %.3g points of its %zu "
+                            "(more than %g times as many); resample it evenly or cut it where the "
+                            "gaps change",
+                            r->dx, span, count, p->nx, RESAMPLE_MAX);
+    r->nx = (size_t)count;
     r->z = malloc(r->nx * sizeof(double));
     if (!r->z)
         return ct_error_set(CT_ENOMEM, "fit: out of memory");

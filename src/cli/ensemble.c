@@ -104,6 +104,19 @@ static const char *realisations_header(int skip)
                 : "realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,fz_clipped";
 }
 
+/* What identifies a part's scene: its surface (kind, ratios, layer, depth, seed, spreads) and
+ * its error mode; the first line of a realisations CSV, checked by cantact merge. */
+static void identity(const ct_scene *sc, char *buf, size_t len)
+{
+    ct_random_cantor rc;
+    ct_surface_random_cantor(sc->surface, &rc, NULL);
+    ct_plan_info info = {.depth = rc.depth, .rods = ((size_t)2 << rc.depth) - 1};
+    char line[600];
+    ct_surface_table_line(sc->surface, &info, line, sizeof line);
+    snprintf(buf, len, "# realisations of surface = %s; impacts %ld; solver.on_error = %s", line,
+             sc->impacts, sc->skip_failed ? "skip" : "stop");
+}
+
 static void write_realisations(FILE *f, const ct_scene *sc, const table *t)
 {
     const size_t impacts = (size_t)sc->impacts;
@@ -273,7 +286,9 @@ static int write_outputs(outputs *o, const ct_scene *sc, const table *t, int qui
 {
     char err[512];
     if (o->opened_real) {
-        fprintf(o->real.f, "%s\n", realisations_header(sc->skip_failed));
+        char id[800];
+        identity(sc, id, sizeof id);
+        fprintf(o->real.f, "%s\n%s\n", id, realisations_header(sc->skip_failed));
         write_realisations(o->real.f, sc, t);
     }
     double sem_max = NAN;
@@ -563,6 +578,65 @@ static int read_u64(const char *s, uint64_t *x)
     return *end || errno ? -1 : 0;
 }
 
+/* A row of a realisations CSV is a few numbers and an error message: longer is no part. */
+#define PART_LINE_MAX 4096
+
+/* The next line of f into buf without its line end (\n or \r\n): 1, 0 at the end, -1 when
+ * longer than PART_LINE_MAX (the rest of it is not read). */
+static int part_line(FILE *f, char *buf)
+{
+    if (!fgets(buf, PART_LINE_MAX + 2, f))
+        return 0;
+    size_t n = strlen(buf);
+    if (n > PART_LINE_MAX)
+        return -1;
+    if (n && buf[n - 1] == '\n')
+        buf[--n] = '\0';
+    if (n && buf[n - 1] == '\r')
+        buf[--n] = '\0';
+    return 1;
+}
+
+/* The values of one row as the run would have written them: e in [0, 1], u_max and V*_c
+ * finite and >= 0, clip counts at most the draws; empty only for a failed impact (a row with
+ * its error), and failed impacts only in a scene with solver.on_error = skip. NULL or why not. */
+static const char *row_values(const ct_scene *sc, double u, double e, double vc, uint64_t cx,
+                              uint64_t cz, const char *error)
+{
+    ct_random_cantor rc;
+    ct_surface_random_cantor(sc->surface, &rc, NULL);
+    const uint64_t draws = ((uint64_t)2 << rc.depth) - 2;
+    if (cx > draws || cz > draws)
+        return "more clipped ratios than draws";
+    if (error && *error)
+        return isnan(e) && isnan(u) && isnan(vc) ? NULL : "a failed impact with numbers";
+    if (isnan(e) || isnan(u) || isnan(vc))
+        return sc->skip_failed ? "empty numbers without an error"
+                               : "empty numbers in a part of a "
+                                 "scene that stops on errors";
+    if (!(e >= 0.0 && e <= 1.0))
+        return "e outside [0, 1]";
+    if (!(isfinite(u) && u >= 0.0) || !(isfinite(vc) && vc >= 0.0))
+        return "u_max_over_h0 or V_star_crit not a finite number >= 0";
+    return NULL;
+}
+
+/* The data rows of a part (its lines after the identity and the header), -1 when it cannot
+ * be read or a line is too long (the reading that follows says why). */
+static long long part_rows(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    char *line = malloc(PART_LINE_MAX + 2);
+    long long n = -2;
+    int got = 1;
+    while (f && line && (got = part_line(f, line)) > 0)
+        n++;
+    if (f)
+        fclose(f);
+    free(line);
+    return !f || !line || got < 0 ? -1 : n < 0 ? 0 : n;
+}
+
 /* Reads one part into t; seen[r] marks the realisations read. Returns 0 or -1 (err set). */
 static int read_part(const char *path, const ct_scene *sc, table *t, unsigned char *seen, char *err,
                      size_t errlen)
@@ -574,21 +648,37 @@ static int read_part(const char *path, const ct_scene *sc, table *t, unsigned ch
     }
     const size_t impacts = (size_t)sc->impacts, nrows = t->nrows;
     const int nf = sc->skip_failed ? 9 : 8;
-    char *line = NULL;
-    size_t cap = 0;
+    char *line = malloc(PART_LINE_MAX + 2), id[800];
+    identity(sc, id, sizeof id);
     long lineno = 0;
-    ssize_t len;
-    int rc = -1;
+    int rc = -1, got;
     uint64_t r_cur = UINT64_MAX;
     size_t q_next = 0;
-    while ((len = getline(&line, &cap, f)) >= 0) {
+    if (!line) {
+        snprintf(err, errlen, "out of memory");
+        goto done;
+    }
+    while ((got = part_line(f, line)) != 0) {
         lineno++;
-        if (len && line[len - 1] == '\n')
-            line[--len] = '\0';
+        if (got < 0) {
+            snprintf(err, errlen, "%s:%ld: a line longer than %d bytes: not a realisations CSV",
+                     path, lineno, PART_LINE_MAX);
+            goto done;
+        }
         if (lineno == 1) {
+            if (strcmp(line, id)) {
+                snprintf(err, errlen,
+                         "%s:1: not a part of this scene: it says '%.200s', the scene '%.200s'",
+                         path, line, id);
+                goto done;
+            }
+            continue;
+        }
+        if (lineno == 2) {
             if (strcmp(line, realisations_header(sc->skip_failed))) {
                 snprintf(err, errlen,
-                         "%s:1: not a realisations CSV of this scene (header %.80s; expected %s)",
+                         "%s:2: not a realisations CSV of this scene (header '%.80s'; expected "
+                         "'%s')",
                          path, line, realisations_header(sc->skip_failed));
                 goto done;
             }
@@ -603,6 +693,11 @@ static int read_part(const char *path, const ct_scene *sc, table *t, unsigned ch
             read_double(fields[5], &vc) || read_u64(fields[6], &cx) || read_u64(fields[7], &cz)) {
             snprintf(err, errlen, "%s:%ld: malformed row (expected %s)", path, lineno,
                      realisations_header(sc->skip_failed));
+            goto done;
+        }
+        const char *why = row_values(sc, u, e, vc, cx, cz, nf == 9 ? fields[8] : NULL);
+        if (why) {
+            snprintf(err, errlen, "%s:%ld: %s: not what a run writes", path, lineno, why);
             goto done;
         }
         if (r >= t->count) {
@@ -644,6 +739,11 @@ static int read_part(const char *path, const ct_scene *sc, table *t, unsigned ch
             snprintf(err, errlen, "out of memory");
             goto done;
         }
+    }
+    if (lineno < 2) {
+        snprintf(err, errlen, "%s: %s: not a realisations CSV", path,
+                 lineno ? "no header" : "empty");
+        goto done;
     }
     if (r_cur != UINT64_MAX && q_next != nrows) {
         snprintf(err, errlen, "%s: realisation %llu has %zu rows, the scene %zu", path,
@@ -697,6 +797,31 @@ int ct_cli_merge(int argc, char **argv)
         goto done;
     }
     const size_t nrows = sc.nvel * (size_t)sc.impacts;
+    /* the table is sized by what the parts hold: they must hold every realisation once */
+    long long rows = 0;
+    for (size_t p = 1; p < a.npos && rows >= 0; p++) {
+        long long n = part_rows(a.positional[p]);
+        rows = n < 0 ? -1 : rows + n;
+    }
+    if (rows >= 0 && (unsigned long long)rows != (unsigned long long)sc.realisations * nrows) {
+        snprintf(err, sizeof err,
+                 "merge: the parts hold %lld rows, %.6g realisations of %zu rows; the scene has "
+                 "ensemble.realisations = %llu (every realisation must be in exactly one part)",
+                 rows, (double)rows / (double)nrows, nrows, (unsigned long long)sc.realisations);
+        fail_line(err);
+        goto done;
+    }
+    /* every realisation's samples are held: refuse up front what would not fit, as run does */
+    const double bytes = (double)sc.realisations * ((double)nrows * 4.0 + 3.0) * sizeof(double);
+    if (bytes > 0.5 * (double)ct_available_memory()) {
+        snprintf(err, sizeof err,
+                 "merge: %llu realisations x %zu rows need %.3g GiB, more than half the %.3g GiB "
+                 "of memory available",
+                 (unsigned long long)sc.realisations, nrows, bytes / 1073741824.0,
+                 (double)ct_available_memory() / 1073741824.0);
+        fail_line(err);
+        goto done;
+    }
     if (table_alloc(&t, 0, sc.realisations, nrows) ||
         !(seen = calloc((size_t)sc.realisations, 1))) {
         fail_line("merge: out of memory");
@@ -716,15 +841,8 @@ int ct_cli_merge(int argc, char **argv)
             fail_line(err);
             goto done;
         }
-    for (uint64_t r = 0; r < sc.realisations; r++)
-        if (!seen[r]) {
-            snprintf(err, sizeof err,
-                     "merge: realisation %llu of %llu is in none of the parts (every realisation "
-                     "must be in exactly one)",
-                     (unsigned long long)r, (unsigned long long)sc.realisations);
-            fail_line(err);
-            goto done;
-        }
+    /* every realisation is now in exactly one part: the parts held R x nrows rows, none twice,
+     * each with nrows rows of an index below R */
     rc = write_outputs(&o, &sc, &t, quiet);
 done:
     close_outputs(&o);

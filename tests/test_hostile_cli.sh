@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Hostile input, round three (issue 24): every input below once crashed, destroyed a file, ran
+# away with memory or gave a wrong number; each must now be a clear one-line refusal (exit 2,
+# nothing written, nothing replaced) or the right result.
+# Usage: test_hostile_cli.sh CANTACT SOURCE_DIR
+set -u
+ct=$1
+src=$(cd "$2" && pwd)
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+failn=0
+ok() { pass=$((pass + 1)); }
+# CT_FAIL_FAST (set by the mutation check): stop at the first failed check
+bad() {
+    failn=$((failn + 1))
+    echo "FAIL: $*"
+    [ -z "${CT_FAIL_FAST:-}" ] || exit 1
+}
+# refused WHAT NEEDLE -- command...: exit 2, one line on stderr holding NEEDLE
+refused() {
+    local what=$1 needle=$2
+    shift 3
+    "$@" >"$tmp/out" 2>"$tmp/err"
+    local rc=$?
+    if [ $rc -ne 2 ]; then
+        bad "$what: exit $rc, expected 2: $(head -c 300 "$tmp/err")"
+    elif [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
+        bad "$what: expected one line on stderr, got: $(cat "$tmp/err")"
+    elif ! grep -qF -- "$needle" "$tmp/err"; then
+        bad "$what: '$needle' not in: $(cat "$tmp/err")"
+    else
+        ok
+    fi
+}
+
+# 6. a fit of 301 points, 300 of them 1 nm apart and one 0.1 m away: resampled on the median
+# gap it was 1e8 points (3.5 GB, 45 s); refused with the figures
+awk 'BEGIN { for (i = 0; i < 300; i++) print i * 1e-9, (i % 7) * 1e-9; print 0.1, 0 }' \
+    >"$tmp/uneven.txt"
+refused "uneven fit" "too uneven to resample" -- "$ct" fit "$tmp/uneven.txt" --unit m
+
+# 8, 10. cantact merge: parts must come from this scene and hold what a run writes
+cat >"$tmp/r.ini" <<INI
+[surface]
+type = random_cantor
+fx = 1.5
+fz = 1.3
+H = 10
+depth = 4
+fx_spread = 0.1
+seed = 1
+[material]
+E = 500
+[impact]
+V_star = 1e-3, 1e-2
+[ensemble]
+realisations = 4
+INI
+"$ct" run -q "$tmp/r.ini" --realisations 0:2 -o "$tmp/p0.csv" &&
+    "$ct" run -q "$tmp/r.ini" --realisations 2:4 -o "$tmp/p1.csv" || bad "parts did not run"
+"$ct" run -q "$tmp/r.ini" -o "$tmp/whole.csv" || bad "the whole ensemble did not run"
+"$ct" merge -q "$tmp/r.ini" "$tmp/p0.csv" "$tmp/p1.csv" -o "$tmp/m.csv" &&
+    cmp -s "$tmp/m.csv" "$tmp/whole.csv" && ok || bad "merge of the genuine parts differs"
+# one value changed at a time: e = 5, e empty in a scene that stops on errors, inf
+for edit in 's/^\(1,1,[^,]*,[^,]*\),[^,]*,/\1,5,/' 's/^\(1,1,[^,]*,[^,]*\),[^,]*,/\1,,/' \
+    's/^\(1,1,[^,]*\),[^,]*,/\1,inf,/'; do
+    sed "$edit" "$tmp/p0.csv" >"$tmp/bad.csv"
+    cmp -s "$tmp/bad.csv" "$tmp/p0.csv" && bad "the edit $edit changed nothing"
+    refused "merge of a part edited by $edit" "not what a run writes" -- \
+        "$ct" merge -q "$tmp/r.ini" "$tmp/bad.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+    [ -e "$tmp/x.csv" ] && bad "a refused merge wrote its output"
+done
+# a part of the same scene with seed = 2
+"$ct" run -q "$tmp/r.ini" --set surface.seed=2 --realisations 0:2 -o "$tmp/s2.csv" || bad "seed 2"
+refused "merge of a part with another seed" "not a part of this scene" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/s2.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+: >"$tmp/empty.csv"
+refused "merge of an empty part" "empty: not a realisations CSV" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/empty.csv" "$tmp/p0.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+# CRLF line ends (a part that went through Windows): the same numbers
+sed 's/$/\r/' "$tmp/p0.csv" >"$tmp/crlf.csv"
+"$ct" merge -q "$tmp/r.ini" "$tmp/crlf.csv" "$tmp/p1.csv" -o "$tmp/m2.csv" &&
+    cmp -s "$tmp/m2.csv" "$tmp/whole.csv" && ok || bad "a CRLF part does not merge to the same bytes"
+# 40 million realisations: refused before anything is allocated, with the figure
+refused "merge of 4e7 realisations" "the parts hold 4 rows, 2 realisations of 2 rows; the scene has ensemble.realisations = 40000000" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/p0.csv" --set ensemble.realisations=40000000 -o "$tmp/x.csv"
+
+echo "hostile-cli: $pass passed, $failn failed"
+[ $failn -eq 0 ]
