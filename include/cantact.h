@@ -882,6 +882,7 @@ enum {
     CT_KEY_LO_CLOSED = 1, /* CT_KEY_NUMBER: v >= lo (else v > lo) */
     CT_KEY_HI_CLOSED = 2, /* CT_KEY_NUMBER: v <= hi (else v < hi) */
     CT_KEY_REQUIRED = 4,  /* the scene must give it */
+    CT_KEY_FILE = 8,      /* CT_KEY_TEXT: the value names a file the surface reads */
 };
 
 typedef struct {
@@ -959,6 +960,9 @@ int ct_surface_is_set(const ct_surface *s, const char *section, const char *name
 /* Checks the keys together (required ones, exclusive ones, E > sigma_y ...); scene names
  * the scene in messages that concern no single key. */
 int ct_surface_check(ct_surface *s, const char *scene);
+/* The k-th file the surface reads (its keys flagged CT_KEY_FILE, joined to dir as
+ * ct_surface_prepare joins them) into buf: 1, or 0 when it reads fewer. */
+int ct_surface_input(const ct_surface *s, size_t k, const char *dir, char *buf, size_t len);
 /* Reads what the surface needs (a profile's file, a rod file; relative paths from dir, NULL:
  * the working directory), levels it, fixes its scales. Idempotent. */
 int ct_surface_prepare(ct_surface *s, const char *dir);

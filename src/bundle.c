@@ -25,8 +25,6 @@
 #include <omp.h>
 #endif
 
-#define CT_BLOCK 2048
-
 struct ct_bundle {
     ct_layer layer;
     size_t n;       /* rods held */
@@ -355,16 +353,10 @@ int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
 
 enum sum_kind { SUM_FORCE, SUM_WORK, SUM_ELASTIC };
 
-/* Neumaier-compensated sum of one block: 2^i identical pieces of a stage then add up to
- * what the merged stage rod gives, to a few ulps. */
-#define CT_ADD(term)                                                                               \
-    do {                                                                                           \
-        double x_ = (term), t_ = s + x_;                                                           \
-        c += fabs(s) >= fabs(x_) ? (s - t_) + x_ : (x_ - t_) + s;                                  \
-        s = t_;                                                                                    \
-    } while (0)
-
-/* Force at ua of the state after being taken to adv (-INFINITY: the current state). */
+/* The sum of one block, compensated (ct_add_comp): 2^i identical pieces of a stage then add up
+ * to what the merged stage rod gives, to a few ulps. Force at ua of the state after being
+ * taken to adv (-INFINITY: the current state); work from ua to ub, or the recoverable energy
+ * at ua, of the current state. */
 static double block_sum(const ct_bundle *b, enum sum_kind kind, double ua, double ub, double adv,
                         size_t k0, size_t k1)
 {
@@ -375,16 +367,18 @@ static double block_sum(const ct_bundle *b, enum sum_kind kind, double ua, doubl
     case SUM_FORCE:
         for (size_t k = k0; k < k1; k++) {
             double p = ct_rod_advance(adv, top[k], length[k], eps_p[k], eps_y);
-            CT_ADD(ct_rod_force(ua, top[k], length[k], area[k], p, E, eps_y));
+            ct_add_comp(&s, &c, ct_rod_force(ua, top[k], length[k], area[k], p, E, eps_y));
         }
         break;
     case SUM_WORK:
         for (size_t k = k0; k < k1; k++)
-            CT_ADD(ct_rod_work(ua, ub, top[k], length[k], area[k], eps_p[k], E, eps_y));
+            ct_add_comp(&s, &c,
+                        ct_rod_work(ua, ub, top[k], length[k], area[k], eps_p[k], E, eps_y));
         break;
     case SUM_ELASTIC:
         for (size_t k = k0; k < k1; k++)
-            CT_ADD(ct_rod_elastic_energy(ua, top[k], length[k], area[k], eps_p[k], E, eps_y));
+            ct_add_comp(&s, &c,
+                        ct_rod_elastic_energy(ua, top[k], length[k], area[k], eps_p[k], E, eps_y));
         break;
     }
     return s + c;
@@ -450,9 +444,10 @@ static double blocked_total(const ct_bundle *b, enum sum_kind kind, double ua, d
 }
 
 /* Multi-node sums: one pass over the rods serves up to CT_NODE_CHUNK nodes. Each block
- * keeps one Neumaier sum per node, adding the rods in the same order as block_sum, and the
- * block sums meet in the same pairwise tree, so every value is bitwise what the single-node
- * call gives. The node loop is innermost and branch-free, so it vectorises; on x86-64 an
+ * keeps one compensated sum per node, adding the rods in the same order as block_sum, and the
+ * block sums meet in the same pairwise tree; the terms are rod.h's block form, bitwise its
+ * scalar form, so every value is bitwise what the single-node call gives. The node loop is
+ * innermost and branch-free (rod.h and ct_add_comp are selects), so it vectorises; on x86-64 an
  * AVX2 clone is picked at load time when the CPU has it (no FMA: contraction is off under
  * -std=c11, and a fused multiply-add would change the rounding). */
 #define CT_NODE_CHUNK 64
@@ -475,30 +470,19 @@ static void block_sum_many(const ct_bundle *b, enum sum_kind kind, double ua, do
     for (size_t i = 0; i < m; i++)
         s[i] = c[i] = 0.0;
     for (size_t k = k0; k < k1; k++) {
-        const double tk = top[k], lk = length[k], ak = area[k], rl = 1.0 / lk;
-        const double pk = ct_rod_advance(adv, tk, lk, eps_p[k], eps_y);
-        const double Ea = E * ak, EaL = E * ak * lk;
-        const double wa = ct_rod_work_density(ct_rod_elastic_strain(ua, tk, lk, pk), eps_y);
+        const double tk = top[k], rl = 1.0 / length[k];
+        const double pk = ct_rod_advanced(ct_rod_total_strain(adv, tk, rl), eps_p[k], eps_y);
+        const double Es = E * area[k], EsL = E * area[k] * length[k];
+        const double wa = ct_rod_work_density(ct_rod_strain(ua, tk, rl, pk), eps_y);
         if (kind == SUM_FORCE) {
             for (size_t i = 0; i < m; i++) {
-                double d = (ub[i] - tk) * rl - pk;
-                d = d < 0.0 ? 0.0 : d; /* a NaN u stays NaN, as in ct_rod_force */
-                d = d > eps_y ? eps_y : d;
-                double x = Ea * d, t = s[i] + x;
-                double big_s = (s[i] - t) + x, big_x = (x - t) + s[i]; /* both: a select */
-                c[i] += fabs(s[i]) >= fabs(x) ? big_s : big_x;
-                s[i] = t;
+                const double d = ct_rod_strain(ub[i], tk, rl, pk);
+                ct_add_comp(&s[i], &c[i], ct_rod_force_of(d, Es, eps_y));
             }
         } else {
             for (size_t i = 0; i < m; i++) {
-                double d = (ub[i] - tk) * rl - pk;
-                double plateau = eps_y * (d - 0.5 * eps_y), elastic = 0.5 * d * d;
-                double w = d > eps_y ? plateau : elastic;
-                w = d <= 0.0 ? 0.0 : w; /* NaN stays NaN, as in ct_rod_work_density */
-                double x = EaL * (w - wa), t = s[i] + x;
-                double big_s = (s[i] - t) + x, big_x = (x - t) + s[i];
-                c[i] += fabs(s[i]) >= fabs(x) ? big_s : big_x;
-                s[i] = t;
+                const double d = ct_rod_strain(ub[i], tk, rl, pk);
+                ct_add_comp(&s[i], &c[i], EsL * (ct_rod_work_density(d, eps_y) - wa));
             }
         }
     }
@@ -538,11 +522,11 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
      * sums, each computed whole by one thread, in one parallel region; with few nodes (the
      * quadrature and u_max search on a deep bundle) the rod blocks of each chunk are shared.
      * Nodes are shared from two chunks per thread and NODE_WORK_FACTOR times the rod
-     * threshold in rod-node terms (8.4 M, some 20 ms of work): below, a team's start and its
-     * spinning cost the rest of a short run more than it saves (the 2000-impact sweep of the
-     * default scene, 145 rods: 7.4 ms whole process on one thread, 10.7 ms with two); and the
-     * rod blocks of a 9600-rod profile (5 blocks, 32 chunks of 2000 speeds) shared 3:2 in 32
-     * regions took 138 ms whole process against 92 ms on one thread (2026-11-23). */
+     * threshold in rod-node terms (8.4 M): below, a team's start and its spinning cost the
+     * rest of a short run more than it saves (a sweep of a small Cantor bundle); and the few
+     * rod blocks of a measured profile of some thousand rods, shared unevenly by the team
+     * in one parallel region per chunk of nodes, are slower than one thread
+     * (docs/benchmarks.md has the figures). */
     const size_t nchunks = (m + CT_NODE_CHUNK - 1) / CT_NODE_CHUNK;
     int avail = 1;
 #ifdef _OPENMP
@@ -612,8 +596,8 @@ static int blocked_many(const ct_bundle *b, enum sum_kind kind, double ua, doubl
 }
 
 /* Closed forms of impacts, each from its own state (b advanced to adv[i]): per rod and node
- * the very operations of ct_rod_advance, ct_rod_work and ct_rod_elastic_energy, so each sum
- * is bitwise what the single-node sums give on that state. */
+ * rod.h's block form of ct_rod_advance, ct_rod_work, ct_rod_elastic_energy and ct_rod_force,
+ * so each sum is bitwise what the single-node sums give on that state. */
 typedef struct {
     const double *adv, *u0, *u1;
 } closed_args;
@@ -631,25 +615,17 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
         for (int o = 0; o < 3; o++)
             s[o][i] = c[o][i] = 0.0;
     for (size_t k = k0; k < k1; k++) {
-        const double tk = top[k], lk = length[k], ak = area[k], pk = eps_p[k], rl = 1.0 / lk;
-        const double Ea = E * ak, EaL = E * ak * lk, half = 0.5 * E * ak * lk;
+        const double tk = top[k], pk = eps_p[k], rl = 1.0 / length[k];
+        const double Es = E * area[k], EsL = E * area[k] * length[k],
+                     half = 0.5 * E * area[k] * length[k];
         for (size_t i = 0; i < m; i++) {
-            double strain = (adv[i] - tk) * rl;
-            double p = strain - pk > eps_y ? strain - eps_y : pk;
-            double da = (u0[i] - tk) * rl - p, db = (u1[i] - tk) * rl - p;
-            double wa = da > eps_y ? eps_y * (da - 0.5 * eps_y) : 0.5 * da * da;
-            double wb = db > eps_y ? eps_y * (db - 0.5 * eps_y) : 0.5 * db * db;
-            wa = da > 0.0 ? wa : 0.0;
-            wb = db > 0.0 ? wb : 0.0;
-            double de = db > eps_y ? eps_y : db;
-            de = db > 0.0 ? de : 0.0;
-            double x[3] = {EaL * (wb - wa), db > 0.0 ? half * de * de : 0.0, Ea * de};
-            for (int o = 0; o < 3; o++) {
-                double t = s[o][i] + x[o];
-                double big_s = (s[o][i] - t) + x[o], big_x = (x[o] - t) + s[o][i];
-                c[o][i] += fabs(s[o][i]) >= fabs(x[o]) ? big_s : big_x;
-                s[o][i] = t;
-            }
+            const double p = ct_rod_advanced(ct_rod_total_strain(adv[i], tk, rl), pk, eps_y);
+            const double da = ct_rod_strain(u0[i], tk, rl, p), db = ct_rod_strain(u1[i], tk, rl, p);
+            const double x[3] = {
+                EsL * (ct_rod_work_density(db, eps_y) - ct_rod_work_density(da, eps_y)),
+                ct_rod_energy_of(db, half, eps_y), ct_rod_force_of(db, Es, eps_y)};
+            for (int o = 0; o < 3; o++)
+                ct_add_comp(&s[o][i], &c[o][i], x[o]);
         }
     }
     for (int o = 0; o < 3; o++)

@@ -17,6 +17,7 @@
  * slope change, then the force change), so the sorted sequence, and everything summed from
  * it, is the same for any thread count; only independent merges run in parallel. */
 #include "internal.h"
+#include "rod.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -25,10 +26,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-#define CT_BLOCK                                                                                   \
-    2048 /* as bundle.c: runs are merged within blocks, so the events (and                         \
-            everything after them) do not depend on the thread count */
 
 typedef struct {
     double x;    /* where [length] */
@@ -50,7 +47,9 @@ struct ct_curve {
     size_t ecap, tcap;
     size_t *runs, rcap;
     size_t *block_runs, bcap;
-    size_t ne; /* events of the last build, sorted in ev */
+    size_t ne;  /* events of the last build, sorted in ev */
+    double *ux; /* an unloading curve's sorted events for its builder: x, then the slopes */
+    size_t ucap;
 };
 
 int ct_curve_alloc(ct_curve **out)
@@ -83,9 +82,11 @@ static void free_work(ct_curve *c)
     free(c->tmp);
     free(c->runs);
     free(c->block_runs);
+    free(c->ux);
     c->ev = c->tmp = NULL;
     c->runs = c->block_runs = NULL;
-    c->ecap = c->tcap = c->rcap = c->bcap = 0;
+    c->ux = NULL;
+    c->ecap = c->tcap = c->rcap = c->bcap = c->ucap = 0;
 }
 
 void ct_curve_free(ct_curve *c)
@@ -231,28 +232,10 @@ static int same_rod(const double *top, const double *length, const double *eps_p
     return top[k] == top[k - 1] && length[k] == length[k - 1] && eps_p[k] == eps_p[k - 1];
 }
 
-/* Neumaier: s + c carries a sum whose terms may cancel. */
-static void add_comp(double *s, double *c, double x)
-{
-    double t = *s + x;
-    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
-    *s = t;
-}
-
 double ct_curve_bytes(size_t events)
 {
     /* events twice (the merge's buffer), run bounds, and 8 doubles per breakpoint */
     return (double)events * (2.0 * sizeof(event) + sizeof(size_t) + 8.0 * sizeof(double));
-}
-
-/* Pass 1 of a build for block j: the runs of identical rods in it. */
-static void count_runs(ct_curve *c, const double *top, const double *length, const double *eps_p,
-                       size_t n, size_t j)
-{
-    size_t k0 = j * CT_BLOCK, k1 = k0 + CT_BLOCK < n ? k0 + CT_BLOCK : n, r = 1;
-    for (size_t k = k0 + 1; k < k1; k++)
-        r += !same_rod(top, length, eps_p, k);
-    c->block_runs[j + 1] = r;
 }
 
 typedef struct {
@@ -261,6 +244,15 @@ typedef struct {
     double E, eps_y;
     size_t nruns;
 } rods_in;
+
+/* Pass 1 of a build for block j: the runs of identical rods in it. */
+static void count_runs(ct_curve *c, const rods_in *r, size_t j)
+{
+    size_t k0 = j * CT_BLOCK, k1 = k0 + CT_BLOCK < r->n ? k0 + CT_BLOCK : r->n, runs = 1;
+    for (size_t k = k0 + 1; k < k1; k++)
+        runs += !same_rod(r->top, r->length, r->eps_p, k);
+    c->block_runs[j + 1] = runs;
+}
 
 /* Pass 2 for block j: a contact and a yield event per run, contacts first. */
 static void block_events(ct_curve *c, const rods_in *r, size_t j)
@@ -274,10 +266,10 @@ static void block_events(ct_curve *c, const rods_in *r, size_t j)
         double s = area[k], sc = 0.0;
         size_t l = k + 1;
         while (l < k1 && same_rod(top, length, eps_p, l))
-            add_comp(&s, &sc, area[l++]);
+            ct_add_comp(&s, &sc, area[l++]);
         s += sc;
-        double contact = top[k] + eps_p[k] * length[k];
-        double yield = top[k] + (eps_p[k] + eps_y) * length[k];
+        double contact = ct_rod_contact(top[k], length[k], eps_p[k]);
+        double yield = ct_rod_yield(top[k], length[k], eps_p[k], eps_y);
         double slope = E * s / length[k];
         const double F = E * s * eps_y;
         ev[out] = (event){contact, slope, 0.0, 0.0, 0.0, 0.0};
@@ -285,6 +277,21 @@ static void block_events(ct_curve *c, const rods_in *r, size_t j)
             (event){yield, -slope, F, F - slope * (yield - contact), length[k], contact};
         out++;
         k = l;
+    }
+}
+
+/* Runs a pass (count_runs or block_events) over the nb blocks, by the thread team when there
+ * is one (it pays only on large bundles: entering one costs more than a small curve). */
+static void block_pass(ct_curve *c, const rods_in *r, size_t nb, int team,
+                       void (*pass)(ct_curve *c, const rods_in *r, size_t j))
+{
+    if (team > 1) {
+#pragma omp parallel for schedule(static) num_threads(team)
+        for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++)
+            pass(c, r, (size_t)j);
+    } else {
+        for (size_t j = 0; j < nb; j++)
+            pass(c, r, j);
     }
 }
 
@@ -299,45 +306,32 @@ size_t ct_curve_events(const ct_bundle *b)
     return 2 * runs;
 }
 
-int ct_curve_build(ct_curve *c, const ct_bundle *b)
+/* Makes room for n breakpoints (the arrays of the sweep). */
+static int reserve_points(ct_curve *c, size_t n)
 {
-    CT_NEED(c);
-    CT_NEED(b);
-    const size_t n = ct_bundle_size(b);
-    const ct_layer *L = ct_bundle_layer(b);
-    const double E = L->E, eps_y = L->sigma_y / L->E;
-    double *top, *length, *area, *eps_p;
-    ct_bundle_arrays((ct_bundle *)b, &top, &length, &area, &eps_p); /* read only */
-    /* a thread team from 64x the rod threshold (262 144 rods): measured in one process
-     * (min of 15 builds, quasi-random tops, 2026-11-23) two threads were 13-16 % slower up to
-     * 65 536 rods and 10 % faster from 262 144; in a short run the team's start and spinning
-     * workers also slow what follows (a 9600-rod profile x 2000 speeds: 22 ms whole process
-     * with a team, 12 ms without) */
-    const int team = ct_bundle_team_from(b, 64);
-    const size_t nb = (n + CT_BLOCK - 1) / CT_BLOCK;
-    c->n = 0;
-    c->ne = 0;
-    c->first_yield = INFINITY;
-    c->eps_y = eps_y;
-    if (grow((void **)&c->block_runs, &c->bcap, nb + 1, sizeof(size_t)))
-        goto oom;
-
-    /* pass 1: rod runs per block (a thread team only where it pays: entering one costs more
-     * than a small curve) */
-    if (team > 1) {
-#pragma omp parallel for schedule(static) num_threads(team)
-        for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++)
-            count_runs(c, top, length, eps_p, n, (size_t)j);
-    } else {
-        for (size_t j = 0; j < nb; j++)
-            count_runs(c, top, length, eps_p, n, j);
+    if (n <= c->cap)
+        return 0;
+    free_points(c);
+    c->x = malloc(n * sizeof(double));
+    c->P = malloc(n * sizeof(double));
+    c->W = malloc(n * sizeof(double));
+    c->D = malloc(n * sizeof(double));
+    c->slope = malloc(n * sizeof(double));
+    c->A = malloc(n * sizeof(double));
+    c->Lmax = malloc(n * sizeof(double));
+    c->cmin = malloc(n * sizeof(double));
+    if (!c->x || !c->P || !c->W || !c->D || !c->slope || !c->A || !c->Lmax || !c->cmin) {
+        free_points(c);
+        return -1;
     }
-    c->block_runs[0] = 0;
-    for (size_t j = 0; j < nb; j++)
-        c->block_runs[j + 1] += c->block_runs[j];
-    const size_t nruns = nb ? c->block_runs[nb] : 0, ne = 2 * nruns;
-    if (ne == 0)
-        return CT_OK;
+    c->cap = n;
+    return 0;
+}
+
+/* Room for ne events of a curve of n rods (-1: out of memory), or CT_ENOMEM when the memory
+ * available cannot hold the build. */
+static int room_for_events(ct_curve *c, size_t n, size_t ne)
+{
     /* the memory check reads /proc/meminfo: only for curves where it can matter */
     const double need = ct_curve_bytes(ne);
     const double have = need < 64e6 ? INFINITY
@@ -352,41 +346,20 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     if (grow((void **)&c->ev, &c->ecap, ne, sizeof(event)) ||
         grow((void **)&c->tmp, &c->tcap, ne, sizeof(event)) ||
         grow((void **)&c->runs, &c->rcap, ne + 1, sizeof(size_t)))
-        goto oom;
+        return -1;
+    return CT_OK;
+}
 
-    /* pass 2: contacts in rod order, then yields in rod order */
-    event *ev = c->ev;
-    const rods_in rods = {top, length, area, eps_p, n, E, eps_y, nruns};
-    if (team > 1) {
-#pragma omp parallel for schedule(static) num_threads(team)
-        for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++)
-            block_events(c, &rods, (size_t)j);
-    } else {
-        for (size_t j = 0; j < nb; j++)
-            block_events(c, &rods, j);
-    }
-    sort_events(c, ne, team);
-    ev = c->ev;
-    c->ne = ne;
-
-    /* the sweep */
+/* The sweep over the sorted events c->ev[0..ne): the breakpoints and their P, W, D, slope,
+ * yielded force and longest yielded rod (-1: out of memory). */
+static int sweep_events(ct_curve *c, size_t ne)
+{
+    const event *ev = c->ev;
     size_t nx = 1;
     for (size_t i = 1; i < ne; i++)
         nx += ev[i].x != ev[i - 1].x;
-    if (nx > c->cap) {
-        free_points(c);
-        c->x = malloc(nx * sizeof(double));
-        c->P = malloc(nx * sizeof(double));
-        c->W = malloc(nx * sizeof(double));
-        c->D = malloc(nx * sizeof(double));
-        c->slope = malloc(nx * sizeof(double));
-        c->A = malloc(nx * sizeof(double));
-        c->Lmax = malloc(nx * sizeof(double));
-        c->cmin = malloc(nx * sizeof(double));
-        if (!c->x || !c->P || !c->W || !c->D || !c->slope || !c->A || !c->Lmax || !c->cmin)
-            goto oom;
-        c->cap = nx;
-    }
+    if (reserve_points(c, nx))
+        return -1;
     double ks = 0.0, kc = 0.0, As = 0.0, Ac = 0.0; /* slope and yielded force */
     double Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, Ds = 0.0, Dc = 0.0;
     ptrdiff_t active = 0; /* rods between contact and yield */
@@ -397,19 +370,19 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
         const double x = ev[i].x;
         if (j > 0) {
             const double dx = x - x_prev;
-            add_comp(&Ps, &Pc, k_prev * dx);
+            ct_add_comp(&Ps, &Pc, k_prev * dx);
             const double P = Ps + Pc;
-            add_comp(&Ws, &Wc, 0.5 * (P_prev + P) * dx);
-            add_comp(&Ds, &Dc, A_prev * dx);
+            ct_add_comp(&Ws, &Wc, 0.5 * (P_prev + P) * dx);
+            ct_add_comp(&Ds, &Dc, A_prev * dx);
             P_prev = P;
         }
         for (; i < ne && ev[i].x == x; i++) {
-            add_comp(&ks, &kc, ev[i].dk);
+            ct_add_comp(&ks, &kc, ev[i].dk);
             if (signbit(ev[i].dk)) { /* a yield (a rod of underflowed area: -0) */
-                add_comp(&As, &Ac, ev[i].dF);
+                ct_add_comp(&As, &Ac, ev[i].dF);
                 Lmax = ev[i].L > Lmax ? ev[i].L : Lmax;
                 if (ev[i].jump != 0.0) {
-                    add_comp(&Ps, &Pc, ev[i].jump);
+                    ct_add_comp(&Ps, &Pc, ev[i].jump);
                     P_prev = Ps + Pc;
                 }
                 active--;
@@ -437,10 +410,17 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
         j++;
     }
     c->n = j;
-    /* contacts of the rods still below their yield point: a suffix minimum over yields */
+    return 0;
+}
+
+/* At every breakpoint, the smallest contact of the rods still below their yield point: a
+ * suffix minimum over the yields. */
+static void contacts_below(ct_curve *c, size_t ne)
+{
+    const event *ev = c->ev;
     double cm = INFINITY;
     size_t e = ne;
-    for (size_t q = j; q-- > 0;) {
+    for (size_t q = c->n; q-- > 0;) {
         c->cmin[q] = cm;
         while (e > 0 && ev[e - 1].x >= c->x[q]) {
             e--;
@@ -448,6 +428,48 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
                 cm = ev[e].c;
         }
     }
+}
+
+int ct_curve_build(ct_curve *c, const ct_bundle *b)
+{
+    CT_NEED(c);
+    CT_NEED(b);
+    const size_t n = ct_bundle_size(b);
+    const ct_layer *L = ct_bundle_layer(b);
+    const double eps_y = L->sigma_y / L->E;
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays((ct_bundle *)b, &top, &length, &area, &eps_p); /* read only */
+    /* a thread team from 64x the rod threshold (262 144 rods): below it two threads build
+     * more slowly than one, and in a short run the team's start and its spinning workers
+     * also slow what follows (docs/benchmarks.md has the figures) */
+    const int team = ct_bundle_team_from(b, 64);
+    const size_t nb = (n + CT_BLOCK - 1) / CT_BLOCK;
+    int st;
+    c->n = 0;
+    c->ne = 0;
+    c->first_yield = INFINITY;
+    c->eps_y = eps_y;
+    if (grow((void **)&c->block_runs, &c->bcap, nb + 1, sizeof(size_t)))
+        goto oom;
+    rods_in rods = {top, length, area, eps_p, n, L->E, eps_y, 0};
+    block_pass(c, &rods, nb, team, count_runs); /* pass 1: rod runs per block */
+    c->block_runs[0] = 0;
+    for (size_t j = 0; j < nb; j++)
+        c->block_runs[j + 1] += c->block_runs[j];
+    rods.nruns = nb ? c->block_runs[nb] : 0;
+    const size_t ne = 2 * rods.nruns;
+    if (ne == 0)
+        return CT_OK;
+    if ((st = room_for_events(c, n, ne)) > 0)
+        return st;
+    if (st)
+        goto oom;
+    block_pass(c, &rods, nb, team, block_events); /* pass 2: contacts in rod order, then yields */
+    sort_events(c, ne, team);
+    c->ne = ne;
+    if (sweep_events(c, ne))
+        goto oom;
+    contacts_below(c, ne);
     return CT_OK;
 oom:
     c->n = 0;
@@ -540,52 +562,129 @@ void ct_curve_view_of(const ct_curve *c, ct_curve_view *v)
     v->slope = c->slope;
 }
 
-/* Makes room for n breakpoints (the arrays of the sweep). */
-static int reserve_points(ct_curve *c, size_t n)
+/* ---- unloading curves ---- */
+
+/* The unloading curve (Eq. 11 rod by rod): loaded from a state to u_max, every rod in contact
+ * unloads along its elastic line, k (u - r), from its release point r: its contact if it did
+ * not yield, u_max - eps_y L if it did (r = contact + (u_max - yield)). In terms of the
+ * state's sorted events below u_max: each contact adds its slope at its contact, and each
+ * yield takes that slope back at the rod's contact and adds it again at its release. Those
+ * three sequences of events, swept like a loading curve without yields, give the curve; its
+ * last breakpoint is u_max. unload_sweep below is the one piece of code that builds one:
+ * ct_curve_unload hands it the three sequences sorted into one, ct_unload_split (the sweep's
+ * fast path) the sequences themselves when each is already in order. */
+
+/* The release point of a yielded rod of contact c and eps_y L = eL (never below c). */
+static double release_point(double u_max, double eL, double c)
 {
-    if (n <= c->cap)
-        return 0;
-    free_points(c);
-    c->x = malloc(n * sizeof(double));
-    c->P = malloc(n * sizeof(double));
-    c->W = malloc(n * sizeof(double));
-    c->D = malloc(n * sizeof(double));
-    c->slope = malloc(n * sizeof(double));
-    c->A = malloc(n * sizeof(double));
-    c->Lmax = malloc(n * sizeof(double));
-    c->cmin = malloc(n * sizeof(double));
-    if (!c->x || !c->P || !c->W || !c->D || !c->slope || !c->A || !c->Lmax || !c->cmin) {
-        free_points(c);
-        return -1;
-    }
-    c->cap = n;
-    return 0;
+    const double r = u_max - eL;
+    return r < c ? c : r;
 }
 
-/* The unloading curve (Eq. 11 rod by rod): loaded from c's state to u_max, every rod in
- * contact unloads along its elastic line, k (u - r), from its release point r: its contact
- * if it did not yield, u_max - eps_y L if it did (r = contact + (u_max - yield)). In terms of
- * c's sorted events below u_max: each contact adds its slope at its contact, and each yield
- * takes that slope back at the rod's contact and adds it again at its release. The three
- * sequences are merged as runs (monotone for Cantor stages), then swept like a loading curve
- * without yields; the last breakpoint is u_max. */
-int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out)
+/* A sequence of unloading events in x order: at x[i] the slope changes by sign k[i] (sign
+ * -1: contacts taken back). */
+typedef struct {
+    const double *x, *k;
+    double sign; /* 1 or -1: the product is exact */
+    size_t n;
+} run;
+
+/* s (+ c) += x: compensated, or a plain sum (plain: every term is >= 0, none cancels) */
+static void sum_add(double *s, double *c, double x, int plain)
 {
-    CT_NEED(c);
-    CT_NEED(out);
-    out->n = out->ne = 0;
-    out->first_yield = INFINITY;
-    out->eps_y = c->eps_y;
+    if (plain)
+        *s += x;
+    else
+        ct_add_comp(s, c, x);
+}
+
+/* The value of the sum s (+ c): s alone when plain (c stays 0, and adding it would lengthen
+ * the chain of dependent additions) */
+static double sum_of(double s, double c, int plain)
+{
+    return plain ? s : s + c;
+}
+
+/* The slope (ks + kc) and the count of rods in contact after run r's events at x, from
+ * its next event at[0] (at x: head); returns the run's next x (inf: none left). */
+static double take(const run *r, size_t *at, double head, double x, double *ks, double *kc,
+                   ptrdiff_t *touching, int plain)
+{
+    while (head == x) {
+        const double dk = r->sign * r->k[*at];
+        sum_add(ks, kc, dk, plain);
+        *touching += signbit(dk) ? -1 : 1;
+        head = ++*at < r->n ? r->x[*at] : INFINITY;
+    }
+    return head;
+}
+
+/* The builder. Sweeps the events of the three runs in x order (at equal x run by run, each
+ * in its own order): a slope change dk >= +0 brings a rod into contact, dk <= -0 takes one
+ * out (a rod of underflowed area: -0). Writes x, P, W and the slope on [x_j, x_j+1) at every
+ * distinct x from the first where a rod touches (the first release), then at u_max, the top
+ * of the branch; returns how many (at most the distinct x + 1; 0: no rod in contact). */
+static size_t unload_sweep(const run r[3], double u_max, int plain, double *x, double *P, double *W,
+                           double *slope)
+{
+    size_t a0 = 0, a1 = 0, a2 = 0, j = 0;
+    double h0 = r[0].n ? r[0].x[0] : INFINITY, h1 = r[1].n ? r[1].x[0] : INFINITY,
+           h2 = r[2].n ? r[2].x[0] : INFINITY;
+    double ks = 0.0, kc = 0.0, Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, k_prev = 0.0, P_prev = 0.0;
+    double x_prev = 0.0;    /* the last point's x */
+    ptrdiff_t touching = 0; /* rods in contact: the curve starts at the first release */
+    for (;;) {
+        const double xj = h0 < h1 ? (h0 < h2 ? h0 : h2) : (h1 < h2 ? h1 : h2);
+        if (xj == INFINITY)
+            break;
+        if (j > 0) {
+            const double dx = xj - x_prev;
+            sum_add(&Ps, &Pc, k_prev * dx, plain);
+            const double Pj = sum_of(Ps, Pc, plain);
+            sum_add(&Ws, &Wc, 0.5 * (P_prev + Pj) * dx, plain);
+            P_prev = Pj;
+        }
+        h0 = take(&r[0], &a0, h0, xj, &ks, &kc, &touching, plain);
+        h1 = take(&r[1], &a1, h1, xj, &ks, &kc, &touching, plain);
+        h2 = take(&r[2], &a2, h2, xj, &ks, &kc, &touching, plain);
+        if (touching == 0) /* no rod touches: slope 0, not a rounding residue */
+            ks = kc = 0.0;
+        k_prev = sum_of(ks, kc, plain) > 0.0 ? sum_of(ks, kc, plain) : 0.0;
+        if (j == 0 && touching == 0)
+            continue; /* before the first release: no contact, no point */
+        x[j] = x_prev = xj;
+        P[j] = P_prev;
+        W[j] = sum_of(Ws, Wc, plain);
+        slope[j] = k_prev;
+        j++;
+    }
+    if (j > 0 && x_prev < u_max) { /* the top of the unloading branch */
+        const double dx = u_max - x_prev;
+        sum_add(&Ps, &Pc, k_prev * dx, plain);
+        sum_add(&Ws, &Wc, 0.5 * (P_prev + Ps + Pc) * dx, plain);
+        x[j] = u_max;
+        P[j] = sum_of(Ps, Pc, plain);
+        W[j] = sum_of(Ws, Wc, plain);
+        slope[j] = k_prev;
+        j++;
+    }
+    return j;
+}
+
+/* Into out->ev[0..*m): c's events up to u_max as the three sequences, sorted into one (a
+ * natural merge sort: they are its runs, monotone for Cantor stages). */
+static int unload_events(const ct_curve *c, double u_max, ct_curve *out, size_t *m)
+{
     size_t nc = 0, ny = 0;
     for (size_t i = 0; i < c->ne && c->ev[i].x <= u_max; i++)
         signbit(c->ev[i].dk) ? ny++ : nc++;
-    const size_t m = nc + 2 * ny;
-    if (m == 0)
+    *m = nc + 2 * ny;
+    if (*m == 0)
         return CT_OK;
-    if (grow((void **)&out->ev, &out->ecap, m, sizeof(event)) ||
-        grow((void **)&out->tmp, &out->tcap, m, sizeof(event)) ||
-        grow((void **)&out->runs, &out->rcap, m + 1, sizeof(size_t)))
-        return ct_error_set(CT_ENOMEM, "unloading curve of %zu events: out of memory", m);
+    if (grow((void **)&out->ev, &out->ecap, *m, sizeof(event)) ||
+        grow((void **)&out->tmp, &out->tcap, *m, sizeof(event)) ||
+        grow((void **)&out->runs, &out->rcap, *m + 1, sizeof(size_t)))
+        return ct_error_set(CT_ENOMEM, "unloading curve of %zu events: out of memory", *m);
     /* three runs, each in c's event order: contacts, the yielded rods' contacts taken back,
      * their releases */
     size_t qc = 0, qy = nc, qr = nc + ny;
@@ -594,85 +693,130 @@ int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out)
         if (!signbit(e->dk)) {
             out->ev[qc++] = (event){e->x, e->dk, 0.0, 0.0, 0.0, 0.0};
         } else {
-            double release = u_max - c->eps_y * e->L;
-            release = release < e->c ? e->c : release;
+            const double release = release_point(u_max, c->eps_y * e->L, e->c);
             out->ev[qy++] = (event){e->c, e->dk, 0.0, 0.0, 0.0, 0.0};
             out->ev[qr++] = (event){release, -e->dk, 0.0, 0.0, 0.0, 0.0};
         }
     }
-    sort_events(out, m, 1);
-    const event *ev = out->ev;
-    size_t nx = 2;
-    for (size_t i = 1; i < m; i++)
-        nx += ev[i].x != ev[i - 1].x;
-    if (reserve_points(out, nx))
-        return ct_error_set(CT_ENOMEM, "unloading curve: out of memory");
-    double ks = 0.0, kc = 0.0, Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, k_prev = 0.0, P_prev = 0.0;
-    size_t j = 0, i = 0;
-    ptrdiff_t touching = 0; /* rods in contact: the curve starts at the first release */
-    while (i < m) {
-        const double x = ev[i].x;
-        if (j > 0) {
-            const double dx = x - out->x[j - 1];
-            add_comp(&Ps, &Pc, k_prev * dx);
-            const double P = Ps + Pc;
-            add_comp(&Ws, &Wc, 0.5 * (P_prev + P) * dx);
-            P_prev = P;
-        }
-        for (; i < m && ev[i].x == x; i++) {
-            add_comp(&ks, &kc, ev[i].dk);
-            touching += signbit(ev[i].dk) ? -1 : 1;
-        }
-        if (touching == 0) /* no rod touches: slope 0, not a rounding residue */
-            ks = kc = 0.0;
-        k_prev = ks + kc > 0.0 ? ks + kc : 0.0;
-        if (j == 0 && touching == 0)
-            continue; /* before the first release: no contact, no point */
-        out->x[j] = x;
-        out->P[j] = P_prev;
-        out->W[j] = Ws + Wc;
-        out->slope[j] = k_prev;
-        j++;
-    }
-    if (out->x[j - 1] < u_max) { /* the top of the unloading branch */
-        const double dx = u_max - out->x[j - 1];
-        add_comp(&Ps, &Pc, k_prev * dx);
-        add_comp(&Ws, &Wc, 0.5 * (P_prev + Ps + Pc) * dx);
-        out->x[j] = u_max;
-        out->P[j] = Ps + Pc;
-        out->W[j] = Ws + Wc;
-        out->slope[j] = k_prev;
-        j++;
-    }
-    for (size_t k = 0; k < j; k++) {
-        out->D[k] = out->A[k] = out->Lmax[k] = 0.0;
-        out->cmin[k] = INFINITY;
-    }
-    out->n = j;
+    sort_events(out, *m, 1);
     return CT_OK;
 }
 
-size_t ct_curve_event_count(const ct_curve *c)
+int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out)
 {
-    return c->ne;
+    CT_NEED(c);
+    CT_NEED(out);
+    out->n = out->ne = 0;
+    out->first_yield = INFINITY;
+    out->eps_y = c->eps_y;
+    size_t m;
+    int st = unload_events(c, u_max, out, &m);
+    if (st || m == 0)
+        return st;
+    size_t nx = 2;
+    for (size_t i = 1; i < m; i++)
+        nx += out->ev[i].x != out->ev[i - 1].x;
+    if (reserve_points(out, nx) || grow((void **)&out->ux, &out->ucap, 2 * m, sizeof(double)))
+        return ct_error_set(CT_ENOMEM, "unloading curve: out of memory");
+    for (size_t i = 0; i < m; i++) {
+        out->ux[i] = out->ev[i].x;
+        out->ux[m + i] = out->ev[i].dk;
+    }
+    const run sorted[3] = {{.x = out->ux, .k = out->ux + m, .sign = 1.0, .n = m}};
+    const size_t n = unload_sweep(sorted, u_max, 0, out->x, out->P, out->W, out->slope);
+    for (size_t k = 0; k < n; k++) {
+        out->D[k] = out->A[k] = out->Lmax[k] = 0.0;
+        out->cmin[k] = INFINITY;
+    }
+    out->n = n;
+    return CT_OK;
 }
 
-void ct_curve_split_events(const ct_curve *c, double *cx, double *ck, size_t *nc, double *yy,
-                           double *yc, double *yL, double *yk, size_t *ny)
+void ct_unload_events_free(ct_unload_events *e)
 {
+    free(e->buf);
+    memset(e, 0, sizeof *e);
+}
+
+int ct_unload_events_of(const ct_curve *c, ct_unload_events *e)
+{
+    const size_t ne = c->ne, need = 8 * (ne ? ne : 1);
+    if (need > e->cap) {
+        double *buf = realloc(e->buf, need * sizeof(double));
+        if (!buf)
+            return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
+        e->buf = buf;
+        e->cap = need;
+    }
+    double *cx = e->buf, *ck = cx + ne, *yy = ck + ne, *yc = yy + ne, *yL = yc + ne, *yk = yL + ne,
+           *eL = yk + ne;
+    e->rel = eL + ne;
     size_t a = 0, b = 0;
-    for (size_t i = 0; i < c->ne; i++) {
-        const event *e = &c->ev[i];
-        if (!signbit(e->dk)) {
-            cx[a] = e->x;
-            ck[a++] = e->dk;
+    for (size_t i = 0; i < ne; i++) {
+        const event *v = &c->ev[i];
+        if (!signbit(v->dk)) {
+            cx[a] = v->x;
+            ck[a++] = v->dk;
         } else {
-            yy[b] = e->x;
-            yc[b] = e->c;
-            yL[b] = e->L;
-            yk[b++] = -e->dk;
+            yy[b] = v->x;
+            yc[b] = v->c;
+            yL[b] = v->L;
+            eL[b] = c->eps_y * v->L;
+            yk[b++] = -v->dk;
         }
     }
-    *nc = a;
-    *ny = b;
+    e->cx = cx, e->ck = ck, e->yy = yy, e->yc = yc, e->eL = eL, e->yk = yk;
+    e->nc = a;
+    e->ny = b;
+    e->monotone = 1;
+    for (size_t i = 1; i < b && e->monotone; i++)
+        e->monotone = yc[i] >= yc[i - 1] && yL[i] <= yL[i - 1];
+    /* nested: the rods yield in the order they touch (every virgin layer: yield = top (1 -
+     * eps_y) + eps_y H* rises with the top), each contact paired with its own yield */
+    e->nested = e->monotone && a == b;
+    for (size_t i = 0; i < b && e->nested; i++)
+        e->nested = cx[i] == yc[i] && ck[i] == yk[i];
+    return CT_OK;
+}
+
+/* Count of sorted values <= u. */
+static size_t count_upto(const double *v, size_t n, double u)
+{
+    size_t lo = 0, hi = n;
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v[mid] <= u)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+size_t ct_unload_split_room(const ct_unload_events *e, double u_max)
+{
+    return count_upto(e->cx, e->nc, u_max) + 2 * count_upto(e->yy, e->ny, u_max) + 2;
+}
+
+size_t ct_unload_split(const ct_unload_events *e, double u_max, double *x, double *P, double *W,
+                       double *slope)
+{
+    const size_t nc = count_upto(e->cx, e->nc, u_max), ny = count_upto(e->yy, e->ny, u_max);
+    double *rel = e->rel; /* the yielded rods' releases: in order, e being monotone */
+    for (size_t i = 0; i < ny; i++)
+        rel[i] = release_point(u_max, e->eL[i], e->yc[i]);
+    run r[3] = {{.n = 0}};
+    if (e->nested) {
+        /* the yielded rods are the first ny to touch, so their contacts and the contacts taken
+         * back cancel exactly (the same x, the same slope) and only two runs are left, of
+         * slopes that only add: the contacts of the rods still elastic (ny .. nc) and the
+         * yielded rods' releases. All increments are positive: plain sums. */
+        r[0] = (run){.x = e->cx + ny, .k = e->ck + ny, .sign = 1.0, .n = nc - ny};
+        r[1] = (run){.x = rel, .k = e->yk, .sign = 1.0, .n = ny};
+        return unload_sweep(r, u_max, 1, x, P, W, slope);
+    }
+    r[0] = (run){.x = e->cx, .k = e->ck, .sign = 1.0, .n = nc};
+    r[1] = (run){.x = e->yc, .k = e->yk, .sign = -1.0, .n = ny};
+    r[2] = (run){.x = rel, .k = e->yk, .sign = 1.0, .n = ny};
+    return unload_sweep(r, u_max, 0, x, P, W, slope);
 }

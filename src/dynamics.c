@@ -46,18 +46,12 @@ struct ct_dyn_work {
     size_t tcap;
     /* the sweep's fast path (ct_dyn_prepare, ct_dyn_impact_fast) */
     const ct_curve *first;
-    double eps_y;
     pcurve first_pc, pprev, pcur;
-    double *ev; /* the first curve's events, split: cx ck (nc), yy yc yL yk eps_y yL (ny) */
-    size_t evcap, nc, ny;
-    int monotone; /* the yielded rods' contacts rise and their lengths fall in yield order */
-    int nested;   /* and the yields come in the contacts' order (see ct_dyn_prepare) */
-    int one_shot; /* ct_impact_history: one impact, prepared (no state to carry) */
+    ct_unload_events ue; /* the first curve's events, for its unloading curves */
+    int one_shot;        /* ct_impact_history: one impact, prepared (no state to carry) */
 };
 
-static size_t count_upto(const double *v, size_t n, double u);
-static int unload_nested(ct_dyn_work *w, double u_max, size_t nc, size_t ny, pcurve *out);
-static int pcurve_reserve(pcurve *c, size_t n);
+static int unload_split(ct_dyn_work *w, double u_max, pcurve *out);
 
 static void path_free(path *p)
 {
@@ -275,7 +269,7 @@ void ct_dyn_work_free(ct_dyn_work *w)
     pcurve_free(&w->first_pc);
     pcurve_free(&w->pprev);
     pcurve_free(&w->pcur);
-    free(w->ev);
+    ct_unload_events_free(&w->ue);
     path_free(&w->load);
     path_free(&w->unload);
     ct_curve_free(w->prev);
@@ -392,14 +386,13 @@ static int branch_history(ct_history *h, size_t *cap, const path *p, const doubl
     return CT_OK;
 }
 
-int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res, double m,
-                  ct_dynamics *dyn, size_t grid, ct_history *hist)
+/* The loading branch into w->load: the state's curve from the contact to u_max. After an
+ * earlier maximum U (repeated impacts on the first curve) that is the unloading curve of U up
+ * to U, then the first curve beyond it. */
+static int load_path(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res)
 {
     int st;
-    const double W_kin = res->kinetic_energy, u_max = res->u_max;
-    w->load.n = w->unload.n = 0;
-    /* loading: the state's curve. After an earlier maximum U (repeated impacts on the first
-     * curve) that is the unloading curve of U up to U, then the first curve beyond it. */
+    const double u_max = res->u_max;
     if (!w->have_prev) {
         st = path_append(&w->load, c, res->u_contact, u_max, 0.0);
     } else if (u_max <= w->U) {
@@ -414,6 +407,90 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
         return st;
     if (!w->load.n)
         return ct_error_set(CT_EINVAL, "impact in time: no rod in contact");
+    return CT_OK;
+}
+
+/* The unloading branch of a plastic impact into w->unload (as a loading from the release
+ * point): the unloading curve of the state after u_max, c's state loaded to u_max (beyond an
+ * earlier maximum that is the first state loaded to u_max as well). */
+static int unload_path(ct_dyn_work *w, const ct_curve *c, double u_max)
+{
+    int st;
+    if (w->one_shot && w->first == c && w->ue.nested) {
+        /* one impact from a virgin layer (ct_impact_history): the two-run unloading */
+        if ((st = unload_split(w, u_max, &w->pcur)))
+            return st;
+        for (size_t i = 0; i < w->pcur.n; i++)
+            if ((st =
+                     path_push(&w->unload, w->pcur.x[i], w->pcur.P[i], w->pcur.k[i], w->pcur.W[i])))
+                return st;
+    } else if ((st = ct_curve_unload(c, u_max, w->cur)) ||
+               (st = path_append(&w->unload, w->cur, ct_curve_first_contact(w->cur), u_max, 0.0))) {
+        return st;
+    }
+    if (!w->unload.n)
+        return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
+    return CT_OK;
+}
+
+/* dyn's times, speeds and stiffness (all but P_peak) from the branches' times, the kinetic
+ * energies in (W_kin) and out (W_back) and the stiffest unloading piece kmax. */
+static void dyn_results(ct_dynamics *dyn, double t_load, double t_unload, double W_kin,
+                        double W_back, double m, double kmax)
+{
+    dyn->t_load = t_load;
+    dyn->t_unload = t_unload;
+    dyn->t_contact = t_load + t_unload;
+    dyn->v1 = sqrt(2.0 * W_kin / m);
+    dyn->v2 = sqrt(2.0 * W_back / m);
+    dyn->e_kinematic = dyn->v2 / dyn->v1;
+    dyn->dissipated = W_kin - W_back;
+    dyn->k_unload_max = kmax;
+    dyn->period_min = kmax > 0.0 ? 6.283185307179586 * sqrt(m / kmax) : INFINITY;
+}
+
+/* The history of an impact whose branches are w->load (turning point J_load) and up
+ * (J_unload): their breakpoints and `grid` uniform times over the contact. */
+static int impact_history(ct_dyn_work *w, const path *up, size_t J_load, size_t J_unload,
+                          const ct_dynamics *dyn, double W_kin, double W_back, double m,
+                          size_t grid, ct_history *hist)
+{
+    const double t_load = dyn->t_load;
+    size_t cap = 0;
+    double *times = NULL;
+    int st;
+    hist->n = 0;
+    hist->points = NULL;
+    if (grid) {
+        if (!(times = malloc(grid * sizeof(double))))
+            return ct_error_set(CT_ENOMEM, "impact history: out of memory");
+        for (size_t g = 0; g < grid; g++)
+            times[g] = dyn->t_contact * (double)g / (double)(grid > 1 ? grid - 1 : 1);
+    }
+    size_t split = 0; /* grid points on loading: t < t_load */
+    while (split < grid && times[split] < t_load)
+        split++;
+    st = branch_history(hist, &cap, &w->load, w->t_load, J_load, t_load, W_kin, m, 0.0, 0, times,
+                        split);
+    if (!st) {
+        /* the turning point closes the loading branch; unloading starts there */
+        st = branch_history(hist, &cap, up, w->t_unload, J_unload, dyn->t_unload, W_back, m, t_load,
+                            1, times + split, grid - split);
+    }
+    free(times);
+    if (st)
+        ct_history_free(hist);
+    return st;
+}
+
+int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res, double m,
+                  ct_dynamics *dyn, size_t grid, ct_history *hist)
+{
+    int st;
+    const double W_kin = res->kinetic_energy, u_max = res->u_max;
+    w->load.n = w->unload.n = 0;
+    if ((st = load_path(w, c, res)))
+        return st;
     size_t J_load, J_unload;
     if (hist && (st = grow_times(w, w->load.n + 1)))
         return st;
@@ -424,27 +501,8 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
         up = &w->load; /* nothing yielded: the body comes back along the same curve */
         W_back = W_kin;
     } else {
-        /* the state after u_max: c's state loaded to u_max (beyond an earlier maximum that is
-         * the first state loaded to u_max as well) */
-        if (w->one_shot && w->first == c && w->nested) {
-            /* one impact from a virgin layer (ct_impact_history): the two-run unloading */
-            const size_t ne = ct_curve_event_count(c);
-            const size_t nc = count_upto(w->ev, w->nc, u_max),
-                         ny = count_upto(w->ev + 2 * ne, w->ny, u_max);
-            if ((st = pcurve_reserve(&w->pcur, nc + 2 * ny + 2)) ||
-                (st = unload_nested(w, u_max, nc, ny, &w->pcur)))
-                return st;
-            for (size_t i = 0; i < w->pcur.n; i++)
-                if ((st = path_push(&w->unload, w->pcur.x[i], w->pcur.P[i], w->pcur.k[i],
-                                    w->pcur.W[i])))
-                    return st;
-        } else if ((st = ct_curve_unload(c, u_max, w->cur)) ||
-                   (st = path_append(&w->unload, w->cur, ct_curve_first_contact(w->cur), u_max,
-                                     0.0))) {
+        if ((st = unload_path(w, c, u_max)))
             return st;
-        }
-        if (!w->unload.n)
-            return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
         up = &w->unload;
         W_back = up->W[up->n - 1];
     }
@@ -460,43 +518,10 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
     double kmax = 0.0;
     for (size_t i = 0; i + 1 < up->n; i++)
         kmax = up->k[i] > kmax ? up->k[i] : kmax;
-    dyn->t_load = t_load;
-    dyn->t_unload = t_unload;
-    dyn->t_contact = t_load + t_unload;
+    dyn_results(dyn, t_load, t_unload, W_kin, W_back, m, kmax);
     dyn->P_peak = w->load.P[w->load.n - 1];
-    dyn->v1 = sqrt(2.0 * W_kin / m);
-    dyn->v2 = sqrt(2.0 * W_back / m);
-    dyn->e_kinematic = dyn->v2 / dyn->v1;
-    dyn->dissipated = W_kin - W_back;
-    dyn->k_unload_max = kmax;
-    dyn->period_min = kmax > 0.0 ? 6.283185307179586 * sqrt(m / kmax) : INFINITY;
-    if (hist) {
-        size_t cap = 0;
-        double *times = NULL;
-        hist->n = 0;
-        hist->points = NULL;
-        if (grid) {
-            if (!(times = malloc(grid * sizeof(double))))
-                return ct_error_set(CT_ENOMEM, "impact history: out of memory");
-            for (size_t g = 0; g < grid; g++)
-                times[g] = dyn->t_contact * (double)g / (double)(grid > 1 ? grid - 1 : 1);
-        }
-        size_t split = 0; /* grid points on loading: t < t_load */
-        while (split < grid && times[split] < t_load)
-            split++;
-        st = branch_history(hist, &cap, &w->load, w->t_load, J_load, t_load, W_kin, m, 0.0, 0,
-                            times, split);
-        if (!st) {
-            /* the turning point closes the loading branch; unloading starts there */
-            st = branch_history(hist, &cap, up, w->t_unload, J_unload, t_unload, W_back, m, t_load,
-                                1, times + split, grid - split);
-        }
-        free(times);
-        if (st) {
-            ct_history_free(hist);
-            return st;
-        }
-    }
+    if (hist && (st = impact_history(w, up, J_load, J_unload, dyn, W_kin, W_back, m, grid, hist)))
+        return st;
     if (!res->elastic &&
         !w->one_shot) { /* the new maximum: its unloading curve serves the next impact */
         ct_curve *t = w->prev;
@@ -541,8 +566,7 @@ int ct_impact_history(const ct_bundle *b, double m, double v1, size_t grid, ct_i
     }
     ct_dyn_reset(w);
     w->one_shot = 1;
-    const ct_layer *L = ct_bundle_layer(b);
-    if (!(st = ct_curve_build(c, b)) && !(st = ct_dyn_prepare(w, c, L->sigma_y / L->E)) &&
+    if (!(st = ct_curve_build(c, b)) && !(st = ct_dyn_prepare(w, c)) &&
         !(st = ct_impact_eval(b, c, 0.5 * m * v1 * v1, NULL, res)))
         st = ct_dyn_impact(w, c, res, m, dyn, grid, hist);
     ct_dyn_work_free(w);
@@ -581,179 +605,45 @@ int ct_bounce(const ct_bundle *b, double m, double v1, size_t nmax, double v_sto
 
 /* ---- the sweep's fast path: no history, the first pieces of a branch by their moments ---- */
 
-int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, double eps_y)
+int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c)
 {
     int st;
     w->first = c;
-    w->eps_y = eps_y;
     if (!w->one_shot && (st = pcurve_from_curve(&w->first_pc, c))) /* for the sweep's walks */
         return st;
-    size_t ne = ct_curve_event_count(c);
-    if (7 * ne > w->evcap) {
-        double *e = realloc(w->ev, 7 * (ne ? ne : 1) * sizeof(double));
-        if (!e)
-            return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
-        w->ev = e;
-        w->evcap = 7 * (ne ? ne : 1);
-    }
-    double *cx = w->ev, *ck = cx + ne, *yy = ck + ne, *yc = yy + ne, *yL = yc + ne, *yk = yL + ne;
-    ct_curve_split_events(c, cx, ck, &w->nc, yy, yc, yL, yk, &w->ny);
-    for (size_t i = 0; i < w->ny; i++)
-        w->ev[6 * ne + i] = eps_y * yL[i];
-    w->monotone = 1;
-    for (size_t i = 1; i < w->ny && w->monotone; i++)
-        w->monotone = yc[i] >= yc[i - 1] && yL[i] <= yL[i - 1];
-    /* nested: the rods yield in the order they touch (every virgin layer: yield = top (1 -
-     * eps_y) + eps_y H* rises with the top), each contact paired with its own yield */
-    w->nested = w->monotone && w->nc == w->ny;
-    for (size_t i = 0; i < w->ny && w->nested; i++)
-        w->nested = cx[i] == yc[i] && ck[i] == yk[i];
-    return CT_OK;
+    return ct_unload_events_of(c, &w->ue);
 }
 
-/* Count of sorted values <= u. */
-static size_t count_upto(const double *v, size_t n, double u)
+/* The unloading curve from u_max of the first curve's state (its events monotone), by the
+ * curve's builder from the split events (ct_unload_split: no sort). */
+static int unload_split(ct_dyn_work *w, double u_max, pcurve *out)
 {
-    size_t lo = 0, hi = n;
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (v[mid] <= u)
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
-static void add_comp(double *s, double *c, double x)
-{
-    double t = *s + x;
-    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
-    *s = t;
-}
-
-/* The nested case: the yielded rods are the first ny to touch, so their contacts and the
- * contacts taken back cancel exactly (the same x, the same slope) and only two runs are
- * left, of slopes that only add: the yielded rods' releases and the contacts of the rods
- * still elastic (ny .. nc). All increments are positive: plain sums. */
-static int unload_nested(ct_dyn_work *w, double u_max, size_t nc, size_t ny, pcurve *out)
-{
-    const size_t ne = ct_curve_event_count(w->first);
-    const double *cx = w->ev, *ck = cx + ne, *yc = ck + 2 * ne, *yk = yc + 2 * ne, *eL = yk + ne;
-    size_t a = ny, r = 0, j = 0;
-    double k = 0.0, P = 0.0, W = 0.0, x_prev = 0.0;
-#define RELEASE(i) (u_max - eL[i] < yc[i] ? yc[i] : u_max - eL[i])
-    double xr = ny ? RELEASE(0) : INFINITY;
-    for (;;) {
-        double xa = a < nc ? cx[a] : INFINITY, x = xa < xr ? xa : xr;
-        if (x == INFINITY)
-            break;
-        if (j > 0) {
-            const double dx = x - x_prev, Pn = P + k * dx;
-            W += 0.5 * (P + Pn) * dx;
-            P = Pn;
-        }
-        if (j == 0 || x > x_prev) {
-            out->x[j] = x;
-            out->P[j] = P;
-            out->W[j] = W;
-            j++;
-        }
-        for (; a < nc && cx[a] == x; a++)
-            k += ck[a];
-        for (; r < ny && xr == x;) {
-            k += yk[r];
-            xr = ++r < ny ? RELEASE(r) : INFINITY;
-        }
-        out->k[j - 1] = k;
-        x_prev = x;
-    }
-#undef RELEASE
-    if (j == 0)
+    int st;
+    if ((st = pcurve_reserve(out, ct_unload_split_room(&w->ue, u_max))))
+        return st;
+    out->n = ct_unload_split(&w->ue, u_max, out->x, out->P, out->W, out->k);
+    if (out->n == 0)
         return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
-    if (x_prev < u_max) {
-        const double dx = u_max - x_prev, Pn = P + k * dx;
-        out->x[j] = u_max;
-        out->W[j] = W + 0.5 * (P + Pn) * dx;
-        out->P[j] = Pn;
-        out->k[j] = k;
-        j++;
-    }
-    out->n = j;
-    out->M1[0] = -1.0; /* moments: computed by walk where it needs them */
     return CT_OK;
 }
 
-/* The unloading curve from u_max of the first curve's state (ct_curve_unload), merged from
- * its three sorted runs without a sort when they are monotone. */
+/* The unloading curve from u_max of the first curve's state (ct_curve_unload) with its
+ * moments: from the split events without a sort when they are monotone, and (nested) with
+ * the moments left to walk, which computes them where it needs them. */
 static int unload_fast(ct_dyn_work *w, double u_max, pcurve *out)
 {
     int st;
-    if (!w->monotone) {
+    if (!w->ue.monotone) {
         if ((st = ct_curve_unload(w->first, u_max, w->cur)))
             return st;
         return pcurve_from_curve(out, w->cur);
     }
-    const size_t ne = ct_curve_event_count(w->first);
-    const double *cx = w->ev, *ck = cx + ne, *yy = ck + ne, *yc = yy + ne, *yL = yc + ne,
-                 *yk = yL + ne;
-    const size_t nc = count_upto(cx, w->nc, u_max), ny = count_upto(yy, w->ny, u_max);
-    if ((st = pcurve_reserve(out, nc + 2 * ny + 2)))
+    if ((st = unload_split(w, u_max, out)))
         return st;
-    if (w->nested)
-        return unload_nested(w, u_max, nc, ny, out);
-    size_t a = 0, b = 0, r = 0, j = 0;
-    double ks = 0.0, kc = 0.0, Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, k_prev = 0.0, P_prev = 0.0;
-    ptrdiff_t touching = 0;
-    const double *eL = w->ev + 6 * ne; /* eps_y L of each yield, once per sweep */
-#define RELEASE(i) (u_max - eL[i] < yc[i] ? yc[i] : u_max - eL[i])
-    double xr = ny ? RELEASE(0) : INFINITY;
-    for (;;) {
-        double xa = a < nc ? cx[a] : INFINITY, xb = b < ny ? yc[b] : INFINITY;
-        double x = xa < xb ? (xa < xr ? xa : xr) : (xb < xr ? xb : xr);
-        if (x == INFINITY)
-            break;
-        if (j > 0) {
-            const double dx = x - out->x[j - 1];
-            add_comp(&Ps, &Pc, k_prev * dx);
-            const double P = Ps + Pc;
-            add_comp(&Ws, &Wc, 0.5 * (P_prev + P) * dx);
-            P_prev = P;
-        }
-        for (; a < nc && cx[a] == x; a++, touching++)
-            add_comp(&ks, &kc, ck[a]);
-        for (; b < ny && yc[b] == x; b++, touching--)
-            add_comp(&ks, &kc, -yk[b]);
-        for (; r < ny && xr == x; touching++) {
-            add_comp(&ks, &kc, yk[r]);
-            xr = ++r < ny ? RELEASE(r) : INFINITY;
-        }
-        if (touching == 0)
-            ks = kc = 0.0;
-        k_prev = ks + kc > 0.0 ? ks + kc : 0.0;
-        if (j == 0 && touching == 0)
-            continue;
-        out->x[j] = x;
-        out->P[j] = P_prev;
-        out->W[j] = Ws + Wc;
-        out->k[j] = k_prev;
-        j++;
-    }
-#undef RELEASE
-    if (j == 0)
-        return ct_error_set(CT_EINVAL, "impact in time: no rod in contact at u_max");
-    if (out->x[j - 1] < u_max) {
-        const double dx = u_max - out->x[j - 1];
-        add_comp(&Ps, &Pc, k_prev * dx);
-        add_comp(&Ws, &Wc, 0.5 * (P_prev + Ps + Pc) * dx);
-        out->x[j] = u_max;
-        out->P[j] = Ps + Pc;
-        out->W[j] = Ws + Wc;
-        out->k[j] = k_prev;
-        j++;
-    }
-    out->n = j;
-    pcurve_moments(out);
+    if (w->ue.nested)
+        out->M1[0] = -1.0; /* moments: computed by walk where it needs them */
+    else
+        pcurve_moments(out);
     return CT_OK;
 }
 
@@ -887,14 +777,6 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
         w->U = u_max;
         w->have_prev = 1;
     }
-    dyn->t_load = t_load;
-    dyn->t_unload = t_unload;
-    dyn->t_contact = t_load + t_unload;
-    dyn->v1 = sqrt(2.0 * W_kin / m);
-    dyn->v2 = sqrt(2.0 * W_back / m);
-    dyn->e_kinematic = dyn->v2 / dyn->v1;
-    dyn->dissipated = W_kin - W_back;
-    dyn->k_unload_max = kmax;
-    dyn->period_min = kmax > 0.0 ? 6.283185307179586 * sqrt(m / kmax) : INFINITY;
+    dyn_results(dyn, t_load, t_unload, W_kin, W_back, m, kmax);
     return CT_OK;
 }

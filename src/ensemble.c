@@ -83,8 +83,6 @@ typedef struct {
     char message[240];
 } failure;
 
-/* Builds realisation first + slot with `threads` threads, sweeps it and stores its samples.
- * Returns a status only for what ends the ensemble (memory); failed impacts are samples. */
 /* What a worker keeps from one realisation to the next: its bundle (refilled in place) and
  * its curve (rebuilt in place), so that a realisation allocates nothing: on a VM, fresh pages
  * for each realisation's ~340 bytes per rod cost twice the computation. */
@@ -93,6 +91,8 @@ typedef struct {
     ct_curve *curve;
 } workspace;
 
+/* Builds realisation first + slot with `threads` threads, sweeps it and stores its samples.
+ * Returns a status only for what ends the ensemble (memory); failed impacts are samples. */
 static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_t slot, int threads,
                    ct_sweep_row *rows, failure *fail, double *quad_error, workspace *ws)
 {
@@ -166,42 +166,29 @@ static int check_spec(const ct_ensemble_spec *sp, const ct_ensemble_samples *out
     return CT_OK;
 }
 
-int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
-{
-    int st;
-    if ((st = check_spec(sp, out)))
-        return st;
-    const size_t nrows = out->nrows;
-    const size_t rods = ((size_t)2 << sp->surface.depth) - 1;
-    const int team = sp->threads > 0 ? sp->threads : ct_default_threads();
-    const int by_realisation =
-        sp->split == CT_SPLIT_REALISATIONS || (sp->split == CT_SPLIT_AUTO && team > 1 &&
-                                               sp->count >= 2 && rods <= CT_ENSEMBLE_SPLIT_RODS);
-    const int workers = by_realisation ? team : 1;
-    out->draws = rods - 1;
-    out->message[0] = '\0';
-    out->failed_realisation = UINT64_MAX;
-    out->failed_row = 0;
-    out->quad_error_max = NAN;
-
-    failure *fails = malloc((size_t)workers * sizeof *fails);
-    ct_sweep_row *rows = malloc((size_t)workers * nrows * sizeof *rows);
-    workspace *ws = calloc((size_t)workers, sizeof *ws);
-    if (!fails || !rows || !ws) {
-        free(fails);
-        free(rows);
-        free(ws);
-        return ct_error_set(CT_ENOMEM, "ensemble: out of memory");
-    }
-    for (int w = 0; w < workers; w++)
-        fails[w].realisation = UINT64_MAX;
+/* One ensemble while it runs: what its workers share. */
+typedef struct {
+    const ct_ensemble_spec *sp;
+    ct_ensemble_samples *out;
+    int workers, by_realisation;
+    failure *fails;     /* per worker */
+    ct_sweep_row *rows; /* nrows per worker */
+    workspace *ws;      /* per worker */
     /* under stop_on_error, realisations above the lowest failure seen are not started: every
      * realisation below it still is, so the failure reported is the lowest of all */
-    uint64_t stop_at = UINT64_MAX, done = 0;
-    int fatal = CT_OK;
-    char fatal_msg[256] = "";
+    uint64_t stop_at, done;
+    int fatal;
+    char fatal_msg[256];
+} ensemble_run;
+
+/* Every realisation of the ensemble, by the workers (each at its own slots). */
+static void run_all(ensemble_run *e)
+{
+    const ct_ensemble_spec *sp = e->sp;
+    ct_ensemble_samples *out = e->out;
+    const size_t nrows = out->nrows;
     const ptrdiff_t count = (ptrdiff_t)sp->count;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(workers) if (workers > 1)
+#pragma omp parallel for schedule(dynamic, 1) num_threads(e->workers) if (e->workers > 1)
     for (ptrdiff_t slot = 0; slot < count; slot++) {
         int w = 0;
 #ifdef _OPENMP
@@ -210,55 +197,91 @@ int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
         uint64_t limit, r = out->first + (uint64_t)slot;
         int stop;
 #pragma omp atomic read
-        limit = stop_at;
+        limit = e->stop_at;
 #pragma omp atomic read
-        stop = fatal;
+        stop = e->fatal;
         if (stop || r > limit)
             continue;
         double qe = NAN;
-        int s = run_one(sp, out, (uint64_t)slot, by_realisation ? 1 : sp->threads,
-                        rows + (size_t)w * nrows, &fails[w], &qe, &ws[w]);
+        int s = run_one(sp, out, (uint64_t)slot, e->by_realisation ? 1 : sp->threads,
+                        e->rows + (size_t)w * nrows, &e->fails[w], &qe, &e->ws[w]);
 #pragma omp critical(ct_ensemble_state)
         {
-            if (s && !fatal) {
+            if (s && !e->fatal) {
 #pragma omp atomic write
-                fatal = s;
-                snprintf(fatal_msg, sizeof fatal_msg, "realisation %llu: %s", (unsigned long long)r,
-                         ct_error_message());
+                e->fatal = s;
+                snprintf(e->fatal_msg, sizeof e->fatal_msg, "realisation %llu: %s",
+                         (unsigned long long)r, ct_error_message());
             }
-            if (sp->stop_on_error && fails[w].realisation < stop_at) {
+            if (sp->stop_on_error && e->fails[w].realisation < e->stop_at) {
 #pragma omp atomic write
-                stop_at = fails[w].realisation;
+                e->stop_at = e->fails[w].realisation;
             }
             if (qe > out->quad_error_max || (isnan(out->quad_error_max) && !isnan(qe)))
                 out->quad_error_max = qe; /* a maximum: exact in any order */
-            done++;
+            e->done++;
             if (sp->progress)
-                sp->progress((size_t)done, (size_t)sp->count, sp->progress_ctx);
+                sp->progress((size_t)e->done, (size_t)sp->count, sp->progress_ctx);
         }
     }
-    free(rows);
-    for (int k = 0; k < workers; k++) {
-        ct_bundle_free(ws[k].b);
-        ct_curve_free(ws[k].curve);
-    }
-    free(ws);
-    if (fatal) {
-        free(fails);
-        return ct_error_set(fatal, "%s", fatal_msg);
-    }
+}
+
+/* The lowest failing realisation of all workers into out (and, under stop_on_error, its
+ * status). */
+static int lowest_failure(const ensemble_run *e)
+{
     const failure *lowest = NULL;
-    for (int w = 0; w < workers; w++)
-        if (fails[w].realisation != UINT64_MAX &&
-            (!lowest || fails[w].realisation < lowest->realisation))
-            lowest = &fails[w];
-    if (lowest) {
-        out->failed_realisation = lowest->realisation;
-        out->failed_row = lowest->row;
-        snprintf(out->message, sizeof out->message, "%s", lowest->message);
-        st = sp->stop_on_error ? ct_error_set(lowest->status, "%s", lowest->message) : CT_OK;
+    for (int w = 0; w < e->workers; w++)
+        if (e->fails[w].realisation != UINT64_MAX &&
+            (!lowest || e->fails[w].realisation < lowest->realisation))
+            lowest = &e->fails[w];
+    if (!lowest)
+        return CT_OK;
+    e->out->failed_realisation = lowest->realisation;
+    e->out->failed_row = lowest->row;
+    snprintf(e->out->message, sizeof e->out->message, "%s", lowest->message);
+    return e->sp->stop_on_error ? ct_error_set(lowest->status, "%s", lowest->message) : CT_OK;
+}
+
+int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
+{
+    int st;
+    if ((st = check_spec(sp, out)))
+        return st;
+    const size_t nrows = out->nrows;
+    const size_t rods = ((size_t)2 << sp->surface.depth) - 1;
+    const int team = sp->threads > 0 ? sp->threads : ct_default_threads();
+    ensemble_run e = {.sp = sp, .out = out, .stop_at = UINT64_MAX};
+    e.by_realisation =
+        sp->split == CT_SPLIT_REALISATIONS || (sp->split == CT_SPLIT_AUTO && team > 1 &&
+                                               sp->count >= 2 && rods <= CT_ENSEMBLE_SPLIT_RODS);
+    e.workers = e.by_realisation ? team : 1;
+    out->draws = rods - 1;
+    out->message[0] = '\0';
+    out->failed_realisation = UINT64_MAX;
+    out->failed_row = 0;
+    out->quad_error_max = NAN;
+
+    e.fails = malloc((size_t)e.workers * sizeof *e.fails);
+    e.rows = malloc((size_t)e.workers * nrows * sizeof *e.rows);
+    e.ws = calloc((size_t)e.workers, sizeof *e.ws);
+    if (!e.fails || !e.rows || !e.ws) {
+        free(e.fails);
+        free(e.rows);
+        free(e.ws);
+        return ct_error_set(CT_ENOMEM, "ensemble: out of memory");
     }
-    free(fails);
+    for (int w = 0; w < e.workers; w++)
+        e.fails[w].realisation = UINT64_MAX;
+    run_all(&e);
+    free(e.rows);
+    for (int k = 0; k < e.workers; k++) {
+        ct_bundle_free(e.ws[k].b);
+        ct_curve_free(e.ws[k].curve);
+    }
+    free(e.ws);
+    st = e.fatal ? ct_error_set(e.fatal, "%s", e.fatal_msg) : lowest_failure(&e);
+    free(e.fails);
     return st;
 }
 
@@ -280,14 +303,6 @@ double ct_quantile_sorted(const double *sorted, size_t n, double p)
     return sorted[i] + (h - fl) * (sorted[i + 1] - sorted[i]);
 }
 
-/* Neumaier: the compensated sum in the order given. */
-static void add_comp(double *s, double *c, double x)
-{
-    double t = *s + x;
-    *c += fabs(*s) >= fabs(x) ? (*s - t) + x : (x - t) + *s;
-    *s = t;
-}
-
 int ct_sample_stats(const double *x, size_t n, size_t stride, double *work, ct_stats *out)
 {
     size_t m = 0;
@@ -298,11 +313,11 @@ int ct_sample_stats(const double *x, size_t n, size_t stride, double *work, ct_s
         return ct_error_set(CT_EINVAL, "statistics: none of %zu samples is a number", n);
     double s = 0.0, c = 0.0;
     for (size_t k = 0; k < m; k++)
-        add_comp(&s, &c, work[k]);
+        ct_add_comp(&s, &c, work[k]); /* compensated, in the order given */
     const double mean = (s + c) / (double)m;
     s = c = 0.0;
     for (size_t k = 0; k < m; k++) /* two passes: no cancellation of sum x^2 - n mean^2 */
-        add_comp(&s, &c, (work[k] - mean) * (work[k] - mean));
+        ct_add_comp(&s, &c, (work[k] - mean) * (work[k] - mean));
     out->n = m;
     out->mean = mean;
     out->sd = m > 1 ? sqrt((s + c) / (double)(m - 1)) : NAN;

@@ -4,6 +4,8 @@
 
 #include "cantact.h"
 
+#include <math.h>
+
 #if defined(__GNUC__)
 #define CT_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
@@ -25,6 +27,23 @@ int ct_error_set(int status, const char *fmt, ...) CT_PRINTF(2, 3);
 
 /* Sorts v ascending and drops repeated values; returns the new count. */
 size_t ct_sort_unique(double *v, size_t n);
+
+/* The library's compensated sum (Neumaier's variant of Kahan's): s + c carries a sum whose
+ * terms may cancel or differ widely in size. Both candidates for the rounding error are
+ * computed and one is selected: branch-free, so a loop over independent sums vectorises, and
+ * bitwise the same as choosing first. */
+static inline void ct_add_comp(double *s, double *c, double x)
+{
+    const double t = *s + x;
+    const double err_x = (*s - t) + x, err_s = (x - t) + *s;
+    *c += fabs(*s) >= fabs(x) ? err_x : err_s;
+    *s = t;
+}
+
+/* Rods per block of every sum over rods (bundle.c) and of the load curve's event passes
+ * (curve.c): results are computed block by block in a fixed order and tree, so they do not
+ * depend on the thread count, which only decides who computes which block. */
+#define CT_BLOCK 2048
 
 /* ---- for surface builders (src/surface/) ---- */
 
@@ -82,11 +101,30 @@ void ct_curve_view_of(const ct_curve *c, ct_curve_view *v);
  * for u <= u_max: every rod in contact unloads along its elastic line from its release
  * point); its last breakpoint is u_max. */
 int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out);
-/* The events of the last build (ct_curve_event_count of them), split in order: contacts at
- * cx with slope ck; yields at yy of rods with contact yc, length yL and slope yk. */
-size_t ct_curve_event_count(const ct_curve *c);
-void ct_curve_split_events(const ct_curve *c, double *cx, double *ck, size_t *nc, double *yy,
-                           double *yc, double *yL, double *yk, size_t *ny);
+/* A curve's events split for the sweep's unloading curves, once per curve: contacts at cx of
+ * slope ck (nc); yields at yy of rods with contact yc, eps_y L eL and slope yk (ny), each in
+ * the curve's order. monotone: the yielded rods' contacts rise and their lengths fall in
+ * yield order (so do their release points); nested: monotone, and every contact is paired
+ * with its own yield in the same order (every virgin layer). buf and cap: the storage. */
+typedef struct {
+    double *buf;
+    size_t cap;
+    const double *cx, *ck, *yy, *yc, *eL, *yk;
+    double *rel; /* room for ny release points, the builder's */
+    size_t nc, ny;
+    int monotone, nested;
+} ct_unload_events;
+int ct_unload_events_of(const ct_curve *c, ct_unload_events *e);
+void ct_unload_events_free(ct_unload_events *e);
+/* The unloading curve from u_max of the curve's state (e monotone), by the builder of
+ * ct_curve_unload without its sort, into x, P, W and slope (room for ct_unload_split_room
+ * points); returns the count of points (0: no rod in contact at u_max). Not bitwise
+ * ct_curve_unload's: the events at one x are added sequence by sequence (there: in the
+ * order of their slope changes); nested, the yielded rods' contacts and their taking back
+ * are left out (they cancel) and the sums are plain (all terms >= 0). */
+size_t ct_unload_split_room(const ct_unload_events *e, double u_max);
+size_t ct_unload_split(const ct_unload_events *e, double u_max, double *x, double *P, double *W,
+                       double *slope);
 
 /* ---- the impact in time (src/dynamics.c), for the sweep ---- */
 
@@ -104,7 +142,7 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
 /* The sweep's fast path, on the first curve c (prepared once: its moments, its events): the
  * same impacts as ct_dyn_impact on c, without histories, the first pieces of each branch by
  * their moments. ct_dyn_reset starts a speed. */
-int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, double eps_y);
+int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c);
 int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn);
 
 /* ---- measured surfaces (src/surface/profile.c), for the fit ---- */

@@ -179,6 +179,107 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
 #define GRID 24        /* shared starting points of the Newton iterations (virgin state) */
 #define MAX_NEWTON 400 /* iterations; each is one pass over the rods for all open speeds */
 
+/* The rod path's workspace for m impacts (and the GRID starting points). */
+typedef struct {
+    double *u0, *u, *Wc;                 /* per impact: its contact, u_max iterate, V*_c energy */
+    double *adv, *a0, *a1, *Wl, *Wu, *P; /* the batched closed forms' nodes and results */
+    size_t *open_;
+} rods_ws;
+
+/* Where each state starts, and the energy that makes its first rod yield: W_crit0 on the
+ * virgin state; else (the state's first yield is U) its energy to get back there. */
+static int rods_start(const ct_bundle *b, size_t m, const double *U, double W_crit0, double x0,
+                      const rods_ws *ws)
+{
+    double *u0 = ws->u0, *Wc = ws->Wc, *Wl = ws->Wl;
+    size_t *open_ = ws->open_, q = 0;
+    int st;
+    for (size_t j = 0; j < m; j++) {
+        u0[j] = U[j] > -INFINITY ? ct_bundle_release(b, U[j]) : x0;
+        ws->u[j] = ct_bundle_layer(b)->Hstar;
+        if (U[j] > -INFINITY) {
+            ws->adv[q] = U[j];
+            ws->a0[q] = u0[j];
+            ws->a1[q] = U[j];
+            open_[q++] = j;
+        } else {
+            Wc[j] = W_crit0;
+        }
+    }
+    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, q, Wl, ws->Wu, NULL)))
+        return st;
+    for (size_t k = 0; k < q; k++)
+        Wc[open_[k]] = Wl[k];
+    return CT_OK;
+}
+
+/* A shared geometric grid on the virgin state brackets every virgin speed from the right:
+ * its iterate starts at the first grid point whose work exceeds its energy. */
+static int rods_bracket(const ct_bundle *b, size_t m, const double *U, const double *W, double x0,
+                        const rods_ws *ws)
+{
+    const double Hstar = ct_bundle_layer(b)->Hstar;
+    double g[GRID], gW[GRID], gWu[GRID], gP[GRID], lo = x0 > 0.0 ? x0 : 0.0;
+    double first = fmax(lo, 1e-9 * Hstar);
+    int st;
+    for (int k = 0; k < GRID; k++) {
+        g[k] = first * pow(Hstar / first, (double)(k + 1) / GRID);
+        ws->adv[k] = -INFINITY;
+        ws->a0[k] = x0;
+    }
+    g[GRID - 1] = Hstar;
+    if ((st = ct_bundle_closed_many(b, ws->adv, ws->a0, g, GRID, gW, gWu, gP)))
+        return st;
+    for (size_t j = 0; j < m; j++)
+        if (U[j] == -INFINITY)
+            for (int k = 0; k < GRID; k++)
+                if (gW[k] > W[j]) {
+                    ws->u[j] = g[k];
+                    break;
+                }
+    return CT_OK;
+}
+
+/* The row of an impact of energy W (V*_c's energy Wc) whose Newton iteration stopped at u,
+ * from its contact u0, with the closed forms Wl, Wu and the force P there. */
+static void rods_row(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *r, double W,
+                     double Wc, double u0, double u, double Wl, double Wu, double P)
+{
+    const ct_layer *L = ct_bundle_layer(b);
+    const double scale = L->l0 * L->E * L->h0, Hstar = L->Hstar;
+    ct_impact_result *res = &r->r;
+    res->kinetic_energy = W;
+    res->V_star = sqrt(W / scale);
+    res->V_star_crit = sqrt(Wc / scale);
+    res->u_contact = u0;
+    res->u_max = u;
+    res->elastic = W <= Wc;
+    res->W_load = res->W_load_closed = Wl;
+    res->W_unload = res->W_unload_closed = res->elastic ? Wl : Wu;
+    res->e_closed = res->quad_error = NAN;
+    r->status = CT_OK;
+    if (!(u < Hstar)) /* W(H*) <= W (Newton stays at H*), or the root rounds
+                       * onto H*: strains of 1, a crushed layer */
+        r->status = ct_error_set(CT_ERANGE,
+                                 "impact energy %.6g reaches u_max >= H* = %g (the "
+                                 "layer would be crushed, strains >= 1): outside "
+                                 "the model; lower V* or raise H",
+                                 W, Hstar);
+    else if (!res->elastic && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
+        r->status =
+            ct_error_set(CT_ENOCONV,
+                         "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
+                         "resolution of u near %.17g: this impact is too weak to resolve on rods "
+                         "this stiff (raise V*)",
+                         u - u0, u0);
+    else if ((r->status = ct_impact_finish(P, &s->opts, res)) == CT_OK)
+        res->u_release = res->elastic ? u0 : ct_bundle_release(b, u);
+    if (r->status == CT_OK)
+        r->message[0] = '\0';
+    else
+        fail_row(r, r->status, ct_error_message());
+}
+
 /* One impact round on the rod path: row r[j] (j < m) has the state b advanced to U[j] and
  * kinetic energy W[j]. u_max by Newton's method on the closed-form work summed rod by rod:
  * W(u) is convex, so from any point right of the root the iterates fall monotonically onto
@@ -186,8 +287,6 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
 static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_sweep_row **r,
                       const double *U, const double *W, double W_crit0, double x0)
 {
-    const ct_layer *L = ct_bundle_layer(b);
-    const double scale = L->l0 * L->E * L->h0, Hstar = L->Hstar;
     const double tol = s->opts.tolerance;
     int st = CT_OK;
     double *buf = malloc(9 * (m + GRID) * sizeof(double));
@@ -199,42 +298,9 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
     }
     double *u0 = buf, *u = u0 + m, *Wc = u + m, *adv = Wc + m, *a0 = adv + m + GRID,
            *a1 = a0 + m + GRID, *Wl = a1 + m + GRID, *Wu = Wl + m + GRID, *P = Wu + m + GRID;
-    /* where each state starts, and the energy that makes its first rod yield */
-    size_t q = 0;
-    for (size_t j = 0; j < m; j++) {
-        u0[j] = U[j] > -INFINITY ? ct_bundle_release(b, U[j]) : x0;
-        u[j] = Hstar;
-        if (U[j] > -INFINITY) { /* the state's first yield is U: its energy to get back there */
-            adv[q] = a0[q] = U[j];
-            a0[q] = u0[j];
-            a1[q] = U[j];
-            open_[q++] = j;
-        } else {
-            Wc[j] = W_crit0;
-        }
-    }
-    if (q && (st = ct_bundle_closed_many(b, adv, a0, a1, q, Wl, Wu, NULL)))
+    const rods_ws ws = {u0, u, Wc, adv, a0, a1, Wl, Wu, P, open_};
+    if ((st = rods_start(b, m, U, W_crit0, x0, &ws)) || (st = rods_bracket(b, m, U, W, x0, &ws)))
         goto done;
-    for (size_t k = 0; k < q; k++)
-        Wc[open_[k]] = Wl[k];
-    /* a shared geometric grid on the virgin state brackets every virgin speed from the right */
-    double g[GRID], gW[GRID], gWu[GRID], gP[GRID], lo = x0 > 0.0 ? x0 : 0.0;
-    double first = fmax(lo, 1e-9 * Hstar);
-    for (int k = 0; k < GRID; k++) {
-        g[k] = first * pow(Hstar / first, (double)(k + 1) / GRID);
-        adv[k] = -INFINITY;
-        a0[k] = x0;
-    }
-    g[GRID - 1] = Hstar;
-    if ((st = ct_bundle_closed_many(b, adv, a0, g, GRID, gW, gWu, gP)))
-        goto done;
-    for (size_t j = 0; j < m; j++)
-        if (U[j] == -INFINITY)
-            for (int k = 0; k < GRID; k++)
-                if (gW[k] > W[j]) {
-                    u[j] = g[k];
-                    break;
-                }
     /* Newton from the right */
     size_t nopen = 0;
     for (size_t j = 0; j < m; j++)
@@ -251,42 +317,12 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
         size_t still = 0;
         for (size_t k = 0; k < nopen; k++) {
             size_t j = open_[k];
-            ct_impact_result *res = &r[j]->r;
             double resid = Wl[k] - W[j];
             double floor = 8.0 * DBL_EPSILON * fabs(u[j]) * P[k];
             double next = P[k] > 0.0 ? u[j] - resid / P[k] : u[j];
             next = next < u0[j] ? u0[j] : next;
             if (fabs(resid) <= tol * W[j] || fabs(resid) <= floor || !(next < u[j])) {
-                res->kinetic_energy = W[j];
-                res->V_star = sqrt(W[j] / scale);
-                res->V_star_crit = sqrt(Wc[j] / scale);
-                res->u_contact = u0[j];
-                res->u_max = u[j];
-                res->elastic = W[j] <= Wc[j];
-                res->W_load = res->W_load_closed = Wl[k];
-                res->W_unload = res->W_unload_closed = res->elastic ? Wl[k] : Wu[k];
-                res->e_closed = res->quad_error = NAN;
-                r[j]->status = CT_OK;
-                if (!(u[j] < Hstar)) /* W(H*) <= W (Newton stays at H*), or the root rounds
-                                      * onto H*: strains of 1, a crushed layer */
-                    r[j]->status = ct_error_set(CT_ERANGE,
-                                                "impact energy %.6g reaches u_max >= H* = %g (the "
-                                                "layer would be crushed, strains >= 1): outside "
-                                                "the model; lower V* or raise H",
-                                                W[j], Hstar);
-                else if (!res->elastic && !(u[j] - u0[j] > 16.0 * DBL_EPSILON * fabs(u0[j])))
-                    r[j]->status = ct_error_set(
-                        CT_ENOCONV,
-                        "u_max solve: the penetration u_max - u_contact (%.3g) is below the "
-                        "resolution of u near %.17g: this impact is too weak to resolve on rods "
-                        "this stiff (raise V*)",
-                        u[j] - u0[j], u0[j]);
-                else if ((r[j]->status = ct_impact_finish(P[k], &s->opts, res)) == CT_OK)
-                    res->u_release = res->elastic ? u0[j] : ct_bundle_release(b, u[j]);
-                if (r[j]->status == CT_OK)
-                    r[j]->message[0] = '\0';
-                else
-                    fail_row(r[j], r[j]->status, ct_error_message());
+                rods_row(b, s, r[j], W[j], Wc[j], u0[j], u[j], Wl[k], Wu[k], P[k]);
                 continue;
             }
             u[j] = next;
@@ -377,6 +413,179 @@ static int first_failure(const ct_sweep_row *rows, size_t n)
     return CT_OK;
 }
 
+/* Every row "not run" until it is. */
+static void rows_not_run(const ct_sweep_spec *s, ct_sweep_row *rows)
+{
+    const size_t impacts = (size_t)s->impacts;
+    for (size_t v = 0; v < s->nvel; v++)
+        for (size_t i = 0; i < impacts; i++) {
+            ct_sweep_row *row = &rows[v * impacts + i];
+            memset(row, 0, sizeof *row);
+            row->speed = v;
+            row->impact = (long)i + 1;
+            row->V_star = s->V_star[v];
+            fail_row(row, CT_ESKIPPED, "not run");
+        }
+}
+
+/* A curve sweep's workspace. */
+typedef struct {
+    ct_curve *first, *later;         /* the bundle's curve; a state's (general path) */
+    ct_bundle *work;                 /* the state (general path) */
+    double *adv, *u0, *u1, *Wl, *Wu; /* the batched closed forms' nodes and results */
+    size_t *slot;                    /* row -> its place in the batched closed forms */
+    unsigned char *by_state;         /* per speed: left to the general path */
+    ct_dyn_work *dw;                 /* the impacts in time */
+} sweep_ws;
+
+static void sweep_ws_free(sweep_ws *w, const ct_sweep_spec *s)
+{
+    ct_dyn_work_free(w->dw);
+    if (w->first != s->curve)
+        ct_curve_free(w->first);
+    ct_curve_free(w->later);
+    ct_bundle_free(w->work);
+    free(w->adv);
+    free(w->u0);
+    free(w->u1);
+    free(w->Wl);
+    free(w->Wu);
+    free(w->slot);
+    free(w->by_state);
+}
+
+/* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
+ * maximum U sees the first curve shifted (ct_impact_on_curve), and impacts of equal energy
+ * always do, so every impact costs O(log n). A speed with an impact that stays below U is
+ * left to the general path (by_state). When closed, each row's closed-form nodes are
+ * collected (*m of them) for one batch. */
+static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
+                         sweep_ws *w, int closed, size_t *m)
+{
+    const ct_layer *L = ct_bundle_layer(b);
+    const double scale = L->l0 * L->E * L->h0;
+    const size_t impacts = (size_t)s->impacts;
+    *m = 0;
+    for (size_t v = 0; v < s->nvel; v++) {
+        const double W = s->V_star[v] * s->V_star[v] * scale;
+        double U = -INFINITY;
+        for (size_t i = 0; i < impacts; i++) {
+            ct_sweep_row *row = &rows[v * impacts + i];
+            int rs = ct_impact_on_curve(w->first, L, U, W, &s->opts, &row->r);
+            if (rs == CT_ESKIPPED) {
+                w->by_state[v] = 1;
+                break;
+            }
+            if (rs) {
+                fail_from(rows, impacts, v, i, rs, ct_error_message());
+                break;
+            }
+            row->status = CT_OK;
+            row->message[0] = '\0';
+            if (closed) {
+                w->slot[v * impacts + i] = *m;
+                w->adv[*m] = U;
+                w->u0[*m] = row->r.u_contact;
+                w->u1[*m] = row->r.u_max;
+                (*m)++;
+            }
+            if (!row->r.elastic)
+                U = row->r.u_max;
+        }
+        if (s->progress && !w->by_state[v])
+            s->progress(v + 1, s->nvel, s->progress_ctx);
+    }
+}
+
+/* The fast path's speed v after the batched closed forms: its rows finished (e, the check)
+ * and, with dynamics, its impacts in time on the first curve and the unloading curve of each
+ * maximum. */
+static void fast_finish(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
+                        const sweep_ws *w, int closed, size_t v)
+{
+    const size_t impacts = (size_t)s->impacts;
+    for (size_t i = 0; i < impacts; i++) {
+        ct_sweep_row *row = &rows[v * impacts + i];
+        if (row->status)
+            break;
+        if (closed) {
+            const size_t q = w->slot[v * impacts + i];
+            row->r.W_load_closed = w->Wl[q];
+            row->r.W_unload_closed = row->r.elastic ? w->Wl[q] : w->Wu[q];
+            if (s->opts.rule == CT_QUAD_CLOSED) {
+                row->r.W_load = row->r.W_load_closed;
+                row->r.W_unload = row->r.W_unload_closed;
+            }
+        }
+        int rs = ct_impact_finish(ct_curve_force(w->first, row->r.u_max), &s->opts, &row->r);
+        if (rs) {
+            fail_from(rows, impacts, v, i, rs, ct_error_message());
+            break;
+        }
+    }
+    if (!w->dw)
+        return;
+    ct_dyn_reset(w->dw);
+    for (size_t i = 0; i < impacts; i++) {
+        ct_sweep_row *row = &rows[v * impacts + i];
+        if (row->status)
+            break;
+        int rs = ct_dyn_impact_fast(w->dw, &row->r, unit_mass(ct_bundle_layer(b)), &row->dyn);
+        if (rs) {
+            fail_from(rows, impacts, v, i, rs, ct_error_message());
+            break;
+        }
+    }
+}
+
+/* The fast path (every impact on the first curve, the closed-form check of all rows in
+ * shared passes over the rods). */
+static int sweep_fast(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows, sweep_ws *w)
+{
+    const size_t nrows = s->nvel * (size_t)s->impacts;
+    const int closed = s->opts.check || s->opts.rule == CT_QUAD_CLOSED;
+    int st;
+    if (closed && (!(w->adv = malloc((nrows + 1) * sizeof(double))) ||
+                   !(w->u0 = malloc((nrows + 1) * sizeof(double))) ||
+                   !(w->u1 = malloc((nrows + 1) * sizeof(double))) ||
+                   !(w->Wl = malloc((nrows + 1) * sizeof(double))) ||
+                   !(w->Wu = malloc((nrows + 1) * sizeof(double))) ||
+                   !(w->slot = malloc((nrows + 1) * sizeof(size_t)))))
+        return ct_error_set(CT_ENOMEM, "sweep of %zu impacts: out of memory", nrows);
+    size_t m;
+    fast_impacts(b, s, rows, w, closed, &m);
+    if (closed && (st = ct_bundle_closed_many(b, w->adv, w->u0, w->u1, m, w->Wl, w->Wu, NULL)))
+        return st;
+    for (size_t v = 0; v < s->nvel; v++)
+        if (!w->by_state[v])
+            fast_finish(b, s, rows, w, closed, v);
+    return CT_OK;
+}
+
+/* The general path for the speeds that need it (all of them when not fast): one state
+ * carried per speed, its curve rebuilt after every plastic impact. */
+static int sweep_by_state(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
+                          sweep_ws *w, int fast)
+{
+    const size_t impacts = (size_t)s->impacts, nrows = s->nvel * impacts;
+    int st;
+    if ((st = ct_curve_alloc(&w->later)) || (st = ct_bundle_clone(&w->work, b)))
+        return st;
+    for (size_t v = 0; v < s->nvel; v++) {
+        if (fast && !w->by_state[v])
+            continue;
+        for (size_t i = 0; i < impacts; i++)
+            fail_row(&rows[v * impacts + i], CT_ESKIPPED, "not run");
+        if ((st = speed_by_state(b, w->first, w->later, w->work, s, v, rows, w->dw)))
+            return st;
+        if (s->stop_on_error && (st = first_failure(rows, nrows)))
+            return st;
+        if (s->progress)
+            s->progress(v + 1, s->nvel, s->progress_ctx);
+    }
+    return CT_OK;
+}
+
 int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
 {
     CT_NEED(b);
@@ -387,164 +596,41 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
         return st;
     if (s->impacts < 1)
         return ct_error_set(CT_EINVAL, "impacts = %ld: must be >= 1", s->impacts);
-    const ct_layer *L = ct_bundle_layer(b);
-    const double scale = L->l0 * L->E * L->h0;
-    const size_t impacts = (size_t)s->impacts, nrows = s->nvel * impacts;
-    for (size_t v = 0; v < s->nvel; v++)
-        for (size_t i = 0; i < impacts; i++) {
-            ct_sweep_row *row = &rows[v * impacts + i];
-            memset(row, 0, sizeof *row);
-            row->speed = v;
-            row->impact = (long)i + 1;
-            row->V_star = s->V_star[v];
-            fail_row(row, CT_ESKIPPED, "not run");
-        }
-
+    const size_t nrows = s->nvel * (size_t)s->impacts;
+    rows_not_run(s, rows);
     if (use_rods(b, s)) {
         if ((st = sweep_by_rods(b, s, rows)))
             return st;
         return s->stop_on_error ? first_failure(rows, nrows) : CT_OK;
     }
 
-    ct_curve *first = NULL, *later = NULL;
-    ct_bundle *work = NULL;
-    double *adv = NULL, *u0 = NULL, *u1 = NULL, *Wl = NULL, *Wu = NULL;
-    size_t *slot = NULL; /* row -> its place in the batched closed forms */
-    unsigned char *by_state = NULL;
-    ct_dyn_work *dw = NULL;
-    if (s->dynamics && (st = ct_dyn_work_alloc(&dw)))
+    sweep_ws w = {0};
+    if (s->dynamics && (st = ct_dyn_work_alloc(&w.dw)))
         return st;
     if (s->curve) /* the caller's workspace: its arrays are reused */
-        first = s->curve;
-    else if ((st = ct_curve_alloc(&first)))
+        w.first = s->curve;
+    else if ((st = ct_curve_alloc(&w.first)))
         goto done;
-    if ((st = ct_curve_build(first, b)))
+    if ((st = ct_curve_build(w.first, b)))
         goto done;
-    if (dw && (st = ct_dyn_prepare(dw, first, L->sigma_y / L->E)))
+    if (w.dw && (st = ct_dyn_prepare(w.dw, w.first)))
         goto done;
-    by_state = calloc(s->nvel ? s->nvel : 1, 1);
-    if (!by_state) {
+    if (!(w.by_state = calloc(s->nvel ? s->nvel : 1, 1))) {
         st = ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
         goto done;
     }
-    /* Fast path: an impact that reaches past the state's earlier maximum U sees the first
-     * curve shifted (ct_impact_on_curve), and impacts of equal energy always do, so every
-     * impact costs O(log n); the closed-form check of all rows shares passes over the rods. */
     const int fast =
         !s->observe && (s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED);
-    const int closed = s->opts.check || s->opts.rule == CT_QUAD_CLOSED;
-    if (fast) {
-        if (closed && (!(adv = malloc((nrows + 1) * sizeof(double))) ||
-                       !(u0 = malloc((nrows + 1) * sizeof(double))) ||
-                       !(u1 = malloc((nrows + 1) * sizeof(double))) ||
-                       !(Wl = malloc((nrows + 1) * sizeof(double))) ||
-                       !(Wu = malloc((nrows + 1) * sizeof(double))) ||
-                       !(slot = malloc((nrows + 1) * sizeof(size_t))))) {
-            st = ct_error_set(CT_ENOMEM, "sweep of %zu impacts: out of memory", nrows);
-            goto done;
-        }
-        size_t m = 0;
-        for (size_t v = 0; v < s->nvel; v++) {
-            const double W = s->V_star[v] * s->V_star[v] * scale;
-            double U = -INFINITY;
-            for (size_t i = 0; i < impacts; i++) {
-                ct_sweep_row *row = &rows[v * impacts + i];
-                int rs = ct_impact_on_curve(first, L, U, W, &s->opts, &row->r);
-                if (rs == CT_ESKIPPED) {
-                    by_state[v] = 1;
-                    break;
-                }
-                if (rs) {
-                    fail_from(rows, impacts, v, i, rs, ct_error_message());
-                    break;
-                }
-                row->status = CT_OK;
-                row->message[0] = '\0';
-                if (closed) {
-                    slot[v * impacts + i] = m;
-                    adv[m] = U;
-                    u0[m] = row->r.u_contact;
-                    u1[m] = row->r.u_max;
-                    m++;
-                }
-                if (!row->r.elastic)
-                    U = row->r.u_max;
-            }
-            if (s->progress && !by_state[v])
-                s->progress(v + 1, s->nvel, s->progress_ctx);
-        }
-        if (closed && (st = ct_bundle_closed_many(b, adv, u0, u1, m, Wl, Wu, NULL)))
-            goto done;
-        for (size_t v = 0; v < s->nvel; v++) {
-            if (by_state[v])
-                continue;
-            for (size_t i = 0; i < impacts; i++) {
-                ct_sweep_row *row = &rows[v * impacts + i];
-                if (row->status)
-                    break;
-                if (closed) {
-                    const size_t q = slot[v * impacts + i];
-                    row->r.W_load_closed = Wl[q];
-                    row->r.W_unload_closed = row->r.elastic ? Wl[q] : Wu[q];
-                    if (s->opts.rule == CT_QUAD_CLOSED) {
-                        row->r.W_load = row->r.W_load_closed;
-                        row->r.W_unload = row->r.W_unload_closed;
-                    }
-                }
-                int rs = ct_impact_finish(ct_curve_force(first, row->r.u_max), &s->opts, &row->r);
-                if (rs) {
-                    fail_from(rows, impacts, v, i, rs, ct_error_message());
-                    break;
-                }
-            }
-            if (dw) { /* in time: the first curve, and the unloading curve of each maximum */
-                ct_dyn_reset(dw);
-                for (size_t i = 0; i < impacts; i++) {
-                    ct_sweep_row *row = &rows[v * impacts + i];
-                    if (row->status)
-                        break;
-                    int rs = ct_dyn_impact_fast(dw, &row->r, unit_mass(L), &row->dyn);
-                    if (rs) {
-                        fail_from(rows, impacts, v, i, rs, ct_error_message());
-                        break;
-                    }
-                }
-            }
-        }
-    }
+    if (fast && (st = sweep_fast(b, s, rows, &w)))
+        goto done;
     int need_state = !fast;
     for (size_t v = 0; v < s->nvel && !need_state; v++)
-        need_state = by_state[v];
-    if (need_state) {
-        if ((st = ct_curve_alloc(&later)) || (st = ct_bundle_clone(&work, b)))
-            goto done;
-        for (size_t v = 0; v < s->nvel; v++) {
-            if (fast && !by_state[v])
-                continue;
-            for (size_t i = 0; i < impacts; i++)
-                fail_row(&rows[v * impacts + i], CT_ESKIPPED, "not run");
-            if ((st = speed_by_state(b, first, later, work, s, v, rows, dw)))
-                goto done;
-            if (s->stop_on_error && (st = first_failure(rows, nrows)))
-                goto done;
-            if (s->progress)
-                s->progress(v + 1, s->nvel, s->progress_ctx);
-        }
-    }
+        need_state = w.by_state[v];
+    if (need_state && (st = sweep_by_state(b, s, rows, &w, fast)))
+        goto done;
     if (s->stop_on_error)
         st = first_failure(rows, nrows);
 done:
-    ct_dyn_work_free(dw);
-    if (first != s->curve)
-        ct_curve_free(first);
-    ct_curve_free(later);
-    ct_bundle_free(work);
-    free(adv);
-    free(u0);
-    free(u1);
-    free(Wl);
-    free(Wu);
-    free(slot);
-    free(by_state);
+    sweep_ws_free(&w, s);
     return st;
 }

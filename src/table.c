@@ -347,6 +347,276 @@ static int check_spec(const ct_table_spec *s)
  * is then what fails the check, and no node can help. */
 #define CT_TABLE_MIN_WIDTH 1e-9
 
+/* A table while it is built: nodes and their e, K cached exact values per interval (chk;
+ * nchk: the next round's), the kinks of e, this round's interpolant and its check. */
+typedef struct {
+    const ct_table_spec *spec;
+    size_t K;
+    double tol, Vc;
+    exact_ctx ex;
+    dlist kinks, nodes, ne, newV;
+    double *chk, *nchk, *vals, *errs;
+    ct_table *t;
+    unsigned char *split;
+} table_build;
+
+static void table_build_free(table_build *B)
+{
+    ct_table_free(B->t);
+    ct_curve_free(B->ex.curve);
+    free(B->ex.rows);
+    free(B->kinks.v);
+    free(B->nodes.v);
+    free(B->ne.v);
+    free(B->newV.v);
+    free(B->chk);
+    free(B->nchk);
+    free(B->vals);
+    free(B->errs);
+    free(B->split);
+}
+
+/* The first nodes: the ends, V*_c, two per decade above V*_c. */
+static int first_nodes(const ct_table_spec *spec, double Vc, dlist *nodes)
+{
+    int st;
+    const double lo = fmax(spec->V_min, Vc);
+    if ((st = dl_push(nodes, spec->V_min)))
+        return st;
+    if (Vc > spec->V_min && Vc < spec->V_max && log(Vc) > log(spec->V_min) &&
+        (st = dl_push(nodes, Vc)))
+        return st;
+    if (lo < spec->V_max) {
+        const double x0 = log(lo), x1 = log(spec->V_max);
+        const size_t m = (size_t)ceil(2.0 * (x1 - x0) / log(10.0));
+        for (size_t k = 1; k < m; k++) {
+            const double V = exp(x0 + (x1 - x0) * (double)k / (double)m);
+            if (log(V) > log(nodes->v[nodes->n - 1]) && log(V) < x1 && (st = dl_push(nodes, V)))
+                return st;
+        }
+    }
+    if ((st = dl_push(nodes, spec->V_max)))
+        return st;
+    if (nodes->n > spec->max_nodes)
+        return ct_error_set(CT_ENOCONV,
+                            "table: max_nodes = %zu is below the %zu first nodes (the ends, V*_c "
+                            "and two per decade)",
+                            spec->max_nodes, nodes->n);
+    return CT_OK;
+}
+
+/* e at the first nodes (e = 1 at and below V*_c: not computed) and at their checks. */
+static int first_values(table_build *B)
+{
+    const size_t n = B->nodes.n, K = B->K;
+    const double Vc = B->Vc, *nodes = B->nodes.v;
+    if (!(B->vals = malloc((n + (n - 1) * K) * sizeof(double))) ||
+        !(B->chk = malloc((n - 1) * K * sizeof(double))))
+        return ct_error_set(CT_ENOMEM, "table: out of memory");
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (nodes[i] > Vc)
+            B->vals[m++] = nodes[i];
+    for (size_t i = 0; i + 1 < n; i++)
+        if (nodes[i] >= Vc) {
+            check_speeds(nodes[i], nodes[i + 1], K, B->vals + m);
+            m += K;
+        }
+    double *ev = malloc((m ? m : 1) * sizeof(double));
+    if (!ev)
+        return ct_error_set(CT_ENOMEM, "table: out of memory");
+    int st;
+    if ((st = exact_e(&B->ex, B->vals, m, ev))) {
+        free(ev);
+        return st;
+    }
+    size_t q = 0;
+    for (size_t i = 0; i < n; i++) {
+        if ((st = dl_push(&B->ne, nodes[i] > Vc ? ev[q++] : 1.0)))
+            break;
+    }
+    for (size_t i = 0; i + 1 < n && !st; i++)
+        for (size_t k = 0; k < K; k++)
+            B->chk[i * K + k] = nodes[i] >= Vc ? ev[q++] : 1.0;
+    free(ev);
+    return st;
+}
+
+/* The interpolant of this round's nodes, into B->t. */
+static int round_table(table_build *B)
+{
+    const size_t n = B->nodes.n;
+    int st;
+    ct_table_free(B->t);
+    B->t = NULL;
+    if ((st = table_alloc(&B->t, n)))
+        return st;
+    ct_table *t = B->t;
+    t->rule = B->spec->interpolation;
+    t->info.V_star_crit = B->Vc;
+    for (size_t i = 0; i < n; i++) {
+        t->V[i] = B->nodes.v[i];
+        t->x[i] = log(B->nodes.v[i]);
+        t->e[i] = B->ne.v[i];
+    }
+    table_slopes(t);
+    return CT_OK;
+}
+
+/* Every interval above V*_c checked against its cached exact values: its error into
+ * B->errs, whether it fails into B->split (*nsplit of them), the worst into the table's
+ * info. */
+static int check_round(table_build *B, size_t round, size_t *nsplit)
+{
+    const size_t n = B->nodes.n, K = B->K;
+    const double tol = B->tol, *nodes = B->nodes.v;
+    ct_table *t = B->t;
+    free(B->split);
+    free(B->errs);
+    B->split = calloc(n, 1);
+    B->errs = malloc(n * sizeof(double));
+    if (!B->split || !B->errs)
+        return ct_error_set(CT_ENOMEM, "table: out of memory");
+    double *errs = B->errs, worst = 0.0, worst_V = NAN;
+    size_t checked = 0;
+    *nsplit = 0;
+    double *pts = malloc(K * sizeof(double));
+    if (!pts)
+        return ct_error_set(CT_ENOMEM, "table: out of memory");
+    for (size_t i = 0; i + 1 < n; i++) {
+        errs[i] = 0.0;
+        if (nodes[i] < B->Vc)
+            continue; /* e = 1 exactly there: the rule, not an interpolation */
+        check_speeds(nodes[i], nodes[i + 1], K, pts);
+        for (size_t k = 0; k < K; k++) {
+            const double err = fabs(ct_table_eval(t, pts[k]) - B->chk[i * K + k]);
+            checked++;
+            if (!(err <= errs[i]))
+                errs[i] = err; /* NaN is an error too */
+            if (!(err <= worst)) {
+                worst = err;
+                worst_V = pts[k];
+            }
+        }
+        if (!(errs[i] <= tol)) {
+            B->split[i] = 1;
+            (*nsplit)++;
+        }
+    }
+    free(pts);
+    t->info.worst_error = worst;
+    t->info.worst_V_star = worst_V;
+    t->info.checked = checked;
+    t->info.rounds = round;
+    t->info.evaluations = B->ex.evaluations;
+    return CT_OK;
+}
+
+/* The old nodes with the split points after their interval, and the checks of the new
+ * intervals (ev: per split point its e, then the checks of its two halves) beside the
+ * cached ones; then the next round's checks become this round's. */
+static int merge_nodes(table_build *B, const double *ev)
+{
+    const size_t n = B->nodes.n, K = B->K;
+    dlist V2 = {0}, e2 = {0};
+    size_t q = 0, j = 0;
+    int st = CT_OK;
+    for (size_t i = 0; i < n && !st; i++) {
+        st = dl_push(&V2, B->nodes.v[i]);
+        if (!st)
+            st = dl_push(&e2, B->ne.v[i]);
+        if (st || i + 1 == n)
+            break;
+        const size_t iv = V2.n - 1; /* the interval that starts at this node */
+        if (!B->split[i]) {
+            memcpy(B->nchk + iv * K, B->chk + i * K, K * sizeof(double));
+            continue;
+        }
+        if ((st = dl_push(&V2, B->newV.v[j])) || (st = dl_push(&e2, ev[q])))
+            break;
+        memcpy(B->nchk + iv * K, ev + q + 1, K * sizeof(double));
+        memcpy(B->nchk + (iv + 1) * K, ev + q + 1 + K, K * sizeof(double));
+        q += 1 + 2 * K;
+        j++;
+    }
+    free(B->nodes.v);
+    free(B->ne.v);
+    B->nodes = V2;
+    B->ne = e2;
+    if (st)
+        return st;
+    double *tmp = B->chk;
+    B->chk = B->nchk;
+    B->nchk = tmp;
+    return CT_OK;
+}
+
+/* The failing intervals split (at a kink of e when one lies inside, else in the middle), the
+ * split points' e and the new intervals' checks in one batch, merged into the nodes. */
+static int split_round(table_build *B, size_t nsplit)
+{
+    const size_t n = B->nodes.n, K = B->K;
+    const double *nodes = B->nodes.v;
+    int st;
+    B->newV.n = 0;
+    for (size_t i = 0; i + 1 < n; i++) {
+        if (!B->split[i])
+            continue;
+        double s = log(nodes[i + 1]) - log(nodes[i]) > CT_TABLE_MIN_WIDTH
+                       ? split_point(nodes[i], nodes[i + 1], &B->kinks)
+                       : 0.0;
+        if (!(s > 0.0))
+            return ct_error_set(CT_ENOCONV,
+                                "table: tolerance %.3g not met on [%.17g, %.17g], too short to "
+                                "split (|e_table - e| = %.3g): below what e's rounding allows",
+                                B->tol, nodes[i], nodes[i + 1], B->errs[i]);
+        if ((st = dl_push(&B->newV, s)))
+            return st;
+    }
+    const size_t n2 = n + nsplit, m = nsplit * (1 + 2 * K);
+    free(B->vals);
+    free(B->nchk);
+    B->vals = malloc(m * sizeof(double));
+    B->nchk = malloc((n2 - 1) * K * sizeof(double));
+    double *ev = malloc(m * sizeof(double));
+    if (!B->vals || !B->nchk || !ev) {
+        free(ev);
+        return ct_error_set(CT_ENOMEM, "table: out of memory");
+    }
+    for (size_t j = 0, q = 0, i = 0; i + 1 < n; i++) {
+        if (!B->split[i])
+            continue;
+        B->vals[q++] = B->newV.v[j];
+        check_speeds(nodes[i], B->newV.v[j], K, B->vals + q);
+        q += K;
+        check_speeds(B->newV.v[j], nodes[i + 1], K, B->vals + q);
+        q += K;
+        j++;
+    }
+    if (!(st = exact_e(&B->ex, B->vals, m, ev)))
+        st = merge_nodes(B, ev);
+    free(ev);
+    return st;
+}
+
+/* How many of the table's nodes are kinks of e (kinks sorted). */
+static size_t kinks_at_nodes(const ct_table *t, const dlist *kinks)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < t->n; i++) {
+        size_t lo_k = 0, hi_k = kinks->n;
+        while (lo_k < hi_k) {
+            size_t mk = lo_k + (hi_k - lo_k) / 2;
+            if (kinks->v[mk] < t->V[i])
+                lo_k = mk + 1;
+            else
+                hi_k = mk;
+        }
+        count += lo_k < kinks->n && kinks->v[lo_k] == t->V[i];
+    }
+    return count;
+}
+
 int ct_table_build(ct_table **out, const ct_bundle *b, const ct_table_spec *spec)
 {
     CT_NEED(out);
@@ -356,258 +626,45 @@ int ct_table_build(ct_table **out, const ct_bundle *b, const ct_table_spec *spec
     int st;
     if ((st = check_spec(spec)))
         return st;
-    const size_t K = spec->check_points;
-    const double tol = spec->tolerance;
-    exact_ctx ex = {.b = b, .spec = spec};
-    dlist kinks = {0}, nodes = {0}, ne = {0}, newV = {0};
-    double *chk = NULL, *nchk = NULL, *vals = NULL, *errs = NULL;
-    ct_table *t = NULL;
-    unsigned char *split = NULL;
-    if (!(ex.rows = malloc(CHUNK * sizeof *ex.rows))) {
+    table_build B = {.spec = spec,
+                     .K = spec->check_points,
+                     .tol = spec->tolerance,
+                     .ex = {.b = b, .spec = spec}};
+    if (!(B.ex.rows = malloc(CHUNK * sizeof *B.ex.rows))) {
         st = ct_error_set(CT_ENOMEM, "table: out of memory");
         goto done;
     }
     /* V*_c as every sweep reports it (and V_max's impact must be computable at all) */
     double e_top;
-    if ((st = ct_curve_alloc(&ex.curve)) || (st = exact_e(&ex, &spec->V_max, 1, &e_top)))
+    if ((st = ct_curve_alloc(&B.ex.curve)) || (st = exact_e(&B.ex, &spec->V_max, 1, &e_top)))
         goto done;
-    const double Vc = ex.rows[0].r.V_star_crit;
-    if ((st = kink_speeds(b, ex.curve, fmax(spec->V_min, Vc), spec->V_max, &kinks)))
+    B.Vc = B.ex.rows[0].r.V_star_crit;
+    if ((st = kink_speeds(b, B.ex.curve, fmax(spec->V_min, B.Vc), spec->V_max, &B.kinks)) ||
+        (st = first_nodes(spec, B.Vc, &B.nodes)) || (st = first_values(&B)))
         goto done;
-
-    /* first nodes: the ends, V*_c, two per decade above V*_c */
-    const double lo = fmax(spec->V_min, Vc);
-    if ((st = dl_push(&nodes, spec->V_min)))
-        goto done;
-    if (Vc > spec->V_min && Vc < spec->V_max && log(Vc) > log(spec->V_min) &&
-        (st = dl_push(&nodes, Vc)))
-        goto done;
-    if (lo < spec->V_max) {
-        const double x0 = log(lo), x1 = log(spec->V_max);
-        const size_t m = (size_t)ceil(2.0 * (x1 - x0) / log(10.0));
-        for (size_t k = 1; k < m; k++) {
-            const double V = exp(x0 + (x1 - x0) * (double)k / (double)m);
-            if (log(V) > log(nodes.v[nodes.n - 1]) && log(V) < x1 && (st = dl_push(&nodes, V)))
-                goto done;
-        }
-    }
-    if ((st = dl_push(&nodes, spec->V_max)))
-        goto done;
-    if (nodes.n > spec->max_nodes) {
-        st = ct_error_set(CT_ENOCONV,
-                          "table: max_nodes = %zu is below the %zu first nodes (the ends, V*_c "
-                          "and two per decade)",
-                          spec->max_nodes, nodes.n);
-        goto done;
-    }
-    /* e at the first nodes (e = 1 at and below V*_c: not computed) and at their checks */
-    {
-        const size_t n = nodes.n;
-        if (!(vals = malloc((n + (n - 1) * K) * sizeof(double))) ||
-            !(chk = malloc((n - 1) * K * sizeof(double)))) {
-            st = ct_error_set(CT_ENOMEM, "table: out of memory");
-            goto done;
-        }
-        size_t m = 0;
-        for (size_t i = 0; i < n; i++)
-            if (nodes.v[i] > Vc)
-                vals[m++] = nodes.v[i];
-        for (size_t i = 0; i + 1 < n; i++)
-            if (nodes.v[i] >= Vc) {
-                check_speeds(nodes.v[i], nodes.v[i + 1], K, vals + m);
-                m += K;
-            }
-        double *ev = malloc((m ? m : 1) * sizeof(double));
-        if (!ev) {
-            st = ct_error_set(CT_ENOMEM, "table: out of memory");
-            goto done;
-        }
-        if ((st = exact_e(&ex, vals, m, ev))) {
-            free(ev);
-            goto done;
-        }
-        size_t q = 0;
-        for (size_t i = 0; i < n; i++) {
-            if ((st = dl_push(&ne, nodes.v[i] > Vc ? ev[q++] : 1.0)))
-                break;
-        }
-        for (size_t i = 0; i + 1 < n && !st; i++)
-            for (size_t k = 0; k < K; k++)
-                chk[i * K + k] = nodes.v[i] >= Vc ? ev[q++] : 1.0;
-        free(ev);
-        if (st)
-            goto done;
-    }
-
     for (size_t round = 1;; round++) {
-        const size_t n = nodes.n;
-        /* the interpolant of this round's nodes */
-        ct_table_free(t);
-        t = NULL;
-        if ((st = table_alloc(&t, n)))
+        size_t nsplit = 0;
+        if ((st = round_table(&B)) || (st = check_round(&B, round, &nsplit)))
             goto done;
-        t->rule = spec->interpolation;
-        t->info.V_star_crit = Vc;
-        for (size_t i = 0; i < n; i++) {
-            t->V[i] = nodes.v[i];
-            t->x[i] = log(nodes.v[i]);
-            t->e[i] = ne.v[i];
-        }
-        table_slopes(t);
-        /* every interval above V*_c checked against its cached exact values */
-        free(split);
-        free(errs);
-        split = calloc(n, 1);
-        errs = malloc(n * sizeof(double));
-        if (!split || !errs) {
-            st = ct_error_set(CT_ENOMEM, "table: out of memory");
-            goto done;
-        }
-        double worst = 0.0, worst_V = NAN;
-        size_t nsplit = 0, checked = 0;
-        double *pts = malloc(K * sizeof(double));
-        if (!pts) {
-            st = ct_error_set(CT_ENOMEM, "table: out of memory");
-            goto done;
-        }
-        for (size_t i = 0; i + 1 < n; i++) {
-            errs[i] = 0.0;
-            if (nodes.v[i] < Vc)
-                continue; /* e = 1 exactly there: the rule, not an interpolation */
-            check_speeds(nodes.v[i], nodes.v[i + 1], K, pts);
-            for (size_t k = 0; k < K; k++) {
-                const double err = fabs(ct_table_eval(t, pts[k]) - chk[i * K + k]);
-                checked++;
-                if (!(err <= errs[i]))
-                    errs[i] = err; /* NaN is an error too */
-                if (!(err <= worst)) {
-                    worst = err;
-                    worst_V = pts[k];
-                }
-            }
-            if (!(errs[i] <= tol)) {
-                split[i] = 1;
-                nsplit++;
-            }
-        }
-        free(pts);
-        t->info.worst_error = worst;
-        t->info.worst_V_star = worst_V;
-        t->info.checked = checked;
-        t->info.rounds = round;
-        t->info.evaluations = ex.evaluations;
         if (!nsplit)
             break;
-        if (n + nsplit > spec->max_nodes) {
+        if (B.nodes.n + nsplit > spec->max_nodes) {
             st = ct_error_set(CT_ENOCONV,
                               "table: tolerance %.3g not met with max_nodes = %zu (%zu intervals "
                               "still fail; worst |e_table - e| = %.3g at V* = %.6g): raise "
                               "max_nodes or the tolerance",
-                              tol, spec->max_nodes, nsplit, worst, worst_V);
+                              B.tol, spec->max_nodes, nsplit, B.t->info.worst_error,
+                              B.t->info.worst_V_star);
             goto done;
         }
-        /* the split points, then their e and the new intervals' checks in one batch */
-        newV.n = 0;
-        for (size_t i = 0; i + 1 < n; i++) {
-            if (!split[i])
-                continue;
-            double s = log(nodes.v[i + 1]) - log(nodes.v[i]) > CT_TABLE_MIN_WIDTH
-                           ? split_point(nodes.v[i], nodes.v[i + 1], &kinks)
-                           : 0.0;
-            if (!(s > 0.0)) {
-                st = ct_error_set(CT_ENOCONV,
-                                  "table: tolerance %.3g not met on [%.17g, %.17g], too short to "
-                                  "split (|e_table - e| = %.3g): below what e's rounding allows",
-                                  tol, nodes.v[i], nodes.v[i + 1], errs[i]);
-                goto done;
-            }
-            if ((st = dl_push(&newV, s)))
-                goto done;
-        }
-        const size_t n2 = n + nsplit, m = nsplit * (1 + 2 * K);
-        free(vals);
-        free(nchk);
-        vals = malloc(m * sizeof(double));
-        nchk = malloc((n2 - 1) * K * sizeof(double));
-        double *ev = malloc(m * sizeof(double));
-        if (!vals || !nchk || !ev) {
-            free(ev);
-            st = ct_error_set(CT_ENOMEM, "table: out of memory");
+        if ((st = split_round(&B, nsplit)))
             goto done;
-        }
-        for (size_t j = 0, q = 0, i = 0; i + 1 < n; i++) {
-            if (!split[i])
-                continue;
-            vals[q++] = newV.v[j];
-            check_speeds(nodes.v[i], newV.v[j], K, vals + q);
-            q += K;
-            check_speeds(newV.v[j], nodes.v[i + 1], K, vals + q);
-            q += K;
-            j++;
-        }
-        if ((st = exact_e(&ex, vals, m, ev))) {
-            free(ev);
-            goto done;
-        }
-        /* merge: old nodes with the split points after their interval */
-        dlist V2 = {0}, e2 = {0};
-        size_t q = 0, j = 0;
-        for (size_t i = 0; i < n && !st; i++) {
-            st = dl_push(&V2, nodes.v[i]);
-            if (!st)
-                st = dl_push(&e2, ne.v[i]);
-            if (st || i + 1 == n)
-                break;
-            const size_t iv = V2.n - 1; /* the interval that starts at this node */
-            if (!split[i]) {
-                memcpy(nchk + iv * K, chk + i * K, K * sizeof(double));
-                continue;
-            }
-            if ((st = dl_push(&V2, newV.v[j])) || (st = dl_push(&e2, ev[q])))
-                break;
-            memcpy(nchk + iv * K, ev + q + 1, K * sizeof(double));
-            memcpy(nchk + (iv + 1) * K, ev + q + 1 + K, K * sizeof(double));
-            q += 1 + 2 * K;
-            j++;
-        }
-        free(ev);
-        free(nodes.v);
-        free(ne.v);
-        nodes = V2;
-        ne = e2;
-        if (st)
-            goto done;
-        double *tmp = chk;
-        chk = nchk;
-        nchk = tmp;
     }
-    t->info.kinks = 0;
-    for (size_t i = 0; i < t->n; i++) {
-        size_t lo_k = 0, hi_k = kinks.n;
-        while (lo_k < hi_k) {
-            size_t mk = lo_k + (hi_k - lo_k) / 2;
-            if (kinks.v[mk] < t->V[i])
-                lo_k = mk + 1;
-            else
-                hi_k = mk;
-        }
-        t->info.kinks += lo_k < kinks.n && kinks.v[lo_k] == t->V[i];
-    }
-    *out = t;
-    t = NULL;
+    B.t->info.kinks = kinks_at_nodes(B.t, &B.kinks);
+    *out = B.t;
+    B.t = NULL;
 done:
-    ct_table_free(t);
-    ct_curve_free(ex.curve);
-    free(ex.rows);
-    free(kinks.v);
-    free(nodes.v);
-    free(ne.v);
-    free(newV.v);
-    free(chk);
-    free(nchk);
-    free(vals);
-    free(errs);
-    free(split);
+    table_build_free(&B);
     return st;
 }
 

@@ -86,5 +86,55 @@ sed 's/$/\r/' "$tmp/p0.csv" >"$tmp/crlf.csv"
 refused "merge of 4e7 realisations" "the parts hold 4 rows, 2 realisations of 2 rows; the scene has ensemble.realisations = 40000000" -- \
     "$ct" merge -q "$tmp/r.ini" "$tmp/p0.csv" --set ensemble.realisations=40000000 -o "$tmp/x.csv"
 
+# 2-4. no output of any subcommand may be one of its inputs (derived outputs, links too): each
+# is refused before anything is computed, and the input keeps its bytes
+printf '0 0\n1 -0.9\n2 -0.9\n3 -0.2\n' >"$tmp/prof.csv"
+cp "$tmp/prof.csv" "$tmp/prof.orig"
+cat >"$tmp/p.ini" <<INI
+[surface]
+type = profile
+file = prof.csv
+unit = m
+detrend = none
+Hstar = 1
+[material]
+E = 100
+sigma_y = 1
+[impact]
+mass = 1
+velocity = 0.05
+INI
+cp "$tmp/p.ini" "$tmp/p_curve.ini"
+cp "$tmp/p.ini" "$tmp/p.orig.ini"
+ln -s prof.csv "$tmp/link.csv"
+ln "$tmp/prof.csv" "$tmp/hard.csv"
+kept() { cmp -s "$1" "$2" && ok || bad "$3: $1 was replaced"; }
+refused "fit over its profile" "an output may not replace an input" -- \
+    "$ct" fit "$tmp/prof.csv" --unit m -o "$tmp/prof.csv"
+kept "$tmp/prof.csv" "$tmp/prof.orig" "fit -o its profile"
+for out in prof.csv link.csv hard.csv; do
+    refused "run over the surface's file as $out" "a file of the surface" -- \
+        "$ct" run -q "$tmp/p.ini" -o "$tmp/$out"
+    kept "$tmp/prof.csv" "$tmp/prof.orig" "run -o $out"
+done
+refused "a derived output over the scene" "is the scene" -- \
+    "$ct" run -q "$tmp/p_curve.ini" --set output.what=e,curve -o "$tmp/p.ini"
+kept "$tmp/p_curve.ini" "$tmp/p.orig.ini" "run's _curve output"
+refused "table over its scene" "is the scene" -- "$ct" table -q "$tmp/p.ini" -o "$tmp/p.ini"
+refused "fit of a scene over its profile" "a file of the surface" -- \
+    "$ct" fit "$tmp/p.ini" -o "$tmp/prof.csv"
+kept "$tmp/prof.csv" "$tmp/prof.orig" "fit SCENE -o its profile"
+cp "$tmp/p0.csv" "$tmp/p0.orig"
+refused "merge over a part" "an input of this run" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/p0.csv" "$tmp/p1.csv" -o "$tmp/p0.csv"
+kept "$tmp/p0.csv" "$tmp/p0.orig" "merge -o a part"
+refused "merge over its scene" "is the scene" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/p0.csv" "$tmp/p1.csv" -o "$tmp/r.ini"
+cp "$tmp/p0.csv" "$tmp/m_realisations.csv"
+refused "merge's realisations output over a part" "an input of this run" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/m_realisations.csv" "$tmp/p1.csv" \
+    --set output.what=ensemble,realisations -o "$tmp/m.csv"
+kept "$tmp/m_realisations.csv" "$tmp/p0.orig" "merge's derived output"
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

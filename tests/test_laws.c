@@ -341,7 +341,8 @@ static double deviation(const ct_params *p, double u1, double u2)
     return m;
 }
 
-/* docs/model.md §8 (paper's Fig. 4): deviation < 10 % for u/h0 < 0.04, growing with u and with fz */
+/* docs/model.md §8 (paper's Fig. 4): deviation < 10 % for u/h0 < 0.04, growing with u and with fz
+ */
 static void paper_fig4_claims(void **state)
 {
     (void)state;
@@ -528,7 +529,8 @@ static void law_impact_u_max_solves_eq39(void **state)
                 ct_params p = make(fxs[a], fzs[b], Es[c], 10.0);
                 double eps_y = 1.0 / Es[c], uy = eps_y * p.Hstar, alpha = ct_alpha(&p);
                 double W_top = asym_work_load(&p, p.h0), W_y = asym_work_load(&p, uy);
-                /* Eq. 33 integrated: P_Y K x^(2+a) h0 / ((2+a) eps_y fx H), K as in docs/model.md */
+                /* Eq. 33 integrated: P_Y K x^(2+a) h0 / ((2+a) eps_y fx H), K as in docs/model.md
+                 */
                 double K = (1.0 - 1.0 / p.fz) / (1.0 - 1.0 / (p.fx * p.fz));
                 double pre = K / ((2.0 + alpha) * eps_y * p.fx * p.Hstar);
                 for (int k = 0; k <= 40; k++) {

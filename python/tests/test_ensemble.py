@@ -18,6 +18,8 @@ def test_samples_as_the_cli(run_cli, tmp_path, dist):
     scene = tmp_path / "e.ini"
     scene.write_text(SCENE.format(dist=dist))
     with open(run_cli("run", str(scene))) as f:
+        first = f.readline()  # the scene's identity, for cantact merge
+        assert first.startswith("# realisations of surface = random_cantor:")
         rows = list(csv.DictReader(f))
     s = cantact.RandomCantor(fx=1.5, fz=1.3, H=10, E=500, depth=7, fx_spread=0.2,
                              fz_spread=0.1, distribution=dist, seed=11)

@@ -152,6 +152,42 @@ void ct_cli_notes(ct_surface *s, int quiet)
         ct_surface_note_clear(s);
 }
 
+int ct_cli_outputs_not_inputs(const ct_scene *sc, const char *const *outputs, size_t n,
+                              const char *const *extra, size_t nextra)
+{
+    const size_t nin = sc ? sc->ninputs : 0;
+    for (size_t o = 0; o < n; o++) {
+        for (size_t i = 0; i < nin + nextra; i++) {
+            const char *in = i < nin ? sc->inputs[i] : extra[i - nin];
+            if (outputs[o] && ct_out_is_input(outputs[o], in)) {
+                ct_cli_fail("output %s is %s (%s): an output may not replace an input; nothing "
+                            "was computed or written",
+                            outputs[o], i < nin ? sc->input_what[i] : "an input of this run", in);
+                return EXIT_USAGE;
+            }
+        }
+    }
+    return -1;
+}
+
+/* The files the loaded scene reads: itself and its surface's. */
+static int note_inputs(ct_scene *sc, const char *path)
+{
+    char buf[4096];
+    sc->ninputs = 0;
+    if (!(sc->inputs[0] = strdup(path)))
+        return CT_ENOMEM;
+    sc->input_what[sc->ninputs++] = "the scene";
+    for (size_t k = 0; sc->ninputs < sizeof sc->inputs / sizeof sc->inputs[0] &&
+                       ct_surface_input(sc->surface, k, sc->scene_dir, buf, sizeof buf);
+         k++) {
+        if (!(sc->inputs[sc->ninputs] = strdup(buf)))
+            return CT_ENOMEM;
+        sc->input_what[sc->ninputs++] = "a file of the surface";
+    }
+    return CT_OK;
+}
+
 int ct_cli_load_scene(const ct_args *a, const char *cmd, ct_scene *sc)
 {
     if (!a->npos) {
@@ -163,8 +199,13 @@ int ct_cli_load_scene(const ct_args *a, const char *cmd, ct_scene *sc)
         ct_cli_fail("%s", ct_scene_message());
         return EXIT_USAGE;
     }
-    if (ct_out_same_file(path, sc->output)) {
-        ct_cli_fail("output.file = %s: is the scene file itself", sc->output);
+    if (note_inputs(sc, path)) {
+        ct_cli_fail("out of memory");
+        ct_scene_free(sc);
+        return EXIT_FAILED;
+    }
+    const char *out = sc->output;
+    if (ct_cli_outputs_not_inputs(sc, &out, 1, NULL, 0) >= 0) {
         ct_scene_free(sc);
         return EXIT_USAGE;
     }

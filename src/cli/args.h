@@ -49,6 +49,12 @@ int ct_cli_status_exit(int st);
 
 /* Prints the surface's notes (one line each, "cantact: " first) unless quiet, and clears them. */
 void ct_cli_notes(ct_surface *s, int quiet);
+/* The one check of every subcommand before it computes anything: no output (outputs, n of
+ * them, derived ones included) may be one of the run's inputs (the scene and the surface's
+ * files in sc, when not NULL, and extra, e.g. merge's parts). EXIT_USAGE with one line naming
+ * both, or -1 when they are all distinct. */
+int ct_cli_outputs_not_inputs(const ct_scene *sc, const char *const *outputs, size_t n,
+                              const char *const *extra, size_t nextra);
 /* Loads the scene of a subcommand's first positional argument with the --set overrides,
  * refuses an output that is the scene itself, and prepares it (files read, speeds as V*,
  * outputs made ready). Returns -1 when the caller goes on, else an exit status. */

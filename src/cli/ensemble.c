@@ -244,7 +244,10 @@ typedef struct {
     char *real_path;
 } outputs;
 
-static int open_outputs(outputs *o, const ct_scene *sc, unsigned what, char *err, size_t errlen)
+/* Opens the outputs: -1 with the message in err, -2 when it was said already (an output
+ * that is an input: the scene, or one of parts, nparts of them). */
+static int open_outputs(outputs *o, const ct_scene *sc, unsigned what, const char *const *parts,
+                        size_t nparts, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
     const int both = (what & CT_OUT_ENSEMBLE) && (what & CT_OUT_REALISATIONS);
@@ -253,17 +256,22 @@ static int open_outputs(outputs *o, const ct_scene *sc, unsigned what, char *err
                  "output.what names several outputs: set output.file (or -o FILE) to a path");
         return -1;
     }
-    if (what & CT_OUT_ENSEMBLE) {
-        if (ct_out_open(&o->ens, sc->output, err, errlen))
-            return -1;
-        o->opened_ens = 1;
-    }
     if (what & CT_OUT_REALISATIONS) {
         o->real_path = both ? derived_path(sc->output, "realisations") : strdup(sc->output);
         if (!o->real_path) {
             snprintf(err, errlen, "out of memory");
             return -1;
         }
+    }
+    const char *paths[2] = {(what & CT_OUT_ENSEMBLE) ? sc->output : NULL, o->real_path};
+    if (ct_cli_outputs_not_inputs(sc, paths, 2, parts, nparts) >= 0)
+        return -2;
+    if (what & CT_OUT_ENSEMBLE) {
+        if (ct_out_open(&o->ens, sc->output, err, errlen))
+            return -1;
+        o->opened_ens = 1;
+    }
+    if (what & CT_OUT_REALISATIONS) {
         if (ct_out_open(&o->real, o->real_path, err, errlen))
             return -1;
         o->opened_real = 1;
@@ -473,10 +481,11 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
     outputs o;
     memset(&o, 0, sizeof o);
     int ok = 1;
-    if (rank == 0 && open_outputs(&o, sc, what, err, sizeof err)) {
+    int opened = rank == 0 ? open_outputs(&o, sc, what, NULL, 0, err, sizeof err) : 0;
+    if (opened == -1)
         fail_line(err);
+    if (opened)
         ok = 0;
-    }
     if (!ct_mpi_bcast_int(ok)) {
         close_outputs(&o);
         return EXIT_USAGE;
@@ -832,8 +841,10 @@ int ct_cli_merge(int argc, char **argv)
     for (size_t k = 0; k < (size_t)sc.realisations * nrows; k++)
         t.e[k] = t.u[k] = t.vc[k] = NAN;
     /* open the outputs first: an unwritable path fails before any reading */
-    if (open_outputs(&o, &sc, sc.what, err, sizeof err)) {
-        fail_line(err);
+    int opened = open_outputs(&o, &sc, sc.what, a.positional + 1, a.npos - 1, err, sizeof err);
+    if (opened) {
+        if (opened == -1)
+            fail_line(err);
         goto done;
     }
     for (size_t p = 1; p < a.npos; p++)

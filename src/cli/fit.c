@@ -147,10 +147,9 @@ int ct_cli_fit(int argc, char **argv)
     char err[512];
     ct_out out;
     int st;
-    if (rc < 0 && ct_out_same_file(input, out_path)) {
-        ct_cli_fail("output %s: is the input itself", out_path);
-        rc = EXIT_USAGE;
-    }
+    if (rc < 0)
+        rc = ct_cli_outputs_not_inputs(scene ? &sc : NULL, &out_path, 1, scene ? NULL : &input,
+                                       scene ? 0 : 1);
     if (rc < 0 && ct_out_open(&out, out_path, err, sizeof err)) {
         ct_cli_fail("%s", err);
         rc = EXIT_USAGE;

@@ -301,6 +301,14 @@ void ct_out_abort(ct_out *o)
     o->tmp_path = o->path = o->shown = NULL;
 }
 
+int ct_out_is_input(const char *output, const char *input)
+{
+    struct stat si;
+    if (!strcmp(input, "-") || stat(input, &si) != 0 || !S_ISREG(si.st_mode))
+        return 0; /* standard input, a device or a pipe is read, never replaced */
+    return ct_out_same_file(output, input);
+}
+
 int ct_out_same_file(const char *a, const char *b)
 {
     struct stat sa, sb;

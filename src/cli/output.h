@@ -35,6 +35,9 @@ int ct_out_commit(ct_out *o, char *err, size_t errlen);
 int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen);
 /* Drops everything written: no file is left behind. */
 void ct_out_abort(ct_out *o);
+/* 1 when output names the regular file input (hard links and symbolic links included): an
+ * output that would replace an input. */
+int ct_out_is_input(const char *output, const char *input);
 /* 1 when both paths name one existing file (hard links and symbolic links included). */
 int ct_out_same_file(const char *a, const char *b);
 

@@ -62,7 +62,8 @@ static FILE *output_file(output_list *l, unsigned bit)
     return NULL;
 }
 
-/* Opens every output asked for: an unwritable path fails before any work is done. */
+/* Opens every output asked for: an unwritable path, or one that is an input of the run,
+ * fails before any work is done. -1 with the message in err, -2 when it was said already. */
 static int open_outputs(output_list *l, const ct_scene *sc, char *err, size_t errlen)
 {
     memset(l, 0, sizeof *l);
@@ -74,6 +75,7 @@ static int open_outputs(output_list *l, const ct_scene *sc, char *err, size_t er
                  "output.what names several outputs: set output.file (or -o FILE) to a path");
         return -1;
     }
+    const char *paths[NOUTPUTS];
     for (size_t k = 0; k < NOUTPUTS; k++) {
         if (!(sc->what & output_kinds[k].bit))
             continue;
@@ -86,9 +88,14 @@ static int open_outputs(output_list *l, const ct_scene *sc, char *err, size_t er
             snprintf(err, errlen, "out of memory");
             return -1;
         }
-        if (ct_out_open(&o->out, o->path, err, errlen))
+        paths[l->n - 1] = o->path;
+    }
+    if (ct_cli_outputs_not_inputs(sc, paths, l->n, NULL, 0) >= 0)
+        return -2;
+    for (size_t k = 0; k < l->n; k++) {
+        if (ct_out_open(&l->o[k].out, l->o[k].path, err, errlen))
             return -1;
-        o->opened = 1;
+        l->o[k].opened = 1;
     }
     return 0;
 }
@@ -321,6 +328,9 @@ static int run_bounce(ct_scene *sc, int quiet)
     ct_plan_info info;
     ct_build_request req;
     int st;
+    const char *path = sc->output;
+    if (ct_cli_outputs_not_inputs(sc, &path, 1, NULL, 0) >= 0)
+        return EXIT_USAGE;
     if (ct_out_open(&out, sc->output, err, sizeof err)) {
         ct_cli_fail("%s", err);
         return EXIT_USAGE;
@@ -503,8 +513,9 @@ static int run_sweep(ct_scene *sc, int quiet)
                     bytes / 1073741824.0, avail / 1073741824.0);
         return EXIT_FAILED;
     }
-    if (open_outputs(&outs, sc, err, sizeof err)) {
-        ct_cli_fail("%s", err);
+    if ((st = open_outputs(&outs, sc, err, sizeof err))) {
+        if (st == -1)
+            ct_cli_fail("%s", err);
         close_outputs(&outs);
         return EXIT_USAGE;
     }

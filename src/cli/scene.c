@@ -870,6 +870,9 @@ void ct_scene_free(ct_scene *scene)
     if (!scene)
         return;
     ct_surface_free(scene->surface);
+    for (size_t k = 0; k < scene->ninputs; k++)
+        free(scene->inputs[k]);
+    scene->ninputs = 0;
     free(scene->V_star);
     free(scene->output);
     free(scene->scene_dir);

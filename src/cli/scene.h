@@ -63,6 +63,9 @@ typedef struct {
     double table_V_min, table_V_max; /* 0: the range of the speeds */
     ct_interp table_interpolation;
     long table_max_nodes, table_check_points;
+    char *inputs[8]; /* the files this run reads: the scene, the surface's files */
+    const char *input_what[8];
+    size_t ninputs;
     char name[300];         /* the scene's name in messages */
     char where_speeds[300]; /* where the speeds were given, for messages */
     const char *speeds_key; /* "V_star" or "velocity" */

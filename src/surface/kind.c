@@ -333,6 +333,25 @@ int ct_surface_check(ct_surface *s, const char *scene)
     return st;
 }
 
+int ct_surface_input(const ct_surface *s, size_t k, const char *dir, char *buf, size_t len)
+{
+    const ct_kind *d = s->kind;
+    for (size_t r = 0; r < d->nkeys; r++) {
+        if (!(d->keys[r].flags & CT_KEY_FILE) || d->keys[r].type != CT_KEY_TEXT || !s->given[r])
+            continue;
+        if (k--)
+            continue;
+        const char *value = *(char *const *)((const char *)s->config + d->keys[r].offset);
+        char *path = value ? ct_path_join(dir, value) : NULL;
+        if (!path)
+            return 0;
+        snprintf(buf, len, "%s", path);
+        free(path);
+        return 1;
+    }
+    return 0;
+}
+
 int ct_surface_prepare(ct_surface *s, const char *dir)
 {
     CT_NEED(s);

@@ -170,20 +170,16 @@ static double y_of(const ct_profile *p, size_t j)
     return p->ny > 1 ? (double)(j / p->nx) * p->dy : 0.0;
 }
 
-int ct_profile_level(ct_profile *p, ct_detrend how)
+/* Levelling in centred, scaled coordinates s = (x - xm)/xs, r = (y - ym)/ys (about [-1, 1]),
+ * so that the normal equations of at most 6 terms stay well conditioned. */
+typedef struct {
+    int grid, m; /* a grid (s and r); the count of terms */
+    double xm, ym, xs, ys;
+} level_frame;
+
+/* The frame of p's valid samples: their centre and the largest distance from it. */
+static void level_frame_of(const ct_profile *p, level_frame *L)
 {
-    CT_NEED(p);
-    int st = check_heights(p);
-    if (st)
-        return st;
-    if (how == CT_DETREND_NONE)
-        return CT_OK;
-    if (how < CT_DETREND_NONE || how > CT_DETREND_QUADRATIC)
-        return ct_error_set(CT_EINVAL, "detrend %d: must be none, mean, linear or quadratic",
-                            (int)how);
-    /* least squares in centred, scaled coordinates (s, r in about [-1, 1]): the normal
-     * equations of at most 6 terms stay well conditioned; solved by LU (GSL) */
-    const int grid = p->ny > 1;
     const size_t total = p->nx * p->ny;
     double xm = 0.0, ym = 0.0, xs = 0.0, ys = 0.0;
     size_t n = 0;
@@ -200,21 +196,35 @@ int ct_profile_level(ct_profile *p, ct_detrend how)
             xs = fmax(xs, fabs(x_of(p, j) - xm));
             ys = fmax(ys, fabs(y_of(p, j) - ym));
         }
-    xs = xs > 0.0 ? xs : 1.0;
-    ys = ys > 0.0 ? ys : 1.0;
-    /* terms: 1 | s, (r) | s^2, (s r, r^2) */
-    int m = how == CT_DETREND_MEAN ? 1 : how == CT_DETREND_LINEAR ? (grid ? 3 : 2) : (grid ? 6 : 3);
+    L->xm = xm;
+    L->ym = ym;
+    L->xs = xs > 0.0 ? xs : 1.0;
+    L->ys = ys > 0.0 ? ys : 1.0;
+}
+
+/* The terms at sample j: 1 | s, (r) | s^2, (s r, r^2). */
+static void level_terms(const ct_profile *p, const level_frame *L, size_t j, double *f)
+{
+    const double s = (x_of(p, j) - L->xm) / L->xs, r = (y_of(p, j) - L->ym) / L->ys;
+    f[0] = 1.0;
+    if (L->grid) {
+        f[1] = s, f[2] = r, f[3] = s * s, f[4] = s * r, f[5] = r * r;
+    } else {
+        f[1] = s, f[2] = s * s;
+    }
+}
+
+/* The least-squares coefficients of the terms (coef[0..m)), by LU (GSL) on the normal
+ * equations. */
+static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, double *coef)
+{
+    const int m = L->m;
+    const size_t total = p->nx * p->ny;
     double A[36] = {0}, bvec[6] = {0}, f[6];
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
             continue;
-        const double s = (x_of(p, j) - xm) / xs, r = (y_of(p, j) - ym) / ys;
-        f[0] = 1.0;
-        if (grid) {
-            f[1] = s, f[2] = r, f[3] = s * s, f[4] = s * r, f[5] = r * r;
-        } else {
-            f[1] = s, f[2] = s * s;
-        }
+        level_terms(p, L, j, f);
         for (int a = 0; a < m; a++) {
             bvec[a] += f[a] * p->z[j];
             for (int c = 0; c < m; c++)
@@ -223,7 +233,6 @@ int ct_profile_level(ct_profile *p, ct_detrend how)
     }
     gsl_matrix_view Av = gsl_matrix_view_array(A, (size_t)m, (size_t)m);
     gsl_vector_view bv = gsl_vector_view_array(bvec, (size_t)m);
-    double coef[6];
     gsl_vector_view cv = gsl_vector_view_array(coef, (size_t)m);
     gsl_permutation *perm = gsl_permutation_alloc((size_t)m);
     int sign;
@@ -239,16 +248,35 @@ int ct_profile_level(ct_profile *p, ct_detrend how)
         return ct_error_set(CT_EINVAL,
                             "levelling: the %s fit is singular (the points do not span it)",
                             how == CT_DETREND_LINEAR ? "linear" : "quadratic");
+    return CT_OK;
+}
+
+int ct_profile_level(ct_profile *p, ct_detrend how)
+{
+    CT_NEED(p);
+    int st = check_heights(p);
+    if (st)
+        return st;
+    if (how == CT_DETREND_NONE)
+        return CT_OK;
+    if (how < CT_DETREND_NONE || how > CT_DETREND_QUADRATIC)
+        return ct_error_set(CT_EINVAL, "detrend %d: must be none, mean, linear or quadratic",
+                            (int)how);
+    const int grid = p->ny > 1;
+    level_frame L = {.grid = grid,
+                     .m = how == CT_DETREND_MEAN     ? 1
+                          : how == CT_DETREND_LINEAR ? (grid ? 3 : 2)
+                                                     : (grid ? 6 : 3)};
+    level_frame_of(p, &L);
+    double coef[6], f[6];
+    if ((st = level_fit(p, &L, how, coef)))
+        return st;
+    const int m = L.m;
+    const size_t total = p->nx * p->ny;
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
             continue;
-        const double s = (x_of(p, j) - xm) / xs, r = (y_of(p, j) - ym) / ys;
-        f[0] = 1.0;
-        if (grid) {
-            f[1] = s, f[2] = r, f[3] = s * s, f[4] = s * r, f[5] = r * r;
-        } else {
-            f[1] = s, f[2] = s * s;
-        }
+        level_terms(p, &L, j, f);
         double t = 0.0;
         for (int a = 0; a < m; a++)
             t += coef[a] * f[a];
@@ -518,7 +546,8 @@ typedef struct {
 
 #define AT(field) offsetof(profile_config, field)
 static const ct_key profile_keys[] = {
-    {"surface", "file", CT_KEY_TEXT, 0, 0, CT_KEY_REQUIRED, NULL, "must be a path", "",
+    {"surface", "file", CT_KEY_TEXT, 0, 0, CT_KEY_REQUIRED | CT_KEY_FILE, NULL, "must be a path",
+     "",
      "the profile: text/CSV (x z, or z with spacing), a Dektak export or an X3P file; relative "
      "to the scene's directory",
      AT(file)},

@@ -172,114 +172,140 @@ static void header_units(const char *line, int one_column, double *xu, double *z
     }
 }
 
+/* A text profile while it is read. */
+typedef struct {
+    const char *path;
+    ct_profile_read_opts *o; /* units found in the column names are filled in */
+    int one_column;          /* heights only, at the spacing o->dx */
+    int dektak, in_header, headers;
+    char *header; /* the last line before the data: the column names */
+    long lineno, data_from;
+    points pts;
+} text_reader;
+
+/* Before the data, a line that is not a row of numbers: a Dektak header block, or one line of
+ * column names (kept for their units). */
+static int header_line(text_reader *r, const char *line)
+{
+    if (r->dektak || r->headers++ == 0) {
+        free(r->header);
+        if (!(r->header = strdup(line)))
+            return ct_error_set(CT_ENOMEM, "%s: out of memory at line %ld", r->path, r->lineno);
+        return CT_OK;
+    }
+    return ct_error_set(CT_EINVAL,
+                        "%s:%ld: not a row of numbers (and a column header came "
+                        "already at line %ld)",
+                        r->path, r->lineno, r->data_from);
+}
+
+/* The first row of numbers ends the header: the units, given or from the column names. */
+static int data_start(text_reader *r)
+{
+    ct_profile_read_opts *o = r->o;
+    const int one_column = r->one_column;
+    r->in_header = 0;
+    r->data_from = r->lineno;
+    if (r->header && (o->x_unit == 0.0 || o->z_unit == 0.0))
+        header_units(r->header, one_column, &o->x_unit, &o->z_unit);
+    if ((o->x_unit == 0.0 && !one_column) || o->z_unit == 0.0 || (one_column && o->x_unit == 0.0))
+        return ct_error_set(CT_EINVAL,
+                            "%s: the length unit of %s is not given and its column "
+                            "names state none: give it (m, mm, um or nm)",
+                            r->path,
+                            o->z_unit == 0.0 ? (one_column ? "the heights" : "x and z")
+                                             : "x (the spacing)");
+    return CT_OK;
+}
+
+/* A data row of n numbers v (n < 0: not numbers): its point, in metres, appended. */
+static int data_row(text_reader *r, const double *v, int n)
+{
+    const ct_profile_read_opts *o = r->o;
+    const int one_column = r->one_column;
+    points *pts = &r->pts;
+    if (n != (one_column ? 1 : 2))
+        return ct_error_set(CT_EINVAL, "%s:%ld: %s: expected %s", r->path, r->lineno,
+                            n < 0 ? "not a row of numbers" : "wrong number of columns",
+                            one_column ? "one column, the height (spacing given)"
+                                       : "two columns, x and z");
+    double x = one_column ? (double)pts->n * o->dx * o->x_unit : v[0] * o->x_unit;
+    double z = (one_column ? v[0] : v[1]) * o->z_unit;
+    if (!isfinite(x) || !isfinite(z))
+        return ct_error_set(CT_EINVAL, "%s:%ld: a value overflows in the units given", r->path,
+                            r->lineno);
+    if (pts->n && !(x > pts->x[pts->n - 1]))
+        return ct_error_set(CT_EINVAL,
+                            "%s:%ld: x = %g is not above the previous %g: x must "
+                            "increase",
+                            r->path, r->lineno, x, pts->x[pts->n - 1]);
+    if (push(pts, x, z))
+        return ct_error_set(CT_ENOMEM, "%s: out of memory at line %ld", r->path, r->lineno);
+    return CT_OK;
+}
+
+/* The profile of the points read: their arrays become its own (trimmed to their size), no
+ * second copy. */
+static int text_profile(text_reader *r, ct_profile **out)
+{
+    const ct_profile_read_opts *o = r->o;
+    points *pts = &r->pts;
+    double *x = r->one_column ? NULL : realloc(pts->x, pts->n * sizeof(double)),
+           *z = realloc(pts->z, pts->n * sizeof(double));
+    if (x)
+        pts->x = x;
+    if (z)
+        pts->z = z;
+    int st = r->one_column ? ct_profile_adopt_line(out, pts->n, NULL, o->dx * o->x_unit, pts->z)
+                           : ct_profile_adopt_line(out, pts->n, pts->x, 0.0, pts->z);
+    if (st)
+        return st;
+    if (!r->one_column)
+        pts->x = NULL;
+    pts->z = NULL;
+    snprintf((*out)->source, sizeof(*out)->source, "%s", r->dektak ? "dektak" : "text");
+    (*out)->x_unit = o->x_unit;
+    (*out)->z_unit = o->z_unit;
+    return CT_OK;
+}
+
 static int read_text(const char *path, FILE *f, const ct_profile_read_opts *given, ct_profile **out)
 {
-    ct_profile_read_opts opts = *given, *o = &opts;
-    char *header = NULL; /* the last line before the data: the column names */
-    points pts = {0};
+    ct_profile_read_opts opts = *given;
+    text_reader r = {.path = path, .o = &opts, .one_column = opts.dx > 0.0, .in_header = 1};
     char *line = NULL;
     size_t cap = 0;
-    long lineno = 0, data_from = 0;
-    int st = CT_OK, dektak = 0, in_header = 1, headers = 0;
-    const int one_column = o->dx > 0.0;
-    ssize_t len;
-    while ((len = getline(&line, &cap, f)) >= 0) {
-        lineno++;
+    int st = CT_OK;
+    while (getline(&line, &cap, f) >= 0) {
+        r.lineno++;
         if (is_blank_or_comment(line))
             continue;
         strip_comment(line);
         char *t = line;
         while (isspace((unsigned char)*t))
             t++;
-        if (in_header && lineno == 1 && !strncmp(t, "Scan Parameters", 15))
-            dektak = 1; /* a Dektak export: its header block runs to "Scan Data" */
+        if (r.in_header && r.lineno == 1 && !strncmp(t, "Scan Parameters", 15))
+            r.dektak = 1; /* a Dektak export: its header block runs to "Scan Data" */
         double v[3];
         int n = row_numbers(line, v, 3);
-        if (in_header && n < 0) {
-            /* before the data: a Dektak header block, or one line of column names */
-            if (dektak || headers++ == 0) {
-                free(header);
-                if (!(header = strdup(line))) {
-                    st = ct_error_set(CT_ENOMEM, "%s: out of memory at line %ld", path, lineno);
-                    break;
-                }
-                continue;
-            }
-            st = ct_error_set(CT_EINVAL,
-                              "%s:%ld: not a row of numbers (and a column header came "
-                              "already at line %ld)",
-                              path, lineno, data_from);
-            break;
-        }
-        if (in_header) {
-            in_header = 0;
-            data_from = lineno;
-            if (header && (o->x_unit == 0.0 || o->z_unit == 0.0))
-                header_units(header, one_column, &o->x_unit, &o->z_unit);
-            if ((o->x_unit == 0.0 && !one_column) || o->z_unit == 0.0 ||
-                (one_column && o->x_unit == 0.0)) {
-                st = ct_error_set(CT_EINVAL,
-                                  "%s: the length unit of %s is not given and its column "
-                                  "names state none: give it (m, mm, um or nm)",
-                                  path,
-                                  o->z_unit == 0.0 ? (one_column ? "the heights" : "x and z")
-                                                   : "x (the spacing)");
+        if (r.in_header && n < 0) {
+            if ((st = header_line(&r, line)))
                 break;
-            }
+            continue;
         }
-        if (n != (one_column ? 1 : 2)) {
-            st = ct_error_set(CT_EINVAL, "%s:%ld: %s: expected %s", path, lineno,
-                              n < 0 ? "not a row of numbers" : "wrong number of columns",
-                              one_column ? "one column, the height (spacing given)"
-                                         : "two columns, x and z");
+        if ((r.in_header && (st = data_start(&r))) || (st = data_row(&r, v, n)))
             break;
-        }
-        double x = one_column ? (double)pts.n * o->dx * o->x_unit : v[0] * o->x_unit;
-        double z = (one_column ? v[0] : v[1]) * o->z_unit;
-        if (!isfinite(x) || !isfinite(z)) {
-            st = ct_error_set(CT_EINVAL, "%s:%ld: a value overflows in the units given", path,
-                              lineno);
-            break;
-        }
-        if (pts.n && !(x > pts.x[pts.n - 1])) {
-            st = ct_error_set(CT_EINVAL,
-                              "%s:%ld: x = %g is not above the previous %g: x must "
-                              "increase",
-                              path, lineno, x, pts.x[pts.n - 1]);
-            break;
-        }
-        if (push(&pts, x, z)) {
-            st = ct_error_set(CT_ENOMEM, "%s: out of memory at line %ld", path, lineno);
-            break;
-        }
     }
     free(line);
-    free(header);
+    free(r.header);
     if (!st && ferror(f))
         st = ct_error_set(CT_EIO, "%s: read error: %s", path, strerror(errno));
-    if (!st && pts.n < 3)
-        st = ct_error_set(CT_EINVAL, "%s: %zu points: a profile needs at least 3", path, pts.n);
-    if (!st) {
-        /* the arrays become the profile's (trimmed to their size): no second copy */
-        double *x = one_column ? NULL : realloc(pts.x, pts.n * sizeof(double)),
-               *z = realloc(pts.z, pts.n * sizeof(double));
-        if (x)
-            pts.x = x;
-        if (z)
-            pts.z = z;
-        st = one_column ? ct_profile_adopt_line(out, pts.n, NULL, o->dx * o->x_unit, pts.z)
-                        : ct_profile_adopt_line(out, pts.n, pts.x, 0.0, pts.z);
-        if (!st) {
-            if (!one_column)
-                pts.x = NULL;
-            pts.z = NULL;
-            snprintf((*out)->source, sizeof(*out)->source, "%s", dektak ? "dektak" : "text");
-            (*out)->x_unit = o->x_unit;
-            (*out)->z_unit = o->z_unit;
-        }
-    }
-    free(pts.x);
-    free(pts.z);
+    if (!st && r.pts.n < 3)
+        st = ct_error_set(CT_EINVAL, "%s: %zu points: a profile needs at least 3", path, r.pts.n);
+    if (!st)
+        st = text_profile(&r, out);
+    free(r.pts.x);
+    free(r.pts.z);
     return st;
 }
 
@@ -479,6 +505,138 @@ static double le_value(const unsigned char *p, char type)
                          : (double)u.i16;
 }
 
+/* What main.xml says of the grid. */
+typedef struct {
+    size_t nx, ny;
+    double dx, dy, zinc, zoff;
+    char type[16]; /* D, F, I or L */
+    int width;     /* bytes per point */
+    int has_mask;
+    char link[256], mask[256]; /* the entries of the points and of the valid points' mask */
+} x3p_grid;
+
+/* The grid's description from main.xml (root). */
+static int x3p_header(const char *path, xmlNode *root, x3p_grid *g)
+{
+    int st;
+    double sx = 0, sy = 0, sz = 0, dx = 0, dy = 0, zinc = 1.0, zoff = 0.0;
+    if ((st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeX", &sx, 1)) ||
+        (st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeY", &sy, 1)) ||
+        (st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeZ", &sz, 1)) ||
+        (st = x3p_number(path, root, "CX", "Increment", NULL, &dx, 1)) ||
+        (st = x3p_number(path, root, "CY", "Increment", NULL, &dy, 0)) ||
+        (st = x3p_number(path, root, "CZ", "Increment", NULL, &zinc, 0)) ||
+        (st = x3p_number(path, root, "CZ", "Offset", NULL, &zoff, 0)))
+        return st;
+    if (!(sx >= 1 && sy >= 1 && sz == 1 && sx == floor(sx) && sy == floor(sy) && sx * sy <= 1e10))
+        return ct_error_set(
+            CT_EINVAL, "%s: main.xml: MatrixDimension %g x %g x %g: expected a grid, SizeZ = 1",
+            path, sx, sy, sz);
+    if (!(dx > 0.0) || (sy > 1 && !(dy > 0.0)))
+        return ct_error_set(CT_EINVAL, "%s: main.xml: increments CX %g, CY %g: must be > 0", path,
+                            dx, dy);
+    const char *tp[] = {"CZ", "DataType"}, *lp[] = {"DataLink", "PointDataLink"},
+               *mp[] = {"DataLink", "ValidPointsLink"};
+    const char *type = text_at(root, tp, 2, g->type, sizeof g->type);
+    const char *link = text_at(root, lp, 2, g->link, sizeof g->link);
+    g->has_mask = text_at(root, mp, 2, g->mask, sizeof g->mask) != NULL;
+    if (!type || strlen(type) != 1 || !strchr("DFIL", type[0]))
+        return ct_error_set(CT_EINVAL, "%s: main.xml: CZ/DataType = %s: expected D, F, I or L",
+                            path, type ? type : "(missing)");
+    if (!link)
+        return ct_error_set(CT_EINVAL,
+                            "%s: main.xml: DataLink/PointDataLink missing (only binary "
+                            "point data is read)",
+                            path);
+    g->nx = (size_t)sx;
+    g->ny = (size_t)sy;
+    g->dx = dx;
+    g->dy = dy;
+    g->zinc = zinc;
+    g->zoff = zoff;
+    g->width = type[0] == 'D' ? 8 : type[0] == 'F' || type[0] == 'L' ? 4 : 2;
+    return CT_OK;
+}
+
+/* The grid's heights (malloc'ed into *zz): its binary points, integers scaled by the z
+ * axis, the points the mask marks invalid NaN. */
+static int x3p_heights(const char *path, zip_t *z, const x3p_grid *g, double **zz)
+{
+    char *bin = NULL, *mask = NULL;
+    zip_uint64_t bin_size = 0, mask_size = 0;
+    const size_t npts = g->nx * g->ny;
+    const int width = g->width;
+    int st;
+    if ((st = zip_entry(path, z, g->link, (zip_uint64_t)npts * (zip_uint64_t)width, &bin,
+                        &bin_size)))
+        goto done;
+    if (bin_size != (zip_uint64_t)npts * (zip_uint64_t)width) {
+        st = ct_error_set(
+            CT_EINVAL,
+            "%s: X3P entry %s holds %llu bytes; the header's %zu x %zu grid of type %s "
+            "needs %llu",
+            path, g->link, (unsigned long long)bin_size, g->nx, g->ny, g->type,
+            (unsigned long long)npts * (unsigned long long)width);
+        goto done;
+    }
+    if (g->has_mask &&
+        (st = zip_entry(path, z, g->mask, (zip_uint64_t)(npts + 7) / 8 + 1024, &mask, &mask_size)))
+        goto done;
+    if (mask && mask_size < (npts + 7) / 8) {
+        st = ct_error_set(CT_EINVAL,
+                          "%s: X3P entry %s holds %llu bytes; the mask of %zu points "
+                          "needs %zu",
+                          path, g->mask, (unsigned long long)mask_size, npts, (npts + 7) / 8);
+        goto done;
+    }
+    if (!(*zz = malloc(npts * sizeof(double)))) {
+        st = ct_error_set(CT_ENOMEM, "%s: grid of %zu points: out of memory", path, npts);
+        goto done;
+    }
+    for (size_t k = 0; k < npts; k++) {
+        double v = le_value((const unsigned char *)bin + k * (size_t)width, g->type[0]);
+        if (g->type[0] == 'I' || g->type[0] == 'L')
+            v = g->zoff + g->zinc * v; /* integer heights carry the axis' scale */
+        if (mask && !((unsigned char)mask[k / 8] >> (k % 8) & 1u))
+            v = NAN; /* the mask's bit 0: an invalid point */
+        (*zz)[k] = v;
+    }
+done:
+    free(bin);
+    free(mask);
+    return st;
+}
+
+/* The profile of the heights zz, which it adopts on success: a line (one row) keeps its valid
+ * points at their x, a grid all of them. */
+static int x3p_profile(const char *path, const x3p_grid *g, double *zz, ct_profile **out)
+{
+    int st;
+    const size_t nx = g->nx;
+    if (g->ny == 1) {
+        size_t m = 0;
+        for (size_t k = 0; k < nx; k++)
+            m += !isnan(zz[k]);
+        double *xs = m < nx ? malloc((m ? m : 1) * sizeof(double)) : NULL;
+        if (m < nx && !xs)
+            return ct_error_set(CT_ENOMEM, "%s: profile of %zu points: out of memory", path, nx);
+        for (size_t k = 0, j = 0; xs && k < nx; k++)
+            if (!isnan(zz[k])) {
+                xs[j] = (double)k * g->dx;
+                zz[j++] = zz[k];
+            }
+        st = ct_profile_adopt_line(out, m, xs, g->dx, zz);
+        if (st)
+            free(xs);
+        else
+            (*out)->invalid = nx - m;
+    } else
+        st = ct_profile_adopt_grid(out, nx, g->ny, g->dx, g->dy, zz);
+    if (!st)
+        snprintf((*out)->source, sizeof(*out)->source, "x3p");
+    return st;
+}
+
 static int read_x3p(const char *path, ct_profile **out)
 {
     int err = 0, st = x3p_libraries(path);
@@ -493,10 +651,11 @@ static int read_x3p(const char *path, ct_profile **out)
         X.zip_error_fini(&ze);
         return st;
     }
-    char *xml = NULL, *bin = NULL, *mask = NULL;
-    zip_uint64_t xml_size, bin_size = 0, mask_size = 0;
+    char *xml = NULL;
+    zip_uint64_t xml_size;
     xmlDoc *doc = NULL;
     double *zz = NULL;
+    x3p_grid g;
     if ((st = zip_entry(path, z, "main.xml", 64 << 20, &xml, &xml_size)))
         goto done;
     doc = X.xmlReadMemory(xml, (int)xml_size, "main.xml", NULL,
@@ -505,112 +664,14 @@ static int read_x3p(const char *path, ct_profile **out)
         st = ct_error_set(CT_EINVAL, "%s: X3P entry main.xml is not well-formed XML", path);
         goto done;
     }
-    xmlNode *root = X.xmlDocGetRootElement(doc);
-    double sx = 0, sy = 0, sz = 0, dx = 0, dy = 0, zinc = 1.0, zoff = 0.0;
-    if ((st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeX", &sx, 1)) ||
-        (st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeY", &sy, 1)) ||
-        (st = x3p_number(path, root, "Record3", "MatrixDimension", "SizeZ", &sz, 1)) ||
-        (st = x3p_number(path, root, "CX", "Increment", NULL, &dx, 1)) ||
-        (st = x3p_number(path, root, "CY", "Increment", NULL, &dy, 0)) ||
-        (st = x3p_number(path, root, "CZ", "Increment", NULL, &zinc, 0)) ||
-        (st = x3p_number(path, root, "CZ", "Offset", NULL, &zoff, 0)))
+    if ((st = x3p_header(path, X.xmlDocGetRootElement(doc), &g)) ||
+        (st = x3p_heights(path, z, &g, &zz)))
         goto done;
-    if (!(sx >= 1 && sy >= 1 && sz == 1 && sx == floor(sx) && sy == floor(sy) && sx * sy <= 1e10)) {
-        st = ct_error_set(CT_EINVAL,
-                          "%s: main.xml: MatrixDimension %g x %g x %g: expected a grid, SizeZ = 1",
-                          path, sx, sy, sz);
-        goto done;
-    }
-    if (!(dx > 0.0) || (sy > 1 && !(dy > 0.0))) {
-        st = ct_error_set(CT_EINVAL, "%s: main.xml: increments CX %g, CY %g: must be > 0", path, dx,
-                          dy);
-        goto done;
-    }
-    char type_buf[16], link_buf[256], mask_buf[256];
-    const char *tp[] = {"CZ", "DataType"}, *lp[] = {"DataLink", "PointDataLink"},
-               *mp[] = {"DataLink", "ValidPointsLink"};
-    const char *type = text_at(root, tp, 2, type_buf, sizeof type_buf);
-    const char *link = text_at(root, lp, 2, link_buf, sizeof link_buf);
-    const char *mlink = text_at(root, mp, 2, mask_buf, sizeof mask_buf);
-    if (!type || strlen(type) != 1 || !strchr("DFIL", type[0])) {
-        st = ct_error_set(CT_EINVAL, "%s: main.xml: CZ/DataType = %s: expected D, F, I or L", path,
-                          type ? type : "(missing)");
-        goto done;
-    }
-    if (!link) {
-        st = ct_error_set(CT_EINVAL,
-                          "%s: main.xml: DataLink/PointDataLink missing (only binary "
-                          "point data is read)",
-                          path);
-        goto done;
-    }
-    const size_t nx = (size_t)sx, ny = (size_t)sy, npts = nx * ny;
-    const int width = type[0] == 'D' ? 8 : type[0] == 'F' || type[0] == 'L' ? 4 : 2;
-    if ((st = zip_entry(path, z, link, (zip_uint64_t)npts * (zip_uint64_t)width, &bin, &bin_size)))
-        goto done;
-    if (bin_size != (zip_uint64_t)npts * (zip_uint64_t)width) {
-        st = ct_error_set(
-            CT_EINVAL,
-            "%s: X3P entry %s holds %llu bytes; the header's %zu x %zu grid of type %s "
-            "needs %llu",
-            path, link, (unsigned long long)bin_size, nx, ny, type,
-            (unsigned long long)npts * (unsigned long long)width);
-        goto done;
-    }
-    if (mlink &&
-        (st = zip_entry(path, z, mlink, (zip_uint64_t)(npts + 7) / 8 + 1024, &mask, &mask_size)))
-        goto done;
-    if (mask && mask_size < (npts + 7) / 8) {
-        st = ct_error_set(CT_EINVAL,
-                          "%s: X3P entry %s holds %llu bytes; the mask of %zu points "
-                          "needs %zu",
-                          path, mlink, (unsigned long long)mask_size, npts, (npts + 7) / 8);
-        goto done;
-    }
-    if (!(zz = malloc(npts * sizeof(double)))) {
-        st = ct_error_set(CT_ENOMEM, "%s: grid of %zu points: out of memory", path, npts);
-        goto done;
-    }
-    for (size_t k = 0; k < npts; k++) {
-        double v = le_value((const unsigned char *)bin + k * (size_t)width, type[0]);
-        if (type[0] == 'I' || type[0] == 'L')
-            v = zoff + zinc * v; /* integer heights carry the axis' scale */
-        if (mask && !((unsigned char)mask[k / 8] >> (k % 8) & 1u))
-            v = NAN; /* the mask's bit 0: an invalid point */
-        zz[k] = v;
-    }
-    free(bin); /* the heights are in zz now */
-    bin = NULL;
-    if (ny == 1) { /* a line: invalid points dropped, the rest at their x */
-        size_t m = 0;
-        for (size_t k = 0; k < nx; k++)
-            m += !isnan(zz[k]);
-        double *xs = m < nx ? malloc((m ? m : 1) * sizeof(double)) : NULL;
-        if (m < nx && !xs) {
-            st = ct_error_set(CT_ENOMEM, "%s: profile of %zu points: out of memory", path, nx);
-            goto done;
-        }
-        for (size_t k = 0, j = 0; xs && k < nx; k++)
-            if (!isnan(zz[k])) {
-                xs[j] = (double)k * dx;
-                zz[j++] = zz[k];
-            }
-        st = ct_profile_adopt_line(out, m, xs, dx, zz);
-        if (st)
-            free(xs);
-        else
-            (*out)->invalid = nx - m;
-    } else
-        st = ct_profile_adopt_grid(out, nx, ny, dx, dy, zz);
-    if (!st)
+    if (!(st = x3p_profile(path, &g, zz, out)))
         zz = NULL; /* the profile's now */
-    if (!st)
-        snprintf((*out)->source, sizeof(*out)->source, "x3p");
 done:
     free(zz);
     free(xml);
-    free(bin);
-    free(mask);
     if (doc)
         X.xmlFreeDoc(doc);
     X.zip_close(z);

@@ -39,7 +39,7 @@ static const double unit_metres[] = {1.0, 1e-3, 1e-6, 1e-9};
 
 #define AT(field) offsetof(rods_config, field)
 static const ct_key rods_keys[] = {
-    {"surface", "file", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a path", "",
+    {"surface", "file", CT_KEY_TEXT, 0, 0, CT_KEY_FILE, NULL, "must be a path", "",
      "a file of rods: columns top, area and optionally length (a header naming them may come "
      "first); relative to the scene's directory",
      AT(file)},
