@@ -3,6 +3,7 @@
 #include "cantact.h"
 #include "scene.h"
 
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,12 +17,25 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     text[size] = '\0';
     ct_scene sc;
     if (ct_scene_parse(&sc, "fuzz.ini", text, NULL, 0) == CT_OK) {
-        /* a valid scene must give valid parameters and finite, positive speeds */
-        if (ct_params_validate(&sc.params) != CT_OK || sc.nvel == 0)
+        /* a valid scene has a surface and finite, positive speeds; prepared (when it reads no
+         * file: the fuzzer's file names are not read), its layer is valid and every speed is a
+         * V* whose impact energy is a finite positive number */
+        char path[64];
+        if (!sc.surface || sc.nvel == 0)
             abort();
         for (size_t k = 0; k < sc.nvel; k++)
             if (!(sc.V_star[k] > 0.0) || sc.V_star[k] != sc.V_star[k])
                 abort();
+        if (!ct_surface_input(sc.surface, 0, NULL, path, sizeof path) &&
+            ct_scene_prepare(&sc) == CT_OK) {
+            if (ct_layer_validate(&sc.scales.layer) != CT_OK)
+                abort();
+            for (size_t k = 0; k < sc.nvel; k++) {
+                double W = sc.V_star[k] * sc.V_star[k] * sc.scales.energy_scale;
+                if (!(W > 0.0) || !(W < INFINITY))
+                    abort();
+            }
+        }
         ct_scene_free(&sc);
     }
     /* the same text as an override value */

@@ -136,5 +136,70 @@ refused "merge's realisations output over a part" "an input of this run" -- \
     --set output.what=ensemble,realisations -o "$tmp/m.csv"
 kept "$tmp/m_realisations.csv" "$tmp/p0.orig" "merge's derived output"
 
+# 1. no input reaches GSL's default error handler (it aborts the process): levellings the valid
+# points cannot determine are refused before GSL is asked
+/usr/bin/python3 - "$tmp" <<'PY' || bad "writing X3P files"
+import math, struct, sys, zipfile
+d = sys.argv[1]
+def x3p(name, nx, ny, z, mask=None):
+    xml = ('<?xml version="1.0" encoding="UTF-8"?>\n<p:ISO5436_2 xmlns:p="http://www.opengps.eu/2008/ISO5436_2">'
+           '<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>'
+           '<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset></CX>'
+           '<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset></CY>'
+           '<CZ><AxisType>A</AxisType><DataType>D</DataType><Increment>1</Increment><Offset>0</Offset></CZ>'
+           '</Axes></Record1><Record3><MatrixDimension><SizeX>%d</SizeX><SizeY>%d</SizeY><SizeZ>1</SizeZ>'
+           '</MatrixDimension><DataLink><PointDataLink>bindata/data.bin</PointDataLink>%s</DataLink></Record3>'
+           '</p:ISO5436_2>' % (nx, ny, '<ValidPointsLink>bindata/valid.bin</ValidPointsLink>' if mask else ''))
+    with zipfile.ZipFile("%s/%s" % (d, name), "w") as f:
+        f.writestr("main.xml", xml)
+        f.writestr("bindata/data.bin", struct.pack("<%dd" % len(z), *z))
+        if mask:
+            f.writestr("bindata/valid.bin", bytes(mask))
+wave = lambda i, j: 1e-7 * math.sin(1.7 * i + 2.3 * j + 0.1 * i * j)
+x3p("col.x3p", 1, 64, [wave(0, j) for j in range(64)])
+x3p("row3.x3p", 3, 1, [wave(i, 0) for i in range(3)])
+x3p("two.x3p", 2, 2, [wave(i, j) for j in range(2) for i in range(2)])
+n = 64  # a 64 x 64 grid whose mask keeps its first column only (bit i of byte k: point 8k + i)
+x3p("onecol.x3p", n, n, [wave(i, j) for j in range(n) for i in range(n)],
+    mask=[1 if (8 * k) % n == 0 else 0 for k in range(n * n // 8)])
+PY
+for f in col.x3p onecol.x3p; do
+    refused "fit of $f (a linear levelling of collinear points)" "do not determine a linear fit" -- \
+        "$ct" fit "$tmp/$f"
+done
+refused "fit of a 2 x 2 grid, quadratic" "do not determine a quadratic fit" -- \
+    "$ct" fit "$tmp/two.x3p" --detrend quadratic
+"$ct" fit "$tmp/row3.x3p" >/dev/null 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] || [ $rc -eq 2 ] && [ "$(wc -l <"$tmp/err")" -le 1 ] && ok ||
+    bad "fit of a 3 x 1 grid: exit $rc: $(cat "$tmp/err")"
+
+# 5, 11, 15. the text reader: lines bounded, no row taken for a header, line ends and encodings
+awk 'BEGIN { for (i = 0; i < 400; i++) print i, (i == 0 ? 8.99 : i == 1 ? 0 : 0.5 + 0.45 * sin(0.37 * i) * cos(0.11 * i)) }' >"$tmp/rows.txt"
+# its first row is the peak: Rt = 8.99 um (no levelling) whether or not a BOM comes first
+printf '\xef\xbb\xbf' | cat - "$tmp/rows.txt" >"$tmp/bom.txt"
+for f in rows.txt bom.txt; do
+    "$ct" fit "$tmp/$f" --unit um --detrend none -o "$tmp/fit.csv" || bad "fit of $f"
+    awk -F, '$1 == "Rt_m" { exit !($2 > 8.98e-6 && $2 < 9.0e-6) }' "$tmp/fit.csv" && ok ||
+        bad "$f: Rt is not 8.99 um (a row vanished): $(grep Rt_m "$tmp/fit.csv")"
+done
+sed 's/^0 8.99$/0 nan/' "$tmp/rows.txt" >"$tmp/nan.txt"
+refused "a first row 0 nan" "not a row of numbers" -- "$ct" fit "$tmp/nan.txt" --unit um
+tr '\n' '\r' <"$tmp/rows.txt" >"$tmp/cr.txt"
+"$ct" fit "$tmp/cr.txt" --unit um --detrend none -o "$tmp/fit.csv" &&
+    head -1 "$tmp/fit.csv" | grep -q ": 400 points" && ok || bad "lone CR line ends: $(head -1 "$tmp/fit.csv")"
+/usr/bin/python3 -c "import sys; open(sys.argv[1], 'w', encoding='utf-16').write(open(sys.argv[2]).read())" \
+    "$tmp/u16.txt" "$tmp/rows.txt"
+refused "a UTF-16 profile" "UTF-16" -- "$ct" fit "$tmp/u16.txt" --unit um
+sed "s|file = prof.csv|file = /dev/zero|" "$tmp/p.ini" >"$tmp/zero.ini"
+refused "surface.file = /dev/zero" "NUL byte" -- timeout 20 "$ct" run -q "$tmp/zero.ini"
+head -c 3000000 /dev/zero | tr '\0' '1' >"$tmp/long.txt"
+refused "a 3 MB line" "longer than" -- "$ct" fit "$tmp/long.txt" --unit um
+awk '{ print $2 }' "$tmp/rows.txt" >"$tmp/onecol.txt"
+refused "a spacing of 1e-320 m" "underflows double precision" -- \
+    "$ct" fit "$tmp/onecol.txt" --spacing 1e-320 --unit m
+refused "a spacing of 1e-300 nm" "not a number doubles hold" -- \
+    "$ct" fit "$tmp/onecol.txt" --spacing 1e-300 --unit nm
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -263,3 +263,17 @@ def test_compare_as_the_cli(source, dektak, run_cli):
         p.compare(r.e)
     with pytest.raises(cantact.InvalidInput, match="depths and on_reach"):
         p.fit(depths=band, on_reach=r)
+
+
+def test_levelling_that_points_cannot_determine():
+    """A grid of one column (collinear points) cannot be levelled by a plane, a 2 x 2 grid not
+    by a quadric: InvalidInput, never GSL's default handler aborting the interpreter."""
+    z = np.sin(np.arange(64.0))[:, None]  # 64 rows of one point: all at x = 0
+    with pytest.raises(cantact.InvalidInput, match="do not determine a linear fit"):
+        cantact.Profile(z=z, dx=1.0, dy=1.0, E=2.0, sigma_y=1.0, H=2.0)
+    with pytest.raises(cantact.InvalidInput, match="do not determine a quadratic fit"):
+        cantact.Profile(z=np.array([[0.0, 1.0], [2.0, 0.5]]), dx=1.0, dy=1.0, E=2.0,
+                        sigma_y=1.0, H=2.0, detrend="quadratic")
+    # the same grid levelled by its mean only is a surface
+    p = cantact.Profile(z=z, dx=1.0, dy=1.0, E=2.0, sigma_y=1.0, H=2.0, detrend="mean")
+    assert p.stats["Rt"] > 0

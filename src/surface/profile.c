@@ -214,6 +214,29 @@ static void level_terms(const ct_profile *p, const level_frame *L, size_t j, dou
     }
 }
 
+/* 1 when the m x m normal matrix A (row-major, symmetric, positive semi-definite) is well
+ * enough conditioned to solve: its smallest singular value above 1e-10 of its largest. */
+static int level_spanned(const double *A, int m)
+{
+    double copy[36], sv[6], vm[36], work[6];
+    memcpy(copy, A, (size_t)(m * m) * sizeof(double));
+    for (int k = 0; k < m * m; k++)
+        if (!isfinite(copy[k]))
+            return 0;
+    gsl_matrix_view U = gsl_matrix_view_array(copy, (size_t)m, (size_t)m);
+    gsl_matrix_view V = gsl_matrix_view_array(vm, (size_t)m, (size_t)m);
+    gsl_vector_view S = gsl_vector_view_array(sv, (size_t)m);
+    gsl_vector_view W = gsl_vector_view_array(work, (size_t)m);
+    if (gsl_linalg_SV_decomp(&U.matrix, &V.matrix, &S.vector, &W.vector))
+        return 0;
+    double lo = INFINITY, hi = 0.0;
+    for (int k = 0; k < m; k++) {
+        lo = fmin(lo, sv[k]);
+        hi = fmax(hi, sv[k]);
+    }
+    return hi > 0.0 && lo > 1e-10 * hi;
+}
+
 /* The least-squares coefficients of the terms (coef[0..m)), by LU (GSL) on the normal
  * equations. */
 static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, double *coef)
@@ -231,6 +254,17 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
                 A[a * m + c] += f[a] * f[c];
         }
     }
+    /* No input may reach GSL's error handler (its default aborts the process, and changing it
+     * would change process-wide state): the normal matrix's singular values (SVD never
+     * signals rank deficiency) say whether the valid points span the terms before the LU
+     * solve, which would report a singular matrix through that handler. */
+    if (!level_spanned(A, m))
+        return ct_error_set(CT_EINVAL,
+                            "levelling: the valid points do not determine a %s fit (they lie on "
+                            "a line or too few distinct positions): detrend less (surface.detrend "
+                            "= %s)",
+                            how == CT_DETREND_LINEAR ? "linear" : "quadratic",
+                            how == CT_DETREND_LINEAR ? "mean" : "linear or mean");
     gsl_matrix_view Av = gsl_matrix_view_array(A, (size_t)m, (size_t)m);
     gsl_vector_view bv = gsl_vector_view_array(bvec, (size_t)m);
     gsl_vector_view cv = gsl_vector_view_array(coef, (size_t)m);
@@ -238,15 +272,14 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
     int sign;
     if (!perm)
         return ct_error_set(CT_ENOMEM, "levelling: out of memory");
-    /* a singular matrix: LU_decomp succeeds with a zero pivot; the determinant says so
-     * before LU_solve would report it through GSL's process-wide error handler */
-    int g1 = gsl_linalg_LU_decomp(&Av.matrix, perm, &sign);
-    double det = g1 ? 0.0 : gsl_linalg_LU_det(&Av.matrix, sign);
-    int g2 = g1 || det == 0.0 ? 1 : gsl_linalg_LU_solve(&Av.matrix, perm, &bv.vector, &cv.vector);
+    int g = gsl_linalg_LU_decomp(&Av.matrix, perm, &sign);
+    if (!g)
+        g = gsl_linalg_LU_solve(&Av.matrix, perm, &bv.vector, &cv.vector);
     gsl_permutation_free(perm);
-    if (g2)
-        return ct_error_set(CT_EINVAL,
-                            "levelling: the %s fit is singular (the points do not span it)",
+    for (int a = 0; a < m && !g; a++)
+        g = !isfinite(coef[a]);
+    if (g)
+        return ct_error_set(CT_EINVAL, "levelling: the %s fit failed (heights too large?)",
                             how == CT_DETREND_LINEAR ? "linear" : "quadratic");
     return CT_OK;
 }

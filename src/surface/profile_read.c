@@ -215,6 +215,12 @@ static int data_start(text_reader *r)
                             r->path,
                             o->z_unit == 0.0 ? (one_column ? "the heights" : "x and z")
                                              : "x (the spacing)");
+    const double step = o->dx * o->x_unit;
+    if (one_column && !(isfinite(step) && step > 0.0 && isnormal(step)))
+        return ct_error_set(CT_EINVAL,
+                            "%s: the spacing %g in %g m units is %g m: not a number doubles hold "
+                            "(it underflows or overflows)",
+                            r->path, o->dx, o->x_unit, step);
     return CT_OK;
 }
 
@@ -269,6 +275,58 @@ static int text_profile(text_reader *r, ct_profile **out)
     return CT_OK;
 }
 
+/* A line of a text profile is a few numbers or a header: longer is no profile (/dev/zero). */
+#define TEXT_LINE_MAX (1u << 20)
+
+/* The next line of f into *buf (grown as needed, at most TEXT_LINE_MAX bytes), its end (\n,
+ * \r\n or a lone \r) dropped: its length, -1 at the end of the file, -2 when longer than
+ * TEXT_LINE_MAX, -3 on a NUL byte (UTF-16 text or binary data), -4 out of memory. */
+static long text_line(FILE *f, char **buf, size_t *cap)
+{
+    size_t n = 0;
+    int c;
+    while ((c = getc_unlocked(f)) != EOF) {
+        if (c == '\n')
+            break;
+        if (c == '\r') {
+            int d = getc_unlocked(f);
+            if (d != '\n' && d != EOF)
+                ungetc(d, f);
+            break;
+        }
+        if (c == '\0')
+            return -3;
+        if (n + 1 >= TEXT_LINE_MAX)
+            return -2;
+        if (n + 2 > *cap) {
+            size_t grown = *cap ? 2 * *cap : 256;
+            char *b = realloc(*buf, grown);
+            if (!b)
+                return -4;
+            *buf = b;
+            *cap = grown;
+        }
+        (*buf)[n++] = (char)c;
+    }
+    if (c == EOF && n == 0)
+        return -1;
+    if (!*buf && !(*buf = malloc(*cap = 256)))
+        return -4;
+    (*buf)[n] = '\0';
+    return (long)n;
+}
+
+/* 1 when the line starts with a number (after blanks): a data row, never a header, even when
+ * a later field is no number ("0 nan" is a bad row, not the column names). */
+static int starts_with_number(const char *t)
+{
+    while (*t == ' ' || *t == '\t')
+        t++;
+    char *end;
+    (void)strtod(t, &end);
+    return end != t;
+}
+
 static int read_text(const char *path, FILE *f, const ct_profile_read_opts *given, ct_profile **out)
 {
     ct_profile_read_opts opts = *given;
@@ -276,8 +334,25 @@ static int read_text(const char *path, FILE *f, const ct_profile_read_opts *give
     char *line = NULL;
     size_t cap = 0;
     int st = CT_OK;
-    while (getline(&line, &cap, f) >= 0) {
+    long len;
+    while ((len = text_line(f, &line, &cap)) != -1) {
         r.lineno++;
+        if (len < -1) {
+            st = len == -4
+                     ? ct_error_set(CT_ENOMEM, "%s: out of memory at line %ld", path, r.lineno)
+                 : len == -3
+                     ? ct_error_set(CT_EINVAL,
+                                    "%s:%ld: a NUL byte: not a text profile (UTF-16 text? save "
+                                    "it as UTF-8 or ASCII)",
+                                    path, r.lineno)
+                     : ct_error_set(CT_EINVAL,
+                                    "%s:%ld: a line longer than %u bytes: not a text "
+                                    "profile",
+                                    path, r.lineno, TEXT_LINE_MAX);
+            break;
+        }
+        if (r.lineno == 1 && !strncmp(line, "\xEF\xBB\xBF", 3)) /* a UTF-8 byte-order mark */
+            memmove(line, line + 3, strlen(line + 3) + 1);
         if (is_blank_or_comment(line))
             continue;
         strip_comment(line);
@@ -288,7 +363,7 @@ static int read_text(const char *path, FILE *f, const ct_profile_read_opts *give
             r.dektak = 1; /* a Dektak export: its header block runs to "Scan Data" */
         double v[3];
         int n = row_numbers(line, v, 3);
-        if (r.in_header && n < 0) {
+        if (r.in_header && n < 0 && !starts_with_number(t)) {
             if ((st = header_line(&r, line)))
                 break;
             continue;
