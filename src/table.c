@@ -206,6 +206,22 @@ int ct_table_from_nodes(ct_table **out, size_t n, const double *V_star, const do
     }
     t->rule = rule;
     t->info.V_star_crit = V_star_crit;
+    /* what a monotone cubic promises, by the rule the file reader applies (cantact_table.h) */
+    ct_tab view = {.n = n,
+                   .V_star = t->V,
+                   .ln_V_star = t->x,
+                   .e = t->e,
+                   .slope = t->d,
+                   .rule = rule == CT_INTERP_LINEAR ? CT_TAB_LINEAR : CT_TAB_MONOTONE_CUBIC,
+                   .V_star_crit = V_star_crit};
+    size_t bad;
+    if (ct_tab_check_slopes(&view, &bad)) {
+        ct_table_free(t);
+        return ct_error_set(CT_EINVAL,
+                            "table: nodes %zu and %zu: slopes %g and %g are not those of a "
+                            "monotone cubic between e = %g and %g (a corrupted or foreign table)",
+                            bad + 1, bad + 2, slope[bad], slope[bad + 1], e[bad], e[bad + 1]);
+    }
     *out = t;
     return CT_OK;
 }

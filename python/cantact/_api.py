@@ -533,10 +533,15 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
 def read_table(path):
     """A table written by `cantact table` (the format include/cantact_table.h reads), as a
     Table evaluated by the library: the same numbers as the C reader's."""
+    name = chk.path("path", path).decode(errors="replace")  # a file name, never a descriptor
     keys = {}
     rows = []
     header = False
-    with open(path, encoding="utf-8") as f:
+    try:
+        f = open(chk.path("path", path), encoding="utf-8")
+    except OSError as exc:
+        raise error(lib.CT_EIO, f"{name}: cannot open: {exc.strerror}") from None
+    with f:
         for lineno, line in enumerate(f, 1):
             if line.startswith("#"):
                 if "=" in line:
@@ -545,7 +550,7 @@ def read_table(path):
                 continue
             if not header:
                 if not line.startswith("V_star,e,de_dlnV_star"):
-                    raise invalid(f"{path}:{lineno}: expected the header V_star,e,de_dlnV_star")
+                    raise invalid(f"{name}:{lineno}: expected the header V_star,e,de_dlnV_star")
                 header = True
                 continue
             if not line.strip():
@@ -556,15 +561,15 @@ def read_table(path):
                     raise ValueError
                 rows.append([float(x) for x in fields])
             except ValueError:
-                raise invalid(f"{path}:{lineno}: expected three numbers V_star,e,de_dlnV_star")
+                raise invalid(f"{name}:{lineno}: expected three numbers V_star,e,de_dlnV_star")
     if "interpolation" not in keys or "V_star_crit" not in keys:
-        raise invalid(f"{path}: missing # interpolation = ... or # V_star_crit = ... (not a "
+        raise invalid(f"{name}: missing # interpolation = ... or # V_star_crit = ... (not a "
                       "cantact table)")
     rule = chk.choice("interpolation", keys["interpolation"], INTERPOLATIONS)
     try:
         Vc = float(keys["V_star_crit"])
     except ValueError:
-        raise invalid(f"{path}: V_star_crit = {keys['V_star_crit']!r}: not a number")
+        raise invalid(f"{name}: V_star_crit = {keys['V_star_crit']!r}: not a number")
     a = np.array(rows, dtype=np.float64).reshape(-1, 3)
     V, e, d = (np.ascontiguousarray(a[:, k]) for k in range(3))
     out = ffi.new("ct_table **")

@@ -59,3 +59,32 @@ def test_max_nodes_refused():
     with pytest.raises(cantact.NoConvergence) as exc:
         cantact.table(s, V_star=(1e-5, 1e-2), tolerance=1e-9, max_nodes=50)
     assert "max_nodes = 50" in exc.value.message
+
+
+def test_read_table_refuses_what_is_no_table(tmp_path):
+    """A file name only (never a descriptor), IOFailure for a missing file as the library
+    gives it, and the slopes of a monotone cubic checked as include/cantact_table.h does."""
+    with pytest.raises(cantact.InvalidInput, match="path = 42: must be a path"):
+        cantact.read_table(42)
+    with pytest.raises(cantact.IOFailure, match="cannot open"):
+        cantact.read_table(tmp_path / "none.csv")
+    rods = cantact.Rods([0.0, 0.5], [1.0, 1.0], E=10.0, Hstar=2.0, l0=1.0, h0=1.0)
+    t = cantact.table(rods, V_star=(0.05, 0.5), tolerance=1e-6)
+
+    def write(path, slope):
+        with open(path, "w") as f:
+            f.write("# interpolation = monotone_cubic\n# V_star_crit = %.17g\n" % t.V_star_crit)
+            f.write("V_star,e,de_dlnV_star\n")
+            for V, e, d in zip(t.V_star, t.e, slope):
+                f.write("%.17g,%.17g,%.17g\n" % (V, e, d))
+
+    write(tmp_path / "t.csv", t.slope)
+    back = cantact.read_table(tmp_path / "t.csv")
+    assert back(t.V_star).tobytes() == t(t.V_star).tobytes()
+    k = int(np.flatnonzero((t.V_star > t.V_star_crit) & (t.slope != 0))[0])
+    for bad in (-500.0, 1e300):
+        slope = t.slope.copy()
+        slope[k] = bad
+        write(tmp_path / "bad.csv", slope)
+        with pytest.raises(cantact.InvalidInput, match="not those of a monotone cubic"):
+            cantact.read_table(tmp_path / "bad.csv")
