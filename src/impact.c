@@ -211,7 +211,12 @@ int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result 
      * not restitution. */
     double kappa = fabs(u) / (u - res->u_contact);
     double kappa_unload = fabs(u) / (u - res->u_release);
+    /* and u_max itself is known to an ulp or so: where a stiff rod has just touched, P(u_max)
+     * is large and one ulp of u moves W_unload (and W_load) by P ulp(u), which the intervals
+     * above do not see */
+    double kappa_force = P_max > 0.0 ? P_max * fabs(u) / res->W_unload : 0.0;
     kappa = kappa > kappa_unload ? kappa : kappa_unload;
+    kappa = kappa > kappa_force ? kappa : kappa_force;
     res->e_rounding = 64.0 * DBL_EPSILON * (kappa > 1.0 ? kappa : 1.0);
     if (res->e > 1.0 && res->e <= 1.0 + res->e_rounding)
         res->e = 1.0;

@@ -272,8 +272,11 @@ static void rods_row(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *r
                          "resolution of u near %.17g: this impact is too weak to resolve on rods "
                          "this stiff (raise V*)",
                          u - u0, u0);
-    else if ((r->status = ct_impact_finish(P, &s->opts, res)) == CT_OK)
+    else {
+        /* the release point first: the rounding bound of e reads it */
         res->u_release = res->elastic ? u0 : ct_bundle_release(b, u);
+        r->status = ct_impact_finish(P, &s->opts, res);
+    }
     if (r->status == CT_OK)
         r->message[0] = '\0';
     else

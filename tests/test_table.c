@@ -439,7 +439,9 @@ static void default_cantor(void **state)
 static void rule_from_the_basis(void **state)
 {
     (void)state;
-    double V[4] = {0.5, 1.0, 3.0, 4.0}, e[4] = {1.0, 0.8, 0.3, 0.35}, d[4] = {0.0, -0.4, 0.2, 0.1};
+    /* slopes a monotone cubic allows (the reader refuses others): of each secant's sign, at
+     * most three secants, 0 at the extremum at V* = 3 */
+    double V[4] = {0.5, 1.0, 3.0, 4.0}, e[4] = {1.0, 0.8, 0.3, 0.35}, d[4] = {0.0, -0.4, 0.0, 0.1};
     for (int rule = 0; rule < 2; rule++) {
         ct_table *t;
         assert_int_equal(ct_table_from_nodes(&t, 4, V, e, d, (ct_interp)rule, 0.25), CT_OK);
