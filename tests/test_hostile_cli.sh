@@ -159,6 +159,9 @@ wave = lambda i, j: 1e-7 * math.sin(1.7 * i + 2.3 * j + 0.1 * i * j)
 x3p("col.x3p", 1, 64, [wave(0, j) for j in range(64)])
 x3p("row3.x3p", 3, 1, [wave(i, 0) for i in range(3)])
 x3p("two.x3p", 2, 2, [wave(i, j) for j in range(2) for i in range(2)])
+with zipfile.ZipFile("%s/bz2.x3p" % d, "w", zipfile.ZIP_BZIP2) as f:  # 7. not deflate
+    f.writestr("main.xml", "<x/>" + " " * 100000)
+    f.writestr("bindata/data.bin", bytes(1000000))
 n = 64  # a 64 x 64 grid whose mask keeps its first column only (bit i of byte k: point 8k + i)
 x3p("onecol.x3p", n, n, [wave(i, j) for j in range(n) for i in range(n)],
     mask=[1 if (8 * k) % n == 0 else 0 for k in range(n * n // 8)])
@@ -167,6 +170,8 @@ for f in col.x3p onecol.x3p; do
     refused "fit of $f (a linear levelling of collinear points)" "do not determine a linear fit" -- \
         "$ct" fit "$tmp/$f"
 done
+refused "a bzip2 X3P (its expansion unbounded)" "compressed with zip method 12" -- \
+    "$ct" fit "$tmp/bz2.x3p"
 refused "fit of a 2 x 2 grid, quadratic" "do not determine a quadratic fit" -- \
     "$ct" fit "$tmp/two.x3p" --detrend quadratic
 "$ct" fit "$tmp/row3.x3p" >/dev/null 2>"$tmp/err"

@@ -518,9 +518,10 @@ static int x3p_number(const char *path, xmlNode *root, const char *a, const char
 }
 
 /* Reads a whole zip entry into memory (*size bytes); CT_EINVAL naming it when absent, when
- * it holds more than max bytes, or when its stated size cannot come from its compressed size
- * (deflate expands at most 1032:1; a stored entry not at all): a forged size is refused
- * before anything is allocated for it. */
+ * it holds more than max bytes, when it is compressed otherwise than stored or deflated, or
+ * when its stated size cannot come from its compressed size (deflate expands at most 1032:1;
+ * a stored entry not at all): a forged size is refused before anything is allocated for it,
+ * and nothing expands beyond what its compressed bytes allow. */
 static int zip_entry(const char *path, zip_t *z, const char *name, zip_uint64_t max, char **data,
                      zip_uint64_t *size)
 {
@@ -533,9 +534,18 @@ static int zip_entry(const char *path, zip_t *z, const char *name, zip_uint64_t 
                             "%s: X3P entry %s holds %llu bytes: more than the %llu it may "
                             "hold",
                             path, name, (unsigned long long)zs.size, (unsigned long long)max);
-    if ((zs.valid & ZIP_STAT_COMP_SIZE) && (zs.valid & ZIP_STAT_COMP_METHOD) &&
-        ((zs.comp_method == ZIP_CM_STORE && zs.size != zs.comp_size) ||
-         (zs.comp_method == ZIP_CM_DEFLATE && zs.size / 1032 > zs.comp_size + 1)))
+    /* only what an X3P file is written with, whose expansion is bounded: stored or deflated
+     * (bzip2, xz, zstd... expand by factors no stated size can be checked against) */
+    if (!(zs.valid & ZIP_STAT_COMP_METHOD) ||
+        (zs.comp_method != ZIP_CM_STORE && zs.comp_method != ZIP_CM_DEFLATE))
+        return ct_error_set(CT_EINVAL,
+                            "%s: X3P entry %s is compressed with zip method %d: X3P files are "
+                            "stored or deflated (method 0 or 8)",
+                            path, name,
+                            (zs.valid & ZIP_STAT_COMP_METHOD) ? (int)zs.comp_method : -1);
+    if (!(zs.valid & ZIP_STAT_COMP_SIZE) ||
+        (zs.comp_method == ZIP_CM_STORE && zs.size != zs.comp_size) ||
+        (zs.comp_method == ZIP_CM_DEFLATE && zs.size / 1032 > zs.comp_size + 1))
         return ct_error_set(CT_EINVAL,
                             "%s: X3P entry %s states %llu bytes from %llu compressed: a corrupt "
                             "zip",
