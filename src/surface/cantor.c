@@ -452,27 +452,18 @@ int ct_cantor_choose_depth(const ct_params *p, long setting, double V_min, doubl
 /* ---- the kind (src/surface/kind.h): keys, checks, rods, and the outputs only it gives ---- */
 
 typedef struct {
-    double fx, fz, H, h0, l0; /* [surface] */
-    long depth;               /* >= 0, CT_DEPTH_AUTO, CT_DEPTH_FRACTAL */
-    int representation;       /* ct_representation */
-    double E, sigma_y;        /* [material] */
-    ct_params params;         /* computed: dimensionless (l0 = h0 = sigma_y = 1) */
-    ct_params physical;       /* as given */
+    ct_cantor_keys k;   /* fx, fz, H, h0, l0; E, sigma_y */
+    long depth;         /* >= 0, CT_DEPTH_AUTO, CT_DEPTH_FRACTAL */
+    int representation; /* ct_representation */
+    ct_params params;   /* computed: dimensionless (l0 = h0 = sigma_y = 1) */
+    ct_params physical; /* as given */
 } cantor_config;
 
 #define AT(field) offsetof(cantor_config, field)
 static const ct_key cantor_keys[] = {
-    {"surface", "fx", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL, "must satisfy fx > 1",
-     "", "horizontal ratio: stage n keeps 1/fx of stage n-1's length", AT(fx)},
-    {"surface", "fz", CT_KEY_NUMBER, 1.0, 2.0, CT_KEY_REQUIRED, NULL, "must satisfy 1 < fz < 2", "",
-     "vertical ratio: the recess depth shrinks by 1/fz per stage", AT(fz)},
-    {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL,
-     "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)", "",
-     "Winkler layer thickness H* in units of h0", AT(H)},
-    {"surface", "h0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
-     "recess depth of stage 0 [length] (a scale: results are per h0)", AT(h0)},
-    {"surface", "l0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
-     "length of stage 0 [length] (a scale: results are per l0)", AT(l0)},
+    CT_CANTOR_SURFACE_ROWS(cantor_config, k,
+                           "horizontal ratio: stage n keeps 1/fx of stage n-1's length",
+                           "vertical ratio: the recess depth shrinks by 1/fz per stage"),
     {"surface", "depth", CT_KEY_DEPTH, 0.0, CT_MAX_STAGES_DEPTH, 0, "auto|fractal",
      "must satisfy 0 <= depth <= 100000000", "auto",
      "prefractal depth N; auto: truncation bound below solver.depth_tolerance; fractal: the "
@@ -481,45 +472,56 @@ static const ct_key cantor_keys[] = {
     {"surface", "representation", CT_KEY_WORD, 0, 0, 0, "stages|segments",
      "must be stages or segments", "stages",
      "one rod per stage (pieces merged, exact) or one per piece (depth <= 40)", AT(representation)},
-    {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
-     "Young's modulus (only E/sigma_y matters)", AT(E)},
-    {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
-     "yield stress", AT(sigma_y)},
+    CT_CANTOR_MATERIAL_ROWS(cantor_config, k),
 };
 #undef AT
+
+void ct_cantor_keys_defaults(ct_cantor_keys *k)
+{
+    k->h0 = k->l0 = k->sigma_y = 1.0;
+}
+
+int ct_cantor_keys_check(ct_surface *s, const ct_cantor_keys *k, const char *scene,
+                         ct_params *physical, ct_params *params)
+{
+    int st;
+    if (!(k->E > k->sigma_y))
+        return ct_surface_key_error(s, "material", "E", CT_EINVAL,
+                                    "must be > sigma_y (yield strain sigma_y/E < 1)");
+    *physical = (ct_params){.fx = k->fx,
+                            .fz = k->fz,
+                            .l0 = k->l0,
+                            .h0 = k->h0,
+                            .Hstar = k->H * k->h0,
+                            .E = k->E,
+                            .sigma_y = k->sigma_y};
+    if ((st = ct_params_validate(physical)))
+        return ct_error_set(st, "%s: %s", scene, ct_error_message());
+    *params = *physical;
+    params->Hstar = physical->Hstar / physical->h0;
+    params->E = physical->E / physical->sigma_y;
+    params->l0 = params->h0 = params->sigma_y = 1.0;
+    if ((st = ct_params_validate(params)))
+        return ct_error_set(st, "%s: %s", scene, ct_error_message());
+    return CT_OK;
+}
 
 static void cantor_defaults(void *config)
 {
     cantor_config *c = config;
-    c->h0 = c->l0 = c->sigma_y = 1.0;
+    ct_cantor_keys_defaults(&c->k);
     c->depth = CT_DEPTH_AUTO;
     c->representation = CT_REP_STAGES;
 }
 
-/* E > sigma_y, the parameters valid as given and in the dimensionless form the model is
- * computed in (E/sigma_y times H* / h0 may overflow). */
+/* The shared keys (E/sigma_y times H* / h0 may overflow, so both forms are validated), then
+ * the representation's depth. */
 static int cantor_check(ct_surface *s, const char *scene)
 {
     cantor_config *c = s->config;
-    int st;
-    if (!(c->E > c->sigma_y))
-        return ct_surface_key_error(s, "material", "E", CT_EINVAL,
-                                    "must be > sigma_y (yield strain sigma_y/E < 1)");
-    c->physical = (ct_params){.fx = c->fx,
-                              .fz = c->fz,
-                              .l0 = c->l0,
-                              .h0 = c->h0,
-                              .Hstar = c->H * c->h0,
-                              .E = c->E,
-                              .sigma_y = c->sigma_y};
-    if ((st = ct_params_validate(&c->physical)))
-        return ct_error_set(st, "%s: %s", scene, ct_error_message());
-    c->params = c->physical;
-    c->params.Hstar = c->physical.Hstar / c->physical.h0;
-    c->params.E = c->physical.E / c->physical.sigma_y;
-    c->params.l0 = c->params.h0 = c->params.sigma_y = 1.0;
-    if ((st = ct_params_validate(&c->params)))
-        return ct_error_set(st, "%s: %s", scene, ct_error_message());
+    int st = ct_cantor_keys_check(s, &c->k, scene, &c->physical, &c->params);
+    if (st)
+        return st;
     if (c->representation == CT_REP_SEGMENTS) {
         if (c->depth < 0) {
             size_t k;

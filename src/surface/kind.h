@@ -68,6 +68,42 @@ struct ct_kind {
     int (*write_fit)(ct_surface *s, FILE *f);
 };
 
+/* What both Cantor kinds take: the ratios (a random surface's centres), H (H* in units of
+ * h0), the scales and the material; a kind's config holds it as a member, and its rows come
+ * from the macros below. */
+typedef struct {
+    double fx, fz, H, h0, l0; /* [surface] */
+    double E, sigma_y;        /* [material] */
+} ct_cantor_keys;
+
+/* clang-format off */
+#define CT_CANTOR_SURFACE_ROWS(type, m, fx_doc, fz_doc)                                            \
+    {"surface", "fx", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL,                         \
+     "must satisfy fx > 1", "", fx_doc, offsetof(type, m.fx)},                                     \
+    {"surface", "fz", CT_KEY_NUMBER, 1.0, 2.0, CT_KEY_REQUIRED, NULL,                              \
+     "must satisfy 1 < fz < 2", "", fz_doc, offsetof(type, m.fz)},                                 \
+    {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL,                          \
+     "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)", "",                          \
+     "Winkler layer thickness H* in units of h0", offsetof(type, m.H)},                            \
+    {"surface", "h0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",                   \
+     "recess depth of stage 0 [length] (a scale: results are per h0)", offsetof(type, m.h0)},      \
+    {"surface", "l0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",                   \
+     "length of stage 0 [length] (a scale: results are per l0)", offsetof(type, m.l0)}
+#define CT_CANTOR_MATERIAL_ROWS(type, m)                                                           \
+    {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",      \
+     "Young's modulus (only E/sigma_y matters)", offsetof(type, m.E)},                             \
+    {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",             \
+     "yield stress", offsetof(type, m.sigma_y)}
+/* clang-format on */
+
+/* h0 = l0 = sigma_y = 1 (the keys' defaults). */
+void ct_cantor_keys_defaults(ct_cantor_keys *k);
+/* E > sigma_y; the parameters as given (physical) and in the dimensionless form the model is
+ * computed in (params: l0 = h0 = sigma_y = 1, H* = H, E = E/sigma_y), both validated; scene
+ * names the scene in messages. */
+int ct_cantor_keys_check(ct_surface *s, const ct_cantor_keys *k, const char *scene,
+                         ct_params *physical, ct_params *params);
+
 extern const ct_kind ct_kind_cantor, ct_kind_random_cantor, ct_kind_profile, ct_kind_rods;
 
 /* The row of section.name among the kind's keys, its index in *k. */

@@ -458,29 +458,19 @@ int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t r
 /* ---- the kind (src/surface/kind.h) ---- */
 
 typedef struct {
-    double fx, fz, H, h0, l0; /* [surface]: fx, fz the centres of the ratio distributions */
+    ct_cantor_keys k; /* fx, fz (the centres of the ratio distributions), H, h0, l0; E, sigma_y */
     long depth;
     int distribution; /* ct_ratio_dist */
     double fx_spread, fz_spread;
     uint64_t seed, realisation;
-    double E, sigma_y;   /* [material] */
     ct_random_cantor rc; /* computed: dimensionless (l0 = h0 = sigma_y = 1) */
     ct_params physical;  /* as given */
 } random_config;
 
 #define AT(field) offsetof(random_config, field)
 static const ct_key random_keys[] = {
-    {"surface", "fx", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL, "must satisfy fx > 1",
-     "", "centre of the width ratios fx_k", AT(fx)},
-    {"surface", "fz", CT_KEY_NUMBER, 1.0, 2.0, CT_KEY_REQUIRED, NULL, "must satisfy 1 < fz < 2", "",
-     "centre of the depth ratios fz_k", AT(fz)},
-    {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, CT_KEY_REQUIRED, NULL,
-     "H = H*/h0 must satisfy H > 1 (the stage-0 rod needs a length)", "",
-     "Winkler layer thickness H* in units of h0", AT(H)},
-    {"surface", "h0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
-     "recess depth of stage 0 [length]", AT(h0)},
-    {"surface", "l0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
-     "length of stage 0 [length]", AT(l0)},
+    CT_CANTOR_SURFACE_ROWS(random_config, k, "centre of the width ratios fx_k",
+                           "centre of the depth ratios fz_k"),
     {"surface", "depth", CT_KEY_INTEGER, 0.0, CT_MAX_RANDOM_DEPTH, CT_KEY_REQUIRED, NULL,
      "type = random_cantor needs an integer 0 <= depth <= 30", "",
      "stages 0..depth, every piece its own rod (2^(depth+1) - 1 rods)", AT(depth)},
@@ -497,17 +487,14 @@ static const ct_key random_keys[] = {
      "the generator's key with the realisation (Philox4x64)", AT(seed)},
     {"surface", "realisation", CT_KEY_COUNT, 0, 0, 0, NULL, "must be an integer 0 <= n < 2^64", "0",
      "the one realisation of a run without [ensemble]", AT(realisation)},
-    {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
-     "Young's modulus (only E/sigma_y matters)", AT(E)},
-    {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
-     "yield stress", AT(sigma_y)},
+    CT_CANTOR_MATERIAL_ROWS(random_config, k),
 };
 #undef AT
 
 static void random_defaults(void *config)
 {
     random_config *c = config;
-    c->h0 = c->l0 = c->sigma_y = 1.0;
+    ct_cantor_keys_defaults(&c->k);
     c->distribution = CT_RATIO_LOGNORMAL;
 }
 
@@ -523,22 +510,9 @@ static int random_check(ct_surface *s, const char *scene)
     for (int k = 0; k < 2; k++)
         if (!(v[k] >= 0.0) || (uniform ? !(v[k] < 1.0) : !(v[k] <= 10.0)))
             return ct_surface_key_error(s, "surface", keys[k], CT_EINVAL, "%s", range);
-    if (!(c->E > c->sigma_y))
-        return ct_surface_key_error(s, "material", "E", CT_EINVAL,
-                                    "must be > sigma_y (yield strain sigma_y/E < 1)");
-    c->physical = (ct_params){.fx = c->fx,
-                              .fz = c->fz,
-                              .l0 = c->l0,
-                              .h0 = c->h0,
-                              .Hstar = c->H * c->h0,
-                              .E = c->E,
-                              .sigma_y = c->sigma_y};
-    if ((st = ct_params_validate(&c->physical)))
-        return ct_error_set(st, "%s: %s", scene, ct_error_message());
-    ct_params p = c->physical;
-    p.Hstar = c->physical.Hstar / c->physical.h0;
-    p.E = c->physical.E / c->physical.sigma_y;
-    p.l0 = p.h0 = p.sigma_y = 1.0;
+    ct_params p;
+    if ((st = ct_cantor_keys_check(s, &c->k, scene, &c->physical, &p)))
+        return st;
     c->rc = (ct_random_cantor){.params = p,
                                .dist = (ct_ratio_dist)c->distribution,
                                .fx_spread = c->fx_spread,
