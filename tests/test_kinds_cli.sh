@@ -14,15 +14,7 @@ ct=$1
 src=$(cd "$2" && pwd)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-failn=0
-ok() { pass=$((pass + 1)); }
-# CT_FAIL_FAST (set by the mutation check): stop at the first failed check
-bad() {
-    failn=$((failn + 1))
-    echo "FAIL: $*"
-    [ -z "${CT_FAIL_FAST:-}" ] || exit 1
-}
+source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
 # near WHAT GOT WANT [REL]: |got - want| <= rel |want| (default 1e-12)
 near() {
     awk -v g="$2" -v w="$3" -v r="${4:-1e-12}" 'BEGIN { d = g - w; if (d < 0) d = -d;

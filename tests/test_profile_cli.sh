@@ -12,15 +12,7 @@ src=$(cd "$2" && pwd)
 py=/usr/bin/python3
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-failn=0
-ok() { pass=$((pass + 1)); }
-# CT_FAIL_FAST (set by the mutation check): stop at the first failed check
-bad() {
-    failn=$((failn + 1))
-    echo "FAIL: $*"
-    [ -z "${CT_FAIL_FAST:-}" ] || exit 1
-}
+source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
 
 # expect CODE DESCRIPTION -- command...
 expect() {
