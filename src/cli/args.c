@@ -152,6 +152,20 @@ void ct_cli_notes(ct_surface *s, int quiet)
         ct_surface_note_clear(s);
 }
 
+char *ct_cli_derived_path(const char *path, const char *tag)
+{
+    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
+    size_t n = strlen(path);
+    char *out = malloc(n + strlen(tag) + 2);
+    if (!out)
+        return NULL;
+    if (dot && (!slash || dot > slash) && dot != path)
+        sprintf(out, "%.*s_%s%s", (int)(dot - path), path, tag, dot);
+    else
+        sprintf(out, "%s_%s", path, tag);
+    return out;
+}
+
 int ct_cli_outputs_not_inputs(const ct_scene *sc, const char *const *outputs, size_t n,
                               const char *const *extra, size_t nextra)
 {

@@ -49,6 +49,9 @@ int ct_cli_status_exit(int st);
 
 /* Prints the surface's notes (one line each, "cantact: " first) unless quiet, and clears them. */
 void ct_cli_notes(ct_surface *s, int quiet);
+/* FILE_tag.ext beside FILE.ext (FILE_tag without an extension), where a run writes its
+ * outputs beyond the first; malloc'ed, NULL when out of memory. */
+char *ct_cli_derived_path(const char *path, const char *tag);
 /* The one check of every subcommand before it computes anything: no output (outputs, n of
  * them, derived ones included) may be one of the run's inputs (the scene and the surface's
  * files in sc, when not NULL, and extra, e.g. merge's parts). EXIT_USAGE with one line naming

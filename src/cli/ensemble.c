@@ -222,20 +222,6 @@ static int deterministic_e(const ct_scene *sc, double *e_det)
     return st;
 }
 
-static char *derived_path(const char *path, const char *tag)
-{
-    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
-    size_t n = strlen(path);
-    char *out = malloc(n + strlen(tag) + 2);
-    if (!out)
-        return NULL;
-    if (dot && (!slash || dot > slash) && dot != path)
-        sprintf(out, "%.*s_%s%s", (int)(dot - path), path, tag, dot);
-    else
-        sprintf(out, "%s_%s", path, tag);
-    return out;
-}
-
 /* The outputs of an ensemble: the statistics (FILE) and the samples (FILE, or
  * FILE_realisations when both are written). */
 typedef struct {
@@ -257,7 +243,7 @@ static int open_outputs(outputs *o, const ct_scene *sc, unsigned what, const cha
         return -1;
     }
     if (what & CT_OUT_REALISATIONS) {
-        o->real_path = both ? derived_path(sc->output, "realisations") : strdup(sc->output);
+        o->real_path = both ? ct_cli_derived_path(sc->output, "realisations") : strdup(sc->output);
         if (!o->real_path) {
             snprintf(err, errlen, "out of memory");
             return -1;

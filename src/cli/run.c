@@ -40,20 +40,6 @@ static const struct {
                     {CT_OUT_BEARING, "bearing"}};
 #define NOUTPUTS (sizeof output_kinds / sizeof output_kinds[0])
 
-static char *derived_path(const char *path, const char *tag)
-{
-    const char *slash = strrchr(path, '/'), *dot = strrchr(path, '.');
-    size_t n = strlen(path);
-    char *out = malloc(n + strlen(tag) + 2);
-    if (!out)
-        return NULL;
-    if (dot && (!slash || dot > slash) && dot != path)
-        sprintf(out, "%.*s_%s%s", (int)(dot - path), path, tag, dot);
-    else
-        sprintf(out, "%s_%s", path, tag);
-    return out;
-}
-
 static FILE *output_file(output_list *l, unsigned bit)
 {
     for (size_t k = 0; k < l->n; k++)
@@ -82,8 +68,8 @@ static int open_outputs(output_list *l, const ct_scene *sc, char *err, size_t er
         run_output *o = &l->o[l->n++];
         o->bit = output_kinds[k].bit;
         o->tag = output_kinds[k].tag;
-        o->path =
-            items > 1 && o->bit != CT_OUT_E ? derived_path(sc->output, o->tag) : strdup(sc->output);
+        o->path = items > 1 && o->bit != CT_OUT_E ? ct_cli_derived_path(sc->output, o->tag)
+                                                  : strdup(sc->output);
         if (!o->path) {
             snprintf(err, errlen, "out of memory");
             return -1;
