@@ -544,9 +544,11 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
         else
             hi = mid;
     }
-    /* W_j + P_j t + k t^2 / 2 = W: t = 2R / (P_j + sqrt(P_j^2 + 2 k R)), no cancellation */
+    /* W_j + P_j t + k t^2 / 2 = W: t = 2R / (P_j + sqrt(P_j^2 + 2 k R)), no cancellation.
+     * The root as hypot(P_j, sqrt(2R) sqrt(k)): P_j^2 and k R underflow on deep Cantor tips
+     * at tiny speeds (P ~ 1e-206 at V* = 1e-130) where the energies themselves do not. */
     const double R = W - c->W[lo], P = c->P[lo], k = c->slope[lo];
-    const double disc = P * P + 2.0 * k * R, den = P + sqrt(disc > 0.0 ? disc : 0.0);
+    const double den = P + hypot(P, sqrt(2.0 * (R > 0.0 ? R : 0.0)) * sqrt(k > 0.0 ? k : 0.0));
     double t = den > 0.0 ? 2.0 * R / den : 0.0;
     if (hi < c->n && t > c->x[hi] - c->x[lo])
         t = c->x[hi] - c->x[lo];

@@ -661,6 +661,10 @@ static size_t pc_piece(const pcurve *c, double u)
     return lo;
 }
 
+/* Below this kinetic energy the moments are summed in units of it: W^2 of the first pieces
+ * (at most (1e-5 W_kin)^2) then stays far above the smallest double. */
+#define CT_TINY_ENERGY 1e-100
+
 /* Time from A's first point (work 0, speed sqrt(2 W_kin / m)) to where the work reaches
  * W_kin; beyond endA the path goes on along B with its work shifted by dW (B NULL: A goes
  * on). While the work is below 1e-5 W_kin the speed is v0 (1 - W / W_kin)^(-1/2), whose
@@ -680,19 +684,26 @@ static double walk(const pcurve *A, double endA, const pcurve *B, double dW, dou
             hi = mid;
     }
     size_t i = lo;
-    double M1 = 0.0, M2 = 0.0;
-    if (A->M1[0] < 0.0) { /* moments not kept: the prefix's own pieces */
+    double t;
+    if (A->M1[0] < 0.0 || W_kin < CT_TINY_ENERGY) {
+        /* moments not kept, or an energy so small that W^2 underflows (M2 / W_kin^2 = 0 / 0
+         * at V* ~ 1e-85): the prefix's own pieces, in units of W_kin when it is tiny */
+        const double s = W_kin < CT_TINY_ENERGY ? 1.0 / W_kin : 1.0;
+        double M1 = 0.0, M2 = 0.0;
         for (size_t q = 0; q < i; q++) {
-            const double d = A->x[q + 1] - A->x[q], a = A->W[q], b = A->P[q], k = A->k[q];
+            const double d = A->x[q + 1] - A->x[q], a = A->W[q] * s, b = A->P[q] * s,
+                         k = A->k[q] * s;
             M1 += d * (a + d * (0.5 * b + d * k / 6.0));
             M2 += d * (a * a + d * (a * b + d * ((b * b + a * k) / 3.0 +
                                                  d * (0.25 * b * k + d * k * k / 20.0))));
         }
+        const double W1 = W_kin * s;
+        t = (A->x[i] - A->x[0] + M1 / (2.0 * W1) + 3.0 * M2 / (8.0 * W1 * W1)) / v0;
     } else {
-        M1 = A->M1[i];
-        M2 = A->M2[i];
+        t = (A->x[i] - A->x[0] + A->M1[i] / (2.0 * W_kin) +
+             3.0 * A->M2[i] / (8.0 * W_kin * W_kin)) /
+            v0;
     }
-    double t = (A->x[i] - A->x[0] + M1 / (2.0 * W_kin) + 3.0 * M2 / (8.0 * W_kin * W_kin)) / v0;
     const pcurve *C = A;
     double end = B ? endA : INFINITY, off = 0.0, km = 0.0;
     double x = A->x[i], P = A->P[i], k = A->k[i], W = A->W[i];

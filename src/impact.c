@@ -29,6 +29,17 @@ int ct_critical_energy(const ct_bundle *b, double *energy, double *u_yield)
     return CT_OK;
 }
 
+int ct_energy_check(double W, double V_star)
+{
+    if (isfinite(W) && W >= DBL_MIN)
+        return CT_OK;
+    return ct_error_set(CT_EINVAL,
+                        "V* = %g gives the impact energy V*^2 l0 E h0 = %g: not a finite number "
+                        "of at least %g, the smallest normal double (below it the impact is "
+                        "elastic, e = 1, but not computable)",
+                        V_star, W, DBL_MIN);
+}
+
 static int crushed(double W, double Hstar)
 {
     return ct_error_set(CT_ERANGE,
@@ -128,8 +139,8 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
 {
     int st;
     const double scale = L->l0 * L->E * L->h0;
-    if (!isfinite(W) || !(W > 0.0))
-        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and > 0", W);
+    if ((st = ct_energy_check(W, sqrt(W / scale))))
+        return st;
     if (!ct_quad_rule_name(opts->rule))
         return ct_error_set(CT_EINVAL, "quadrature rule %d: unknown", (int)opts->rule);
     if (!(opts->tolerance > 0.0 && opts->tolerance < 1.0))

@@ -167,6 +167,9 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
 /* e, e_rounding and, when W_load_closed is set, the closed forms' check (P_max: the force at
  * u_max, for the rounding floor of the u_max solve) and e_closed. */
 int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result *res);
+/* CT_OK for an impact energy the solver can use: finite and a normal double (a subnormal W
+ * has lost its digits, and 1/W overflows); CT_EINVAL naming V* otherwise. */
+int ct_energy_check(double W, double V_star);
 /* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
  * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
  * energy at u1[i] (bitwise ct_bundle_work and ct_bundle_elastic_energy of that state) and,

@@ -230,8 +230,29 @@ static int rods_bracket(const ct_bundle *b, size_t m, const double *U, const dou
     g[GRID - 1] = Hstar;
     if ((st = ct_bundle_closed_many(b, ws->adv, ws->a0, g, GRID, gW, gWu, gP)))
         return st;
+    int below = 0; /* a speed whose root lies left of the grid's first point */
     for (size_t j = 0; j < m; j++)
-        if (U[j] == -INFINITY)
+        if (U[j] == -INFINITY) {
+            for (int k = 0; k < GRID; k++)
+                if (gW[k] > W[j]) {
+                    ws->u[j] = g[k];
+                    break;
+                }
+            below |= !(W[j] >= gW[0]);
+        }
+    if (!below)
+        return CT_OK;
+    /* Far below V*_c on a deep tip (V* ~ 1e-130: u_max ~ 1e-73) Newton would halve its way
+     * down from the grid, hundreds of steps: a second geometric grid from the first contact
+     * (or the smallest normal double) up to the first grid point brackets those speeds. */
+    const double top = g[0], low = x0 > 0.0 ? x0 : DBL_MIN;
+    for (int k = 0; k < GRID; k++)
+        g[k] = low * pow(top / low, (double)(k + 1) / GRID);
+    g[GRID - 1] = top;
+    if ((st = ct_bundle_closed_many(b, ws->adv, ws->a0, g, GRID, gW, gWu, gP)))
+        return st;
+    for (size_t j = 0; j < m; j++)
+        if (U[j] == -INFINITY && ws->u[j] == top)
             for (int k = 0; k < GRID; k++)
                 if (gW[k] > W[j]) {
                     ws->u[j] = g[k];
@@ -599,6 +620,11 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
         return st;
     if (s->impacts < 1)
         return ct_error_set(CT_EINVAL, "impacts = %ld: must be >= 1", s->impacts);
+    const ct_layer *L = ct_bundle_layer(b);
+    for (size_t v = 0; v < s->nvel; v++)
+        if ((st =
+                 ct_energy_check(s->V_star[v] * s->V_star[v] * L->l0 * L->E * L->h0, s->V_star[v])))
+            return st;
     const size_t nrows = s->nvel * (size_t)s->impacts;
     rows_not_run(s, rows);
     if (use_rods(b, s)) {

@@ -198,5 +198,41 @@ refused "a spacing of 1e-320 m" "underflows double precision" -- \
 refused "a spacing of 1e-300 nm" "not a number doubles hold" -- \
     "$ct" fit "$tmp/onecol.txt" --spacing 1e-300 --unit nm
 
+# 12. the default scene far below V*_c: e = 1 exactly (elastic), computed, not refused. At
+# V* = 1e-130 the u_max solve's P^2 underflowed (|W(u) - W| / W = 0.664), from V* ~ 1e-82 the
+# time columns were NaN (W_kin^2 underflowed); an energy below the smallest normal double is
+# refused by name. The times are checked against the history's last point, which sums the
+# pieces one by one without the moments the sweep's fast path uses.
+def=$src/scripts/scenes/default.ini
+for v in 1e-60 1e-100 1e-130 1e-150 1e-155; do
+    "$ct" run -q "$def" --set impact.V_star=$v --set output.what=time >"$tmp/tiny.csv" ||
+        { bad "V* = $v: $(head -c 300 "$tmp/tiny.csv")"; continue; }
+    "$ct" run -q "$def" --set impact.V_star=$v --set output.what=history \
+        --set output.history_points=2 >"$tmp/tinyh.csv" || { bad "V* = $v: history"; continue; }
+    t_hist=$(tail -1 "$tmp/tinyh.csv" | cut -d, -f3)
+    awk -F, -v th="$t_hist" 'NR == 2 { ok = $4 == 1 && $5 == 1 && $9 == 1 && $10 + 0 > 0 &&
+        $10 == $11 + $12 && ($10 - th) / th < 1e-12 && (th - $10) / th < 1e-12; for (i = 1; i <= NF; i++) ok = ok && $i != "" && $i !~ /nan|inf/ }
+        END { exit !(NR == 2 && ok) }' "$tmp/tiny.csv" && ok ||
+        bad "V* = $v: not e = 1 with finite times equal to the history's ($t_hist): $(tail -1 "$tmp/tiny.csv")"
+done
+refused "V* = 1e-156 (a subnormal energy)" "smallest normal double" -- \
+    "$ct" run -q "$def" --set impact.V_star=1e-156
+cat >"$tmp/drop.ini" <<INI
+[surface]
+fx = 1.5
+fz = 1.3
+H = 10
+[material]
+E = 500
+[impact]
+sequence = bounce
+mass = 1e-3
+drop_height = 1
+gravity = 1e-300
+INI
+"$ct" run -q "$tmp/drop.ini" >"$tmp/drop.csv" &&
+    awk -F, 'NR > 1 { ok = ok && $4 == 1 } NR == 1 { ok = 1 } END { exit !(NR == 21 && ok) }' "$tmp/drop.csv" && ok ||
+    bad "a drop under gravity 1e-300: not 20 bounces at e = 1: $(tail -1 "$tmp/drop.csv")"
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

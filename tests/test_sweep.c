@@ -405,6 +405,65 @@ static void tiny_speed_is_elastic_not_an_error(void **state)
         }
 }
 
+/* Far below V*_c, down to the smallest energy a double holds normally (V* = 1e-150: W ~ 1e-297
+ * in these units), the impact is elastic and computed: u_max against the paper's series (which
+ * sums stages in closed form, not the curve) and e = 1 exactly. At V* = 1e-130 the curve's
+ * inverse squared P ~ 1e-206 (underflow: |W(u) - W| / W = 0.66). A subnormal energy is refused. */
+static void tiny_energies_down_to_the_smallest_double(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    const double V[] = {1e-100, 1e-130, 1e-150};
+    for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++) {
+        ct_cantor_plan plan = {.params = p,
+                               .depth = CT_DEPTH_AUTO,
+                               .representation = CT_REP_STAGES,
+                               .depth_tolerance = 1e-12,
+                               .V_star = V,
+                               .nvel = 3,
+                               .impacts = 1};
+        ct_impact_opts_default(&plan.opts);
+        ct_bundle *b;
+        ct_plan_info info;
+        if (ct_cantor_plan_build(&plan, &b, &info))
+            fail_msg("plan: %s", ct_error_message());
+        ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 1, .opts = plan.opts};
+        spec.path = (ct_sweep_path)path;
+        ct_sweep_row rows[3];
+        assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+        for (int k = 0; k < 3; k++) {
+            if (rows[k].status)
+                fail_msg("path %d, V* = %g: %s", path, V[k], rows[k].message);
+            assert_true(rows[k].r.elastic && rows[k].r.e == 1.0 && rows[k].r.e_closed == 1.0);
+            /* u_max by bisection on the doubles' bit patterns (ordered like the positive
+             * doubles) of the rods' closed-form work: no curve, no quadratic */
+            const double W = V[k] * V[k] * ct_energy_scale(&p), x0 = ct_bundle_first_contact(b);
+            uint64_t lo, hi;
+            double d = x0;
+            memcpy(&lo, &d, 8);
+            d = ct_bundle_layer(b)->Hstar;
+            memcpy(&hi, &d, 8);
+            while (hi - lo > 1) {
+                uint64_t mid = lo + (hi - lo) / 2;
+                memcpy(&d, &mid, 8);
+                if (ct_bundle_work(b, x0, d) < W)
+                    lo = mid;
+                else
+                    hi = mid;
+            }
+            memcpy(&d, &hi, 8);
+            assert_rel(rows[k].r.u_max, d, 4.0 * DBL_EPSILON);
+        }
+        const double sub = 1e-160; /* W ~ 1e-317: subnormal */
+        ct_sweep_spec bad = spec;
+        bad.V_star = &sub;
+        bad.nvel = 1;
+        assert_int_equal(ct_sweep(b, &bad, rows), CT_EINVAL);
+        assert_non_null(strstr(ct_error_message(), "smallest normal double"));
+        ct_bundle_free(b);
+    }
+}
+
 /* An elastic impact whose penetration is below the resolution of u (rods whose first contact
  * is at u = 1, not 0: a penetration of 1e-20 rounds to nothing) is still e = 1 exactly: there
  * is no dissipation to resolve. One rod, top 1, area 1, L = H* - 1 = 9, E = 500: u_max =
@@ -513,6 +572,7 @@ int main(void)
         cmocka_unit_test(rod_path_equals_curve_path),
         cmocka_unit_test(two_rods_five_impacts_on_paper),
         cmocka_unit_test(tiny_speed_is_elastic_not_an_error),
+        cmocka_unit_test(tiny_energies_down_to_the_smallest_double),
         cmocka_unit_test(tiny_speed_on_offset_rods_is_elastic),
         cmocka_unit_test(stiff_rod_at_contact_states_its_rounding),
     };

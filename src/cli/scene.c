@@ -10,6 +10,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -815,11 +816,13 @@ static int check_speeds(ct_scene *sc)
                                    sc->where_speeds, k + 1);
         }
         double W = sc->V_star[k] * sc->V_star[k] * u->energy_scale;
-        if (!isfinite(W) || !(W > 0.0))
+        if (!isfinite(W) || !(W >= DBL_MIN))
             return scene_error(CT_EINVAL,
                                "%s: impact.%s: V* = %g (value %zu) gives the impact energy V*^2 "
-                               "l0 E h0 = %g, not a finite number > 0",
-                               sc->where_speeds, sc->speeds_key, sc->V_star[k], k + 1, W);
+                               "l0 E h0 = %g, not a finite number of at least %g, the smallest "
+                               "normal double (such an impact is elastic, e = 1, but not "
+                               "computable)",
+                               sc->where_speeds, sc->speeds_key, sc->V_star[k], k + 1, W, DBL_MIN);
     }
     sc->speeds_are_velocities = 0;
     return CT_OK;
