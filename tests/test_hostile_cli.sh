@@ -234,5 +234,15 @@ INI
     awk -F, 'NR > 1 { ok = ok && $4 == 1 } NR == 1 { ok = 1 } END { exit !(NR == 21 && ok) }' "$tmp/drop.csv" && ok ||
     bad "a drop under gravity 1e-300: not 20 bounces at e = 1: $(tail -1 "$tmp/drop.csv")"
 
+# 13. random Cantor ratios beyond what doubles hold: refused naming the piece (every impact
+# was "crushed", a middle area NaN, nothing counted as clipped)
+rc_ini=$src/examples/scenes/random_cantor.ini
+refused "random_cantor fx = 1.7e308, uniform spread 0.5" "smallest normal double" -- \
+    "$ct" run -q "$rc_ini" --set surface.fx=1.7e308 --set surface.distribution=uniform \
+    --set surface.fx_spread=0.5
+refused "random_cantor fx = 1e300, lognormal spread 10, an ensemble" "smallest normal double" -- \
+    "$ct" run -q "$rc_ini" --set surface.fx=1e300 --set surface.fx_spread=10 \
+    --set ensemble.realisations=4 --set output.what=ensemble
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -237,6 +237,51 @@ static void clipping_is_counted(void **state)
     ct_bundle_free(b);
 }
 
+/* Width ratios beyond what doubles hold: a draw that overflows (f_x = 1.7e308 (1 + 0.5 (2U - 1))
+ * is inf for U > 0.5 or so) is clipped to the largest double and counted, never inf (its
+ * middle's area was inf/inf = NaN); a surface whose pieces then fall below the smallest normal
+ * double is refused naming the piece, not swept as 'crushed' everywhere. */
+static void ratios_beyond_doubles(void **state)
+{
+    (void)state;
+    const ct_ratio_dist dists[2] = {CT_RATIO_UNIFORM, CT_RATIO_LOGNORMAL};
+    const double fx[2] = {1.7e308, 1e300}, spread[2] = {0.5, 10.0};
+    for (int d = 0; d < 2; d++) {
+        ct_random_cantor rc = surface(dists[d], spread[d], 0.0, 6);
+        rc.params.fx = fx[d];
+        uint64_t over = 0;
+        for (uint64_t g = 1; g < ((uint64_t)2 << 6) - 1; g++) {
+            double x, z;
+            int clipped;
+            assert_int_equal(ct_random_cantor_ratios(&rc, 0, g, &x, &z, &clipped), CT_OK);
+            assert_true(isfinite(x) && x > 1.0);
+            if (x == DBL_MAX) {
+                assert_true(clipped & 1);
+                over++;
+            }
+        }
+        /* uniform: U > 0.56 overflows, ~55 of 126 draws; lognormal: Z > 1.9, ~3.6 */
+        if (!(d ? over >= 1 : over > 30))
+            fail_msg("%s: %llu of 126 draws overflowed", d ? "lognormal" : "uniform",
+                     (unsigned long long)over);
+        ct_bundle *b = NULL;
+        assert_int_equal(ct_random_cantor_bundle(&b, &rc, 0, 0), CT_ERANGE);
+        assert_null(b);
+        assert_non_null(strstr(ct_error_message(), "smallest normal double"));
+    }
+    /* large but holdable: f_x = 1e30 at depth 6 keeps every piece above 1e-185 */
+    ct_random_cantor rc = surface(CT_RATIO_UNIFORM, 0.5, 0.0, 6);
+    rc.params.fx = 1e30;
+    ct_bundle *b;
+    assert_int_equal(ct_random_cantor_bundle(&b, &rc, 0, 0), CT_OK);
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        ct_rod_info info;
+        assert_int_equal(ct_bundle_rod(b, k, &info), CT_OK);
+        assert_true(info.area >= DBL_MIN && isfinite(info.area));
+    }
+    ct_bundle_free(b);
+}
+
 /* Spread 0 is the deterministic surface: the same pieces (stage, x-extent) with tops and areas
  * equal to (2 i + 4) ulps at stage i, not bit for bit: cantor.c computes h0 f^-i in one
  * exp/log (no drift over deep stages), a random piece multiplies its own i ratios. So e,
@@ -361,6 +406,7 @@ int main(void)
         cmocka_unit_test(rods_against_the_ratios),
         cmocka_unit_test(ratio_distributions),
         cmocka_unit_test(clipping_is_counted),
+        cmocka_unit_test(ratios_beyond_doubles),
         cmocka_unit_test(spread_zero_is_the_deterministic_surface),
         cmocka_unit_test(realisations_are_pure),
         cmocka_unit_test(invalid_surfaces),

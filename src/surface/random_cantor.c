@@ -61,6 +61,9 @@ static int draw(const ct_random_cantor *rc, uint64_t realisation, uint64_t g, do
     if (!(x >= RATIO_LOW)) {
         x = RATIO_LOW;
         clipped |= 1;
+    } else if (!(x <= DBL_MAX)) { /* f_x 1.7e308 (1 + 0.5 ...) or 1e300 exp(10 Z): inf */
+        x = DBL_MAX;
+        clipped |= 1;
     }
     if (!(z >= RATIO_LOW)) {
         z = RATIO_LOW;
@@ -240,7 +243,8 @@ typedef struct {
     uint64_t realisation;
     size_t stage_first; /* rod of piece 0 of the stage being split */
     double *top, *area; /* area holds a piece's width until the piece is split */
-    uint64_t *clipped;  /* per chunk: fx clipped in [2c], fz clipped in [2c + 1] */
+    uint64_t *clipped;  /* per chunk: fx clipped in [3c], fz clipped in [3c + 1], widths
+                           below the smallest normal double in [3c + 2] */
 } split_ctx;
 
 /* Splits pieces [i0, i1) of a stage: the children's widths and depths, then the middle's
@@ -248,7 +252,7 @@ typedef struct {
 static void split_chunk(void *ctx, size_t c, size_t i0, size_t i1)
 {
     split_ctx *s = ctx;
-    uint64_t nx = 0, nz = 0;
+    uint64_t nx = 0, nz = 0, nw = 0;
     for (size_t j = i0; j < i1; j++) {
         const size_t g = s->stage_first + j, gl = 2 * g + 1, gr = 2 * g + 2;
         const double w = s->area[g], h = s->top[g];
@@ -266,9 +270,11 @@ static void split_chunk(void *ctx, size_t c, size_t i0, size_t i1)
         /* the middle: w (1 - 1/(2 f_l) - 1/(2 f_r)) as w ((f_l - 1)/f_l + (f_r - 1)/f_r) / 2,
          * which does not cancel as the ratios approach 1 (f - 1 is exact for f in [1, 2]) */
         s->area[g] = w * (0.5 * ((fl - 1.0) / fl + (fr - 1.0) / fr));
+        nw += !(wl >= DBL_MIN) + !(wr >= DBL_MIN) + !(s->area[g] >= DBL_MIN);
     }
-    s->clipped[2 * c] = nx;
-    s->clipped[2 * c + 1] = nz;
+    s->clipped[3 * c] = nx;
+    s->clipped[3 * c + 1] = nz;
+    s->clipped[3 * c + 2] = nw;
 }
 
 typedef struct {
@@ -362,7 +368,7 @@ static int fill(ct_bundle *b, random_meta *meta, uint64_t realisation, int keep_
     /* per chunk clip counts of the widest stage, summed after each stage (integers: exact) */
     const size_t widest = (size_t)1 << (rc->depth ? rc->depth - 1 : 0);
     const size_t nchunks = (widest + SPLIT_CHUNK - 1) / SPLIT_CHUNK;
-    uint64_t *clipped = malloc(2 * nchunks * sizeof *clipped);
+    uint64_t *clipped = malloc(3 * nchunks * sizeof *clipped), tiny = 0;
     if (!clipped)
         return ct_error_set(CT_ENOMEM, "random cantor surface: out of memory");
     meta->realisation = realisation;
@@ -380,8 +386,25 @@ static int fill(ct_bundle *b, random_meta *meta, uint64_t realisation, int keep_
         s.stage_first = pieces - 1;
         ct_bundle_parallel(b, pieces, SPLIT_CHUNK, split_chunk, &s);
         for (size_t c = 0; c < (pieces + SPLIT_CHUNK - 1) / SPLIT_CHUNK; c++) {
-            meta->fx_clipped += clipped[2 * c];
-            meta->fz_clipped += clipped[2 * c + 1];
+            meta->fx_clipped += clipped[3 * c];
+            meta->fz_clipped += clipped[3 * c + 1];
+            tiny += clipped[3 * c + 2];
+        }
+        if (tiny) { /* the first such piece, named: a serial scan of this stage's splits */
+            free(clipped);
+            size_t g = 0;
+            for (size_t k = 0; k < 3 * pieces && !g; k++) {
+                size_t q = pieces - 1 + k / 3, at = k % 3 ? 2 * q + k % 3 : q;
+                g = !(tree_area[at] >= DBL_MIN) ? at + 1 : 0;
+            }
+            return ct_error_set(
+                CT_ERANGE,
+                "random cantor realisation %llu: piece %zu (stage %ld) is %g wide (in l0 = "
+                "%g), below the smallest normal double %g: width ratios this large (fx = %g, "
+                "spread %g) leave what doubles hold within %ld stages; lower fx, its spread or "
+                "the depth",
+                (unsigned long long)realisation, g ? g - 1 : 0, g ? rod_stage(g - 1) : i + 1,
+                g ? tree_area[g - 1] : 0.0, p->l0, DBL_MIN, p->fx, rc->fx_spread, i + 1);
         }
     }
     free(clipped);
