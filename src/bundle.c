@@ -13,6 +13,7 @@
 #include "internal.h"
 #include "rod.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -45,14 +46,16 @@ int ct_layer_validate(const ct_layer *l)
     const double v[] = {l->E, l->sigma_y, l->Hstar, l->l0, l->h0};
     const char *names[] = {"E", "sigma_y", "H*", "l0", "h0"};
     for (int k = 0; k < 5; k++)
-        if (!isfinite(v[k]) || !(v[k] > 0.0))
-            return ct_error_set(CT_EINVAL, "%s = %g: must be finite and > 0", names[k], v[k]);
+        if (!isfinite(v[k]) || !(v[k] >= DBL_MIN))
+            return ct_error_set(CT_EINVAL,
+                                "%s = %g: must be finite and > 0, a normal double (>= %g)",
+                                names[k], v[k], DBL_MIN);
     if (!(l->sigma_y < l->E))
         return ct_error_set(CT_EINVAL,
                             "sigma_y = %g: yield strain sigma_y/E must satisfy 0 < eps_y < 1 "
                             "(E = %g)",
                             l->sigma_y, l->E);
-    if (!isfinite(l->l0 * l->E * l->h0) || !(l->l0 * l->E * l->h0 > 0.0))
+    if (!isfinite(l->l0 * l->E * l->h0) || !(l->l0 * l->E * l->h0 >= DBL_MIN))
         return ct_error_set(CT_EINVAL, "l0 E h0 = %g: must be a finite positive number",
                             l->l0 * l->E * l->h0);
     /* E s L (a rod's stiffness times its length) bounds every work term: it must be finite,

@@ -327,6 +327,17 @@ int ct_profile_fit_of(const ct_profile *p, double d_lo, double d_hi, double tau_
     rows r = {0};
     if ((st = rows_of(p, &r)))
         return st;
+    /* Heights far from 1 m (an X3P's CZ increment of 1e300, a profile at 1e-170 m) square to
+     * beyond doubles in the structure function and the spectrum; their slopes, all the
+     * dimensions take, do not depend on the heights' unit: such rows are taken in units of a
+     * power of two (exact), heights of ordinary units as they are */
+    double zbig = 0.0;
+    for (size_t j = 0; j < r.nx * r.ny; j++)
+        zbig = isnan(r.z[j]) ? zbig : fmax(zbig, fabs(r.z[j]));
+    const int zk = zbig > 0.0 && isfinite(zbig) ? ilogb(zbig) : 0;
+    if (zk > 256 || zk < -256)
+        for (size_t j = 0; j < r.nx * r.ny; j++)
+            r.z[j] = ldexp(r.z[j], -zk);
     if (r.nx < 8) {
         free(r.z);
         return ct_error_set(CT_EINVAL,

@@ -452,6 +452,30 @@ static void advance_follows_the_history(void **state)
     ct_bundle_free(b);
 }
 
+/* A layer's scales must be normal doubles: a subnormal l0 (an X3P grid of 1e-160 m pixels:
+ * area 1e-320) or h0, or a subnormal energy scale l0 E h0, has lost its digits and is refused;
+ * the smallest normal values are accepted. */
+static void layer_scales_are_normal_doubles(void **state)
+{
+    (void)state;
+    const ct_layer ok = {.E = 2.0, .sigma_y = 1.0, .Hstar = 3.0, .l0 = 1.0, .h0 = 1.0};
+    ct_layer L = ok;
+    assert_int_equal(ct_layer_validate(&L), CT_OK);
+    L.l0 = 1e-320;
+    assert_int_equal(ct_layer_validate(&L), CT_EINVAL);
+    L.h0 = 1e20; /* l0 E h0 = 2e-290 is normal: l0 itself is refused */
+    assert_int_equal(ct_layer_validate(&L), CT_EINVAL);
+    L = ok;
+    L.h0 = 5e-324;
+    L.l0 = 1e300;
+    assert_int_equal(ct_layer_validate(&L), CT_EINVAL);
+    L = ok;
+    L.l0 = 0x1p-1000, L.h0 = 0x1p-30; /* each normal, l0 E h0 = 2^-1029 subnormal */
+    assert_int_equal(ct_layer_validate(&L), CT_EINVAL);
+    L.h0 = 0x1p-21; /* l0 E h0 = 2^-1020: normal */
+    assert_int_equal(ct_layer_validate(&L), CT_OK);
+}
+
 /* The API's edges: a thread count beyond what the runtime can create is clamped (libgomp
  * would end the process), a NaN displacement gives NaN on every path (single and many
  * nodes), NULL arguments are refused with CT_EINVAL (cantact.h's NULL policy). */
@@ -517,6 +541,7 @@ int main(void)
         cmocka_unit_test(many_nodes_match_single_nodes),
         cmocka_unit_test(truncation_bound_holds),
         cmocka_unit_test(advance_follows_the_history),
+        cmocka_unit_test(layer_scales_are_normal_doubles),
         cmocka_unit_test(api_edges),
         cmocka_unit_test(too_deep_is_refused_before_allocating),
         cmocka_unit_test(untouched_rods_are_left_out),

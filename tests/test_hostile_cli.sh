@@ -244,5 +244,86 @@ refused "random_cantor fx = 1e300, lognormal spread 10, an ensemble" "smallest n
     "$ct" run -q "$rc_ini" --set surface.fx=1e300 --set surface.fx_spread=10 \
     --set ensemble.realisations=4 --set output.what=ensemble
 
+# 14. extreme length scales of profiles: the same shape at 1e-6, 1e-170 and 1e-298 m gives the
+# same Rq/Rt ratio, the same clipping and the same e (Rq underflowed to 0 at 1e-170 and trim
+# clipped 20 of 50 heights); lengths beyond doubles are refused naming the file and the figure
+for sc in 1e-6 1e-170 1e-298 1e300; do
+    awk -v s=$sc 'BEGIN { for (i = 0; i < 50; i++) printf "%.17g %.17g\n", i * 1e-6, s * (0.5 + 0.45 * sin(0.37 * i) * cos(0.11 * i) + (i == 7 ? 3 : 0)) }' >"$tmp/h_$sc.txt"
+    printf '[surface]\ntype = profile\nfile = h_%s.txt\nunit = m\nH = 10\ntrim = rq\n[material]\nE = 2e11\nsigma_y = 4e8\n[impact]\nV_star = 1e-4:1e-1:4:log\n' \
+        $sc >"$tmp/h_$sc.ini"
+done
+"$ct" run "$tmp/h_1e-6.ini" -o "$tmp/h_1e-6.csv" 2>"$tmp/h_1e-6.err" || bad "heights at 1e-6 m"
+for sc in 1e-170 1e-298; do
+    if "$ct" run "$tmp/h_$sc.ini" -o "$tmp/h_$sc.csv" 2>"$tmp/h_$sc.err"; then
+        grep -q "Rq 2.964e-[0-9]* m, .* 1 heights clipped" "$tmp/h_$sc.err" && ok ||
+            bad "heights at $sc m: not Rq 2.964 and 1 height clipped: $(head -1 "$tmp/h_$sc.err")"
+        /usr/bin/python3 - "$tmp/h_1e-6.csv" "$tmp/h_$sc.csv" <<'PY' && ok || bad "heights at $sc m: e differs from 1e-6 m"
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:])
+assert len(a) == len(b) == 4
+for r, s in zip(a, b):
+    assert abs(float(r["e"]) - float(s["e"])) <= 1e-12, (r["e"], s["e"])
+PY
+    else
+        bad "heights at $sc m: $(cat "$tmp/h_$sc.err")"
+    fi
+done
+refused "heights at 1e300 m" "h_1e300.txt: E l0 H*" -- "$ct" run -q "$tmp/h_1e300.ini"
+/usr/bin/python3 - "$tmp" <<'PY' || bad "writing X3P files"
+import math, struct, sys, zipfile
+d = sys.argv[1]
+def x3p(name, z, n=64, cx="1e-6", cy="1e-6", cz="1e-9", oz="0", typ="L"):
+    xml = ('<?xml version="1.0" encoding="UTF-8"?>\n<p:ISO5436_2 xmlns:p="http://www.opengps.eu/2008/ISO5436_2">'
+           '<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>'
+           '<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>%s</Increment><Offset>0</Offset></CX>'
+           '<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>%s</Increment><Offset>0</Offset></CY>'
+           '<CZ><AxisType>A</AxisType><DataType>%s</DataType><Increment>%s</Increment><Offset>%s</Offset></CZ>'
+           '</Axes></Record1><Record3><MatrixDimension><SizeX>%d</SizeX><SizeY>%d</SizeY><SizeZ>1</SizeZ>'
+           '</MatrixDimension><DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3>'
+           '</p:ISO5436_2>' % (cx, cy, typ, cz, oz, n, n))
+    with zipfile.ZipFile("%s/%s" % (d, name), "w") as f:
+        f.writestr("main.xml", xml)
+        f.writestr("bindata/data.bin", struct.pack("<%d%s" % (len(z), "i" if typ == "L" else "d"), *z))
+n = 64
+zi = [int(100 * (math.sin(0.3 * i) * math.cos(0.21 * j) + math.sin(1.7 * i + 2.3 * j))) for j in range(n) for i in range(n)]
+x3p("i0.x3p", zi)
+x3p("ioff.x3p", zi, oz="1.7e308")
+x3p("ibig.x3p", zi, cz="1e300")
+zd = [1e-9 * v for v in zi]
+x3p("d0.x3p", zd, typ="D")
+x3p("cx300.x3p", zd, typ="D", cx="1e300")
+x3p("area_inf.x3p", zd, typ="D", cx="1e300", cy="1e300")
+x3p("cx320.x3p", zd, typ="D", cx="1e-320")
+PY
+"$ct" fit "$tmp/i0.x3p" -o "$tmp/i0.csv" 2>/dev/null || bad "fit of i0.x3p"
+"$ct" fit "$tmp/ioff.x3p" -o "$tmp/ioff.csv" 2>/dev/null &&
+    cmp -s <(tail -n +2 "$tmp/i0.csv") <(tail -n +2 "$tmp/ioff.csv") && ok ||
+    bad "an X3P CZ Offset of 1.7e308 changes the fit: $(head -c 300 "$tmp/ioff.csv")"
+"$ct" fit "$tmp/ibig.x3p" -o "$tmp/ibig.csv" 2>"$tmp/err" &&
+    /usr/bin/python3 - "$tmp/i0.csv" "$tmp/ibig.csv" <<'PY' && ok || bad "an X3P CZ increment of 1e300: $(cat "$tmp/err")"
+import sys
+rows = [{l.split(",")[0]: l.split(",")[1] for l in open(p) if "," in l and not l.startswith("#")} for p in sys.argv[1:]]
+# the dimensions to 1e-9; the bearing fit's alpha (hence fx, fz, h0) is a regression over
+# depths near the top, differences of heights rounded differently at 1e-9 and 1e300 m: 1e-6
+for k, tol in (("D", 1e-9), ("D_structure", 1e-9), ("D_spectrum", 1e-9), ("alpha", 1e-6), ("fx", 1e-6), ("fz", 1e-6)):
+    assert abs(float(rows[0][k]) - float(rows[1][k])) <= tol * abs(float(rows[0][k])), k
+for k, tol in (("Rq_m", 1e-9), ("Rt_m", 1e-9), ("h0_m", 1e-6)):
+    assert abs(float(rows[1][k]) / 1e300 / (float(rows[0][k]) * 1e9) - 1) <= tol, k
+PY
+for f in d0 cx300; do
+    printf '[surface]\ntype = profile\nfile = %s.x3p\nH = 10\n[material]\nE = 500\nsigma_y = 1\n[impact]\nV_star = 1e-3, 1e-2\n' $f >"$tmp/$f.ini"
+    "$ct" run -q "$tmp/$f.ini" -o "$tmp/$f.csv" || bad "run of $f.x3p"
+done
+/usr/bin/python3 - "$tmp/d0.csv" "$tmp/cx300.csv" <<'PY' && ok || bad "an X3P CX increment of 1e300 changes e"
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:])
+assert len(a) == len(b) == 2 and all(abs(float(r["e"]) - float(s["e"])) <= 1e-12 for r, s in zip(a, b))
+PY
+sed 's/d0.x3p/cx320.x3p/' "$tmp/d0.ini" >"$tmp/cx320.ini"
+refused "an X3P CX increment of 1e-320" "cx320.x3p: l0 = 0" -- "$ct" run -q "$tmp/cx320.ini"
+sed 's/d0.x3p/area_inf.x3p/' "$tmp/d0.ini" >"$tmp/area_inf.ini"
+refused "an X3P grid of 1e300 m pixels (its area beyond doubles)" "area_inf.x3p: l0 = inf" -- \
+    "$ct" run -q "$tmp/area_inf.ini"
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -164,6 +164,41 @@ static void levelling_exact(void **state)
     ct_profile_free(p);
 }
 
+/* The statistics and the levelling do not depend on the heights' unit: the same profile
+ * scaled by 2^-600 (1e-181) and 2^1000 (1e301), an exact scaling, gives Rq, Ra, Rt and the
+ * levelled heights scaled exactly (Rq underflowed to 0 at 1e-170 m, levelling overflowed at
+ * 1e300 m). */
+static void heights_in_any_unit(void **state)
+{
+    (void)state;
+    enum { N = 300 };
+    double z[N];
+    for (int k = 0; k < N; k++)
+        z[k] = 2.0 + 0.01 * k + 0.3 * sin(0.37 * k) * cos(0.11 * k);
+    ct_profile *p;
+    assert_int_equal(ct_profile_from_line(&p, N, NULL, 1e-6, z), CT_OK);
+    ct_profile_stats s;
+    assert_int_equal(ct_profile_level(p, CT_DETREND_LINEAR), CT_OK);
+    assert_int_equal(ct_profile_stats_of(p, &s), CT_OK);
+    const int scales[2] = {-600, 1000};
+    for (int c = 0; c < 2; c++) {
+        double zs[N];
+        for (int k = 0; k < N; k++)
+            zs[k] = ldexp(z[k], scales[c]);
+        ct_profile *q;
+        assert_int_equal(ct_profile_from_line(&q, N, NULL, 1e-6, zs), CT_OK);
+        ct_profile_stats t;
+        assert_int_equal(ct_profile_level(q, CT_DETREND_LINEAR), CT_OK);
+        assert_int_equal(ct_profile_stats_of(q, &t), CT_OK);
+        assert_true(t.Rq == ldexp(s.Rq, scales[c]) && t.Ra == ldexp(s.Ra, scales[c]));
+        assert_true(t.Rt == ldexp(s.Rt, scales[c]) && t.Rq > 0.0);
+        for (int k = 0; k < N; k++)
+            assert_true(q->z[k] == ldexp(p->z[k], scales[c]));
+        ct_profile_free(q);
+    }
+    ct_profile_free(p);
+}
+
 static void trimming(void **state)
 {
     (void)state;
@@ -576,6 +611,7 @@ int main(void)
         cmocka_unit_test(rods_by_hand),
         cmocka_unit_test(bearing_by_hand),
         cmocka_unit_test(levelling_exact),
+        cmocka_unit_test(heights_in_any_unit),
         cmocka_unit_test(trimming),
         cmocka_unit_test(text_readers),
         cmocka_unit_test(dektak),

@@ -177,6 +177,19 @@ typedef struct {
     double xm, ym, xs, ys;
 } level_frame;
 
+/* The power of two 2^k nearest above the largest |height| (k = 0 when there is none): sums of
+ * heights and their squares are taken in units of it, which is exact (a power of two changes
+ * no digit) and keeps them from overflowing at 1e300 m or underflowing at 1e-170 m, where Rq
+ * came out 0 (squares below the smallest double) and trim clipped half the heights. */
+static int height_scale(const ct_profile *p)
+{
+    double big = 0.0;
+    for (size_t j = 0; j < p->nx * p->ny; j++)
+        if (!isnan(p->z[j]))
+            big = fmax(big, fabs(p->z[j]));
+    return big > 0.0 && isfinite(big) ? ilogb(big) + 1 : 0;
+}
+
 /* The frame of p's valid samples: their centre and the largest distance from it. */
 static void level_frame_of(const ct_profile *p, level_frame *L)
 {
@@ -243,13 +256,14 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
 {
     const int m = L->m;
     const size_t total = p->nx * p->ny;
+    const int k = height_scale(p); /* the right-hand side in units of 2^k: exact, no overflow */
     double A[36] = {0}, bvec[6] = {0}, f[6];
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
             continue;
         level_terms(p, L, j, f);
         for (int a = 0; a < m; a++) {
-            bvec[a] += f[a] * p->z[j];
+            bvec[a] += f[a] * ldexp(p->z[j], -k);
             for (int c = 0; c < m; c++)
                 A[a * m + c] += f[a] * f[c];
         }
@@ -276,8 +290,10 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
     if (!g)
         g = gsl_linalg_LU_solve(&Av.matrix, perm, &bv.vector, &cv.vector);
     gsl_permutation_free(perm);
-    for (int a = 0; a < m && !g; a++)
+    for (int a = 0; a < m && !g; a++) {
+        coef[a] = ldexp(coef[a], k);
         g = !isfinite(coef[a]);
+    }
     if (g)
         return ct_error_set(CT_EINVAL, "levelling: the %s fit failed (heights too large?)",
                             how == CT_DETREND_LINEAR ? "linear" : "quadratic");
@@ -326,26 +342,27 @@ int ct_profile_stats_of(const ct_profile *p, ct_profile_stats *s)
     if (st)
         return st;
     const size_t total = p->nx * p->ny;
+    const int k = height_scale(p);
     double w = 0.0, zw = 0.0, lo = INFINITY, hi = -INFINITY;
     for (size_t j = 0; j < total; j++)
         if (!isnan(p->z[j])) {
             double a = share(p, j);
             w += a;
-            zw += a * p->z[j];
+            zw += a * ldexp(p->z[j], -k);
             lo = p->z[j] < lo ? p->z[j] : lo;
             hi = p->z[j] > hi ? p->z[j] : hi;
         }
-    const double mean = zw / w;
+    const double mean = zw / w; /* in units of 2^k */
     double ra = 0.0, rq = 0.0;
     for (size_t j = 0; j < total; j++)
         if (!isnan(p->z[j])) {
-            double a = share(p, j), d = p->z[j] - mean;
+            double a = share(p, j), d = ldexp(p->z[j], -k) - mean;
             ra += a * fabs(d);
             rq += a * d * d;
         }
-    s->mean = mean;
-    s->Ra = ra / w;
-    s->Rq = sqrt(rq / w);
+    s->mean = ldexp(mean, k);
+    s->Ra = ldexp(ra / w, k);
+    s->Rq = ldexp(sqrt(rq / w), k);
     s->Rt = hi - lo;
     s->length = w;
     return CT_OK;
@@ -710,6 +727,12 @@ static int profile_prepare(ct_surface *s, const char *dir)
                             "surface.Hstar = %g m: must exceed the profile's peak-to-valley depth "
                             "Rt = %g m after levelling",
                             c->layer.Hstar, q->Rt);
+    if ((st = ct_layer_validate(&c->layer))) { /* lengths beyond what doubles hold, named */
+        char why[512];
+        snprintf(why, sizeof why, "%s", ct_error_message());
+        return ct_error_set(st, "%s: %s; from %zu points at a spacing of %g m, Rt %g m", c->file,
+                            why, p->n, p->ny > 1 ? p->dx : q->length / (double)p->n, q->Rt);
+    }
     ct_scales_of(&s->scales, &c->layer, &c->layer);
     ct_surface_note_set(s,
                         "%s (%s): %zu points%s, levelled (%s): Rq %.4g m, Rt %.4g m (raw Rt %.4g "

@@ -681,7 +681,10 @@ static int x3p_heights(const char *path, zip_t *z, const x3p_grid *g, double **z
     for (size_t k = 0; k < npts; k++) {
         double v = le_value((const unsigned char *)bin + k * (size_t)width, g->type[0]);
         if (g->type[0] == 'I' || g->type[0] == 'L')
-            v = g->zoff + g->zinc * v; /* integer heights carry the axis' scale */
+            v = g->zinc * v; /* integer heights carry the axis' scale; its offset, a constant
+                              * that changes no rod (tops are depths below the highest point)
+                              * and no statistic, is left out: added, it could only lose digits
+                              * (an Offset of 1.7e308 swallowed them all) */
         if (mask && !((unsigned char)mask[k / 8] >> (k % 8) & 1u))
             v = NAN; /* the mask's bit 0: an invalid point */
         (*zz)[k] = v;
