@@ -1,11 +1,11 @@
 /* libFuzzer target: impacts on arbitrary surfaces, every rule and path. The bytes choose a
  * Cantor surface over the whole valid range (fx up to 1e3, fz in (1, 2), H* / h0 up to 1e6,
- * E/sigma_y up to 1e9), its representation and depth, up to 8 speeds, 1-4 impacts, the rule,
- * its nodes and the sweep path. Whatever the library computes must hold what docs/model.md says:
- * e finite in [0, 1], exactly 1 for an elastic impact, u_max finite and below H*, and the
- * energy balance W(u_max) = kinetic energy to the solve's tolerance or the rounding floor of u.
- * A refusal (a status with a message) is fine; a wrong number is a crash here.
- * Build and run: scripts/fuzz [SECONDS] impact. */
+ * E/sigma_y up to 1e9), its representation and depth, up to 8 speeds (V* from 1e-150 to 1), 1-4
+ * impacts, the rule, its nodes and the sweep path. Whatever the library computes must hold what
+ * docs/model.md says: e finite in [0, 1], exactly 1 for an elastic impact, u_max finite and below
+ * H*, and the energy balance W(u_max) = kinetic energy to the solve's tolerance or the rounding
+ * floor of u. A refusal (a status with a message) is fine; a wrong number is a crash here. Build
+ * and run: scripts/fuzz [SECONDS] impact. */
 #include "cantact.h"
 
 #include <float.h>
@@ -57,7 +57,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t nv = 1 + (size_t)(next_unit(&b) * 7.0);
     double V[8];
     for (size_t k = 0; k < nv; k++)
-        V[k] = log_between(&b, 1e-9, 1.0);
+        V[k] = log_between(&b, 1e-150, 1.0); /* far below V*_c too (issue 24, item 12) */
     ct_impact_opts opts;
     ct_impact_opts_default(&opts);
     opts.rule = (ct_quad_rule)(int)(next_unit(&b) * 4.999);
@@ -93,7 +93,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
              * virgin force at u_max gives the rounding floor of the solve */
             double W = r->kinetic_energy, Wl = r->W_load;
             double floor = 64.0 * DBL_EPSILON * fabs(r->u_max) * ct_bundle_force(bundle, r->u_max);
-            if (!(fabs(Wl - W) <= 1e-12 * W + floor))
+            /* an elastic penetration below the resolution of u (V* = 1e-150 on a rod first
+             * touched at u = 1) has no W(u) to balance: e = 1 whatever u_max (model.md) */
+            const int unresolved =
+                r->elastic && !(r->u_max - r->u_contact > 16.0 * DBL_EPSILON * fabs(r->u_max));
+            if (!(fabs(Wl - W) <= 1e-12 * W + floor) && !unresolved)
                 die("energy balance broken", row);
         }
     }
