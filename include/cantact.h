@@ -256,8 +256,22 @@ typedef struct {
     ct_quad_rule rule; /* how W_load and W_unload are computed */
     size_t nodes;      /* K for the composite rules */
     double tolerance;  /* relative tolerance of the u_max solve (1e-14 by default) */
-    int check;         /* 1 (default): also the closed forms rod by rod (e_closed, quad_error) */
+    int check;         /* CT_CHECK_ALL (default, 1): also the closed forms rod by rod (e_closed,
+                          quad_error); CT_CHECK_NONE (0); CT_CHECK_AUTO (2, ct_sweep): every
+                          speed while rods x rows stays within CT_CHECK_BUDGET, else a sample */
 } ct_impact_opts;
+
+/* The closed-form check: none, every impact, or bounded (a sweep checks every impact of every
+ * speed while rods x impacts x speeds <= CT_CHECK_BUDGET rod evaluations, about 1 ms; beyond
+ * it every impact of a sample of max(CT_CHECK_MIN_SPEEDS, budget / (rods x impacts)) speeds:
+ * the slowest and fastest, the two around V*_c, and speeds nearest to log-spaced V* between
+ * them; rows outside the sample have e_closed NaN). A checked row of the breakpoints rule
+ * whose e differs from the closed forms' by more than CT_CHECK_E_BOUND + 2 e_rounding fails
+ * (CT_ENOCONV): a wrong e never passes a check. */
+enum { CT_CHECK_NONE = 0, CT_CHECK_ALL = 1, CT_CHECK_AUTO = 2 };
+#define CT_CHECK_BUDGET 524288.0
+#define CT_CHECK_MIN_SPEEDS 16
+#define CT_CHECK_E_BOUND 1e-12
 
 typedef struct {
     double kinetic_energy;  /* 1/2 m v1^2 [energy] */
@@ -281,6 +295,11 @@ typedef struct {
 
 /* Fills opts with the defaults (breakpoints rule, 1e-14, check on). */
 void ct_impact_opts_default(ct_impact_opts *opts);
+/* The closed-form check of a result of the breakpoints rule: CT_ENOCONV (with both values in
+ * the message) when e and e_closed differ by more than CT_CHECK_E_BOUND + 2 e_rounding, CT_OK
+ * otherwise or when unchecked (e_closed NaN) or under another rule. Every checked impact of
+ * the library passes through it. */
+int ct_impact_check(const ct_impact_opts *opts, const ct_impact_result *res);
 /* Returns the energy [energy] needed to make the first rod yield from the current state,
  * and that displacement [length]. */
 int ct_critical_energy(const ct_bundle *b, double *energy, double *u_yield);

@@ -20,7 +20,8 @@ static const ct_column columns[] = {
     {"e", "e", CT_UNIT_ONE, 'd', 17, NULL, 1.0, R(e),
      "the coefficient of restitution sqrt(W_unload / W_load)"},
     {"e_closed_form", "e", CT_UNIT_ONE, 'd', 17, NULL, 1.0, R(e_closed),
-     "e from the closed forms rod by rod (empty: solver.check = none)"},
+     "e from the closed forms rod by rod (empty: unchecked, solver.check = none or outside auto's "
+     "sample)"},
     {"quadrature_error", "e", CT_UNIT_ONE, 'd', 3, NULL, 1.0, R(quad_error), "|e - e_closed_form|"},
     {"V_star_crit", "e", CT_UNIT_ONE, 'd', 17, NULL, 1.0, R(V_star_crit),
      "the critical V* of the state struck: below it e = 1"},

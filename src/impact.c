@@ -13,7 +13,7 @@ void ct_impact_opts_default(ct_impact_opts *opts)
     opts->rule = CT_QUAD_BREAKPOINTS;
     opts->nodes = 64;
     opts->tolerance = 1e-14;
-    opts->check = 1;
+    opts->check = CT_CHECK_ALL;
 }
 
 int ct_critical_energy(const ct_bundle *b, double *energy, double *u_yield)
@@ -244,7 +244,24 @@ int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result 
         if (res->e_closed > 1.0 && res->e_closed <= 1.0 + res->e_rounding)
             res->e_closed = 1.0;
         res->quad_error = fabs(res->e - res->e_closed);
+        return ct_impact_check(opts, res);
     }
+    return CT_OK;
+}
+
+int ct_impact_check(const ct_impact_opts *opts, const ct_impact_result *res)
+{
+    CT_NEED(opts);
+    CT_NEED(res);
+    if (opts->rule != CT_QUAD_BREAKPOINTS || isnan(res->e_closed))
+        return CT_OK;
+    /* the breakpoints rule is exact: beyond rounding, a difference is a wrong e */
+    const double bound = CT_CHECK_E_BOUND + 2.0 * res->e_rounding;
+    if (!(fabs(res->e - res->e_closed) <= bound))
+        return ct_error_set(CT_ENOCONV,
+                            "closed-form check: e = %.17g on the load curve, %.17g rod by rod "
+                            "(difference %.3g above its bound %.3g): not a valid result",
+                            res->e, res->e_closed, fabs(res->e - res->e_closed), bound);
     return CT_OK;
 }
 

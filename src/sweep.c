@@ -134,12 +134,14 @@ static double unit_mass(const ct_layer *L)
 
 static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *later,
                           ct_bundle *work, const ct_sweep_spec *s, size_t v, ct_sweep_row *rows,
-                          ct_dyn_work *dw)
+                          ct_dyn_work *dw, const unsigned char *check)
 {
     const ct_layer *L = ct_bundle_layer(b);
     const double W = s->V_star[v] * s->V_star[v] * L->l0 * L->E * L->h0;
     const size_t impacts = (size_t)s->impacts;
     int st, changed = 0;
+    ct_impact_opts opts = s->opts; /* the closed-form check for the sampled speeds */
+    opts.check = check[v] ? CT_CHECK_ALL : CT_CHECK_NONE;
     copy_state(work, b);
     for (size_t i = 0; i < impacts; i++) {
         ct_sweep_row *row = &rows[v * impacts + i];
@@ -149,7 +151,7 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
                 return st;
             c = later;
         }
-        row->status = ct_impact_eval(work, c, W, &s->opts, &row->r);
+        row->status = ct_impact_eval(work, c, W, &opts, &row->r);
         if (row->status) {
             fail_from(rows, impacts, v, i, row->status, ct_error_message());
             return CT_OK;
@@ -452,6 +454,75 @@ static void rows_not_run(const ct_sweep_spec *s, ct_sweep_row *rows)
         }
 }
 
+/* A speed and its index, ordered by V* then index (qsort: no shared state, thread-safe). */
+typedef struct {
+    double V;
+    size_t v;
+} speed_at;
+
+static int by_V(const void *a, const void *b)
+{
+    const speed_at *x = a, *y = b;
+    return x->V < y->V ? -1 : x->V > y->V ? 1 : (x->v > y->v) - (x->v < y->v);
+}
+
+static void take_speed(unsigned char *mask, size_t v, size_t *n)
+{
+    *n += !mask[v];
+    mask[v] = 1;
+}
+
+/* The speeds whose impacts get the closed-form check (CT_CHECK_AUTO, cantact.h): all while
+ * rods x rows <= CT_CHECK_BUDGET, else the slowest, the fastest, the two around V*_c and the
+ * speeds nearest to log-spaced V* between them, up to max(CT_CHECK_MIN_SPEEDS, budget / (rods
+ * x impacts)). A function of the speeds and the surface alone: any thread count, the same. */
+static int check_speeds_of(const ct_sweep_spec *s, size_t rods, double V_crit, unsigned char *mask)
+{
+    const size_t nv = s->nvel, impacts = (size_t)s->impacts;
+    const int all = s->opts.check == CT_CHECK_ALL || s->opts.rule == CT_QUAD_CLOSED;
+    const double per_speed = (double)(rods ? rods : 1) * (double)impacts;
+    double want = floor(CT_CHECK_BUDGET / per_speed);
+    want = want < CT_CHECK_MIN_SPEEDS ? CT_CHECK_MIN_SPEEDS : want;
+    if (all || s->opts.check == CT_CHECK_NONE || want >= (double)nv) {
+        memset(mask, all || s->opts.check != CT_CHECK_NONE, nv);
+        return CT_OK;
+    }
+    speed_at *ord = malloc(nv * sizeof *ord);
+    if (!ord)
+        return ct_error_set(CT_ENOMEM, "closed-form check of %zu speeds: out of memory", nv);
+    for (size_t v = 0; v < nv; v++)
+        ord[v] = (speed_at){s->V_star[v], v};
+    qsort(ord, nv, sizeof *ord, by_V);
+    memset(mask, 0, nv);
+    size_t n = 0, crit = 0; /* crit: the first speed above V*_c in that order */
+    while (crit < nv && ord[crit].V <= V_crit)
+        crit++;
+    take_speed(mask, ord[0].v, &n);
+    take_speed(mask, ord[nv - 1].v, &n);
+    if (crit > 0)
+        take_speed(mask, ord[crit - 1].v, &n);
+    if (crit < nv)
+        take_speed(mask, ord[crit].v, &n);
+    const double lo = log(ord[0].V), hi = log(ord[nv - 1].V);
+    const size_t k = (size_t)want;
+    for (size_t q = 1; q + 1 < k && n < k; q++) { /* nearest to log-spaced targets */
+        const double t = lo + (hi - lo) * (double)q / (double)(k - 1);
+        size_t a = 0, z = nv - 1; /* log V of ord[a] <= t < log V of ord[z] */
+        while (z - a > 1) {
+            size_t mid = a + (z - a) / 2;
+            if (log(ord[mid].V) <= t)
+                a = mid;
+            else
+                z = mid;
+        }
+        take_speed(mask, t - log(ord[a].V) <= log(ord[z].V) - t ? ord[a].v : ord[z].v, &n);
+    }
+    for (size_t q = 0; n < k && q < nv; q++) /* speeds that share targets: spread evenly */
+        take_speed(mask, ord[(q * 7919) % nv].v, &n);
+    free(ord);
+    return CT_OK;
+}
+
 /* A curve sweep's workspace. */
 typedef struct {
     ct_curve *first, *later;         /* the bundle's curve; a state's (general path) */
@@ -459,6 +530,7 @@ typedef struct {
     double *adv, *u0, *u1, *Wl, *Wu; /* the batched closed forms' nodes and results */
     size_t *slot;                    /* row -> its place in the batched closed forms */
     unsigned char *by_state;         /* per speed: left to the general path */
+    unsigned char *check;            /* per speed: its impacts get the closed-form check */
     ct_dyn_work *dw;                 /* the impacts in time */
 } sweep_ws;
 
@@ -476,6 +548,7 @@ static void sweep_ws_free(sweep_ws *w, const ct_sweep_spec *s)
     free(w->Wu);
     free(w->slot);
     free(w->by_state);
+    free(w->check);
 }
 
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
@@ -506,7 +579,7 @@ static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
             }
             row->status = CT_OK;
             row->message[0] = '\0';
-            if (closed) {
+            if (closed && w->check[v]) {
                 w->slot[v * impacts + i] = *m;
                 w->adv[*m] = U;
                 w->u0[*m] = row->r.u_contact;
@@ -532,7 +605,7 @@ static void fast_finish(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row
         ct_sweep_row *row = &rows[v * impacts + i];
         if (row->status)
             break;
-        if (closed) {
+        if (closed && w->check[v]) {
             const size_t q = w->slot[v * impacts + i];
             row->r.W_load_closed = w->Wl[q];
             row->r.W_unload_closed = row->r.elastic ? w->Wl[q] : w->Wu[q];
@@ -600,7 +673,7 @@ static int sweep_by_state(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_r
             continue;
         for (size_t i = 0; i < impacts; i++)
             fail_row(&rows[v * impacts + i], CT_ESKIPPED, "not run");
-        if ((st = speed_by_state(b, w->first, w->later, w->work, s, v, rows, w->dw)))
+        if ((st = speed_by_state(b, w->first, w->later, w->work, s, v, rows, w->dw, w->check)))
             return st;
         if (s->stop_on_error && (st = first_failure(rows, nrows)))
             return st;
@@ -644,9 +717,16 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
         goto done;
     if (w.dw && (st = ct_dyn_prepare(w.dw, w.first)))
         goto done;
-    if (!(w.by_state = calloc(s->nvel ? s->nvel : 1, 1))) {
+    if (!(w.by_state = calloc(s->nvel ? s->nvel : 1, 1)) ||
+        !(w.check = calloc(s->nvel ? s->nvel : 1, 1))) {
         st = ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
         goto done;
+    }
+    {
+        const double W_crit = ct_curve_work(w.first, ct_curve_first_yield(w.first));
+        if ((st = check_speeds_of(s, ct_bundle_size(b), sqrt(W_crit / (L->l0 * L->E * L->h0)),
+                                  w.check)))
+            goto done;
     }
     const int fast =
         !s->observe && (s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED);

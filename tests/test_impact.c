@@ -141,6 +141,39 @@ static void single_rod_closed_form(void **state)
     ct_bundle_free(b);
 }
 
+/* The closed-form check fails a wrong e: one rod past yield (e = 0.5 in closed form) gives a
+ * result that passes; the same result with e off by 1e-9 (beyond CT_CHECK_E_BOUND + 2
+ * e_rounding) fails with CT_ENOCONV, by 1e-13 passes; unchecked results and composite rules
+ * (whose difference is their quadrature error, reported, not a fault) pass. */
+static void check_fails_a_wrong_e(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    double eps_y = p.sigma_y / p.E, W = 4.0 * p.E * p.l0 * (p.Hstar - p.h0) * eps_y * eps_y / 2;
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 0, INFINITY), CT_OK);
+    ct_impact_opts o;
+    ct_impact_opts_default(&o);
+    ct_impact_result r;
+    assert_int_equal(ct_impact(b, W, &o, &r), CT_OK);
+    assert_rel(r.e_closed, 0.5, 1e-14);
+    assert_true(r.e_rounding < 1e-11); /* the bound stays below the 1e-9 tried */
+    assert_int_equal(ct_impact_check(&o, &r), CT_OK);
+    ct_impact_result bad = r;
+    bad.e = r.e_closed + 1e-9;
+    assert_int_equal(ct_impact_check(&o, &bad), CT_ENOCONV);
+    assert_non_null(strstr(ct_error_message(), "closed-form check"));
+    bad.e = r.e_closed - 1e-13;
+    assert_int_equal(ct_impact_check(&o, &bad), CT_OK);
+    bad.e = r.e_closed + 1e-9;
+    bad.e_closed = NAN; /* unchecked */
+    assert_int_equal(ct_impact_check(&o, &bad), CT_OK);
+    bad.e_closed = r.e_closed;
+    o.rule = CT_QUAD_TRAPEZOID;
+    assert_int_equal(ct_impact_check(&o, &bad), CT_OK);
+    ct_bundle_free(b);
+}
+
 static void critical_velocity(void **state)
 {
     (void)state;
@@ -349,6 +382,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(e_against_independent_solution),
         cmocka_unit_test(single_rod_closed_form),
+        cmocka_unit_test(check_fails_a_wrong_e),
         cmocka_unit_test(critical_velocity),
         cmocka_unit_test(e_non_increasing_in_V),
         cmocka_unit_test(e_rises_past_a_stage_top_beyond_the_papers_range),

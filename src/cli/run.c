@@ -40,6 +40,25 @@ static const struct {
                     {CT_OUT_BEARING, "bearing"}};
 #define NOUTPUTS (sizeof output_kinds / sizeof output_kinds[0])
 
+/* What the closed-form check covered, when it sampled (solver.check = auto beyond its budget):
+ * the rows without e_closed_form are the unchecked ones. */
+static void check_note(const ct_sweep_row *rows, size_t nrows, const ct_scene *sc, size_t rods)
+{
+    size_t ok = 0, checked = 0, speeds = 0;
+    for (size_t k = 0; k < nrows; k++) {
+        ok += rows[k].status == CT_OK;
+        checked += rows[k].status == CT_OK && !isnan(rows[k].r.e_closed);
+        speeds += rows[k].impact == 1 && rows[k].status == CT_OK && !isnan(rows[k].r.e_closed);
+    }
+    if (sc->opts.check == CT_CHECK_AUTO && checked > 0 && checked < ok)
+        fprintf(stderr,
+                "cantact: closed-form check: every impact of %zu of %zu speeds, a sample (%zu rods "
+                "x %zu rows = %.3g rod evaluations, above the budget %.0f: the slowest, the "
+                "fastest, the two around V*_c, log-spaced between; solver.check = all checks "
+                "every one)\n",
+                speeds, sc->nvel, rods, nrows, (double)rods * (double)nrows, CT_CHECK_BUDGET);
+}
+
 static FILE *output_file(output_list *l, unsigned bit)
 {
     for (size_t k = 0; k < l->n; k++)
@@ -420,6 +439,8 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, 
     st = ct_sweep(b, &spec, rows);
     ct_progress_end(&prog);
     ct_curve_free(obs.post);
+    if (!quiet)
+        check_note(rows, nrows, sc, ct_bundle_size(b));
     FILE *fp = output_file(outs, CT_OUT_PROFILE), *fb = output_file(outs, CT_OUT_BEARING);
     if (!st)
         st = ct_surface_after_sweep(sc->surface, rows, nrows);

@@ -84,8 +84,12 @@ static const ct_key cli_keys[] = {
      AT(threads)},
     {"solver", "on_error", CT_KEY_WORD, 0, 0, 0, "stop|skip", "must be stop or skip", "stop",
      "skip: a failed impact is a row with its reason, not the end of the run", AT(on_error)},
-    {"solver", "check", CT_KEY_WORD, 0, 0, 0, "closed|none", "must be closed or none", "closed",
-     "closed: every impact also in closed form rod by rod (e_closed_form, quadrature_error)",
+    {"solver", "check", CT_KEY_WORD, 0, 0, 0, "auto|all|closed|none",
+     "must be auto, all, closed or none", "auto",
+     "impacts also in closed form rod by rod (e_closed_form, quadrature_error): auto every "
+     "speed while rods x impacts x speeds <= 2^19, else a sample (the note says which); all (or "
+     "closed) "
+     "every impact",
      AT(check)},
     {"solver", "path", CT_KEY_WORD, 0, 0, 0, "auto|curve|rods", "must be auto, curve or rods",
      "auto", "the load curve, or Newton on the rods' closed forms (no curve in memory)", AT(path)},
@@ -534,8 +538,11 @@ static int solver_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
         sc->opts.rule = (ct_quad_rule)k->quadrature;
     if (find_entry(s, "solver", "nodes"))
         sc->opts.nodes = (size_t)k->nodes;
+    sc->opts.check = CT_CHECK_AUTO;
     if (find_entry(s, "solver", "check"))
-        sc->opts.check = k->check == 0;
+        sc->opts.check = k->check == 0   ? CT_CHECK_AUTO
+                         : k->check == 3 ? CT_CHECK_NONE
+                                         : CT_CHECK_ALL;
     entry *e = find_entry(s, "solver", "tolerance");
     if (e && k->tolerance < 1e-15)
         return bad(e, "must be >= 1e-15 (double precision)");
