@@ -474,6 +474,16 @@ typedef struct {
  * so each costs O(log n) plus the closed-form check. Returns CT_OK when the sweep ran (rows
  * carry their own statuses), a row's status under stop_on_error, or CT_ENOMEM. */
 int ct_sweep(const ct_bundle *b, const ct_sweep_spec *spec, ct_sweep_row *rows);
+/* The same sweep in blocks of `block` speeds, each block's rows (all impacts of its speeds,
+ * row.speed the index in spec's speeds) handed to emit as soon as they are computed: memory
+ * of block x impacts rows, whatever the number of speeds. The rows are those of ct_sweep, in
+ * its order and bit for bit (the curve is built once, the closed-form check's sample chosen
+ * over all speeds). No observer (CT_EINVAL). emit returns non-zero to stop (CT_ESKIPPED).
+ * Under stop_on_error the block holding the first failure is emitted, then its status is
+ * returned. */
+typedef int (*ct_rows_fn)(const ct_sweep_row *rows, size_t n, void *ctx);
+int ct_sweep_blocks(const ct_bundle *b, const ct_sweep_spec *spec, size_t block, ct_rows_fn emit,
+                    void *ctx);
 /* ---- the paper's laws (docs/model.md §5-6) -------------------------------------------- */
 /* Loads P [force] at displacement u [length] of the infinite fractal. Each function returns
  * CT_OK, CT_EINVAL (invalid parameters; u or u_max not finite or negative) or CT_ERANGE

@@ -683,12 +683,10 @@ static int sweep_by_state(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_r
     return CT_OK;
 }
 
-int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
+/* The spec's own checks: speeds, impacts and every impact energy. */
+static int sweep_valid(const ct_bundle *b, const ct_sweep_spec *s)
 {
-    CT_NEED(b);
     int st;
-    if (!s || (s->nvel && !rows))
-        return ct_error_set(CT_EINVAL, "sweep: NULL spec or rows");
     if ((st = check_speeds(s->V_star, s->nvel)))
         return st;
     if (s->impacts < 1)
@@ -698,48 +696,174 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
         if ((st =
                  ct_energy_check(s->V_star[v] * s->V_star[v] * L->l0 * L->E * L->h0, s->V_star[v])))
             return st;
-    const size_t nrows = s->nvel * (size_t)s->impacts;
-    rows_not_run(s, rows);
-    if (use_rods(b, s)) {
-        if ((st = sweep_by_rods(b, s, rows)))
-            return st;
-        return s->stop_on_error ? first_failure(rows, nrows) : CT_OK;
-    }
+    return CT_OK;
+}
 
-    sweep_ws w = {0};
-    if (s->dynamics && (st = ct_dyn_work_alloc(&w.dw)))
+/* What every block of a curve sweep shares: the curve of b's state, the impacts in time
+ * prepared on it, and the closed-form check's speeds over the whole spec. */
+static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w,
+                         unsigned char **mask)
+{
+    int st;
+    const ct_layer *L = ct_bundle_layer(b);
+    if (s->dynamics && (st = ct_dyn_work_alloc(&w->dw)))
         return st;
     if (s->curve) /* the caller's workspace: its arrays are reused */
-        w.first = s->curve;
-    else if ((st = ct_curve_alloc(&w.first)))
-        goto done;
-    if ((st = ct_curve_build(w.first, b)))
-        goto done;
-    if (w.dw && (st = ct_dyn_prepare(w.dw, w.first)))
-        goto done;
-    if (!(w.by_state = calloc(s->nvel ? s->nvel : 1, 1)) ||
-        !(w.check = calloc(s->nvel ? s->nvel : 1, 1))) {
+        w->first = s->curve;
+    else if ((st = ct_curve_alloc(&w->first)))
+        return st;
+    if ((st = ct_curve_build(w->first, b)))
+        return st;
+    if (w->dw && (st = ct_dyn_prepare(w->dw, w->first)))
+        return st;
+    if (!(*mask = malloc(s->nvel ? s->nvel : 1)))
+        return ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
+    const double W_crit = ct_curve_work(w->first, ct_curve_first_yield(w->first));
+    return check_speeds_of(s, ct_bundle_size(b), sqrt(W_crit / (L->l0 * L->E * L->h0)), *mask);
+}
+
+/* The per-block arrays of a curve sweep, freed after each block. */
+static void sweep_ws_end_block(sweep_ws *w)
+{
+    free(w->adv);
+    free(w->u0);
+    free(w->u1);
+    free(w->Wl);
+    free(w->Wu);
+    free(w->slot);
+    free(w->by_state);
+    free(w->check);
+    ct_curve_free(w->later);
+    ct_bundle_free(w->work);
+    w->adv = w->u0 = w->u1 = w->Wl = w->Wu = NULL;
+    w->slot = NULL;
+    w->by_state = w->check = NULL;
+    w->later = NULL;
+    w->work = NULL;
+}
+
+/* The rows of s's speeds (a block of a sweep, or all of it) on the prepared curve, the check
+ * on the speeds mask marks. */
+static int sweep_block(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows, sweep_ws *w,
+                       const unsigned char *mask)
+{
+    int st = CT_OK;
+    const size_t nrows = s->nvel * (size_t)s->impacts;
+    rows_not_run(s, rows);
+    if (!(w->by_state = calloc(s->nvel ? s->nvel : 1, 1)) ||
+        !(w->check = malloc(s->nvel ? s->nvel : 1))) {
         st = ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
         goto done;
     }
-    {
-        const double W_crit = ct_curve_work(w.first, ct_curve_first_yield(w.first));
-        if ((st = check_speeds_of(s, ct_bundle_size(b), sqrt(W_crit / (L->l0 * L->E * L->h0)),
-                                  w.check)))
-            goto done;
-    }
+    memcpy(w->check, mask, s->nvel);
     const int fast =
         !s->observe && (s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED);
-    if (fast && (st = sweep_fast(b, s, rows, &w)))
+    if (fast && (st = sweep_fast(b, s, rows, w)))
         goto done;
     int need_state = !fast;
     for (size_t v = 0; v < s->nvel && !need_state; v++)
-        need_state = w.by_state[v];
-    if (need_state && (st = sweep_by_state(b, s, rows, &w, fast)))
+        need_state = w->by_state[v];
+    if (need_state && (st = sweep_by_state(b, s, rows, w, fast)))
         goto done;
     if (s->stop_on_error)
         st = first_failure(rows, nrows);
 done:
+    sweep_ws_end_block(w);
+    return st;
+}
+
+int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
+{
+    CT_NEED(b);
+    int st;
+    if (!s || (s->nvel && !rows))
+        return ct_error_set(CT_EINVAL, "sweep: NULL spec or rows");
+    if ((st = sweep_valid(b, s)))
+        return st;
+    if (use_rods(b, s)) {
+        rows_not_run(s, rows);
+        if ((st = sweep_by_rods(b, s, rows)))
+            return st;
+        return s->stop_on_error ? first_failure(rows, s->nvel * (size_t)s->impacts) : CT_OK;
+    }
+    sweep_ws w = {0};
+    unsigned char *mask = NULL;
+    if (!(st = sweep_prepare(b, s, &w, &mask)))
+        st = sweep_block(b, s, rows, &w, mask);
+    free(mask);
     sweep_ws_free(&w, s);
+    return st;
+}
+
+/* A block's progress, reported as the whole sweep's. */
+typedef struct {
+    const ct_sweep_spec *s;
+    size_t offset;
+} block_progress;
+
+static void progress_of_block(size_t done, size_t total, void *ctx)
+{
+    (void)total;
+    const block_progress *p = ctx;
+    p->s->progress(p->offset + done, p->s->nvel, p->s->progress_ctx);
+}
+
+int ct_sweep_blocks(const ct_bundle *b, const ct_sweep_spec *s, size_t block, ct_rows_fn emit,
+                    void *ctx)
+{
+    CT_NEED(b);
+    CT_NEED(emit);
+    int st;
+    if (!s)
+        return ct_error_set(CT_EINVAL, "sweep: NULL spec");
+    if (s->observe)
+        return ct_error_set(CT_EINVAL, "sweep in blocks: observers need the whole sweep");
+    if (block < 1)
+        return ct_error_set(CT_EINVAL, "sweep in blocks: block = 0 speeds");
+    if ((st = sweep_valid(b, s)))
+        return st;
+    const size_t impacts = (size_t)s->impacts, nb = block < s->nvel ? block : s->nvel;
+    ct_sweep_row *rows = malloc((nb ? nb : 1) * impacts * sizeof *rows);
+    if (!rows)
+        return ct_error_set(CT_ENOMEM, "sweep in blocks of %zu speeds: out of memory", nb);
+    const int rods = use_rods(b, s);
+    sweep_ws w = {0};
+    unsigned char *mask = NULL;
+    if (!rods)
+        st = sweep_prepare(b, s, &w, &mask);
+    for (size_t v0 = 0; !st && v0 < s->nvel; v0 += nb) {
+        const size_t n = s->nvel - v0 < nb ? s->nvel - v0 : nb;
+        block_progress bp = {s, v0};
+        ct_sweep_spec sub = *s;
+        sub.V_star = s->V_star + v0;
+        sub.nvel = n;
+        sub.progress = s->progress ? progress_of_block : NULL;
+        sub.progress_ctx = &bp;
+        if (rods) {
+            rows_not_run(&sub, rows);
+            if (!(st = sweep_by_rods(b, &sub, rows)) && sub.stop_on_error)
+                st = first_failure(rows, n * impacts);
+        } else {
+            st = sweep_block(b, &sub, rows, &w, mask + v0);
+        }
+        if (st && st != CT_ENOMEM) { /* a failed row under stop_on_error: its block is shown */
+            const int failed = st;
+            for (size_t k = 0; k < n * impacts; k++)
+                rows[k].speed += v0;
+            char why[512];
+            snprintf(why, sizeof why, "%s", ct_error_message());
+            emit(rows, n * impacts, ctx);
+            st = ct_error_set(failed, "%s", why);
+            break;
+        }
+        for (size_t k = 0; !st && k < n * impacts; k++)
+            rows[k].speed += v0;
+        if (!st && emit(rows, n * impacts, ctx))
+            st = ct_error_set(CT_ESKIPPED, "sweep in blocks: stopped by the caller");
+    }
+    free(mask);
+    free(rows);
+    if (!rods)
+        sweep_ws_free(&w, s);
     return st;
 }

@@ -368,5 +368,30 @@ grep -q "left out as never touched" <("$ct" run "$scene" --set surface.depth=20 
     ! grep -q " 0 left out" <("$ct" run "$scene" --set surface.depth=20 -o "$tmp/leftout.csv" 2>&1) &&
     ok || bad "the default scene at depth 20 leaves rods out (else the check above is empty)"
 
+# more speeds than a block (16384 rows of whole speeds: 4096 speeds of 4 impacts): the e table
+# and its time columns are written block by block as the sweep goes (memory of one block); the
+# rows are those of a whole sweep: every row of a 5000-speed run equals the row of the same
+# speed in a 4000-speed run of its first speeds, run whole (check = all: rows do not depend on
+# the other speeds); a crushed speed at the end leaves no file under on_error = stop (exit 2,
+# as unstreamed: outside the model), and is a row with its reason under skip
+expect 0 "streamed, 5000 speeds x 4 impacts" -- "$ct" run -q "$scene" \
+    --set impact.V_star=1e-5:2e-2:5000:log --set impact.impacts=4 --set solver.check=all \
+    --set output.what=e,time -o "$tmp/stream.csv"
+awk -F, 'NR > 1 && NR <= 16001 && $1 == 1 { printf "%s%s", sep, $2; sep = ", " } END { print "" }' \
+    "$tmp/stream.csv" >"$tmp/first4000.txt"
+expect 0 "the same speeds, 4000 of them, whole" -- "$ct" run -q "$scene" \
+    --set "impact.V_star=$(cat "$tmp/first4000.txt")" --set impact.impacts=4 \
+    --set solver.check=all --set output.what=e,time -o "$tmp/whole.csv"
+cmp -s <(head -16001 "$tmp/stream.csv") "$tmp/whole.csv" && ok || bad "streamed rows differ from the whole sweep's"
+[ "$(wc -l <"$tmp/stream.csv")" -eq 20001 ] && ok || bad "streamed: not 5000 x 4 rows"
+rm -f "$tmp/crushed.csv"
+"$ct" run -q "$scene" --set impact.V_star=1e-5:10:20000:log -o "$tmp/crushed.csv" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 2 ] && [ ! -e "$tmp/crushed.csv" ] && grep -q "crushed" "$tmp/err" && ok ||
+    bad "streamed, a crushed speed: exit $rc, file $(ls "$tmp/crushed.csv" 2>&1)"
+expect 0 "streamed, skip" -- "$ct" run -q "$scene" --set impact.V_star=1e-5:10:20000:log \
+    --set solver.on_error=skip -o "$tmp/skip.csv"
+grep -q ',"impact energy .* crushed' "$tmp/skip.csv" && [ "$(wc -l <"$tmp/skip.csv")" -eq 20001 ] &&
+    ok || bad "streamed, skip: no crushed rows with their reason"
 echo "$pass passed, $failn failed"
 [ "$failn" -eq 0 ]

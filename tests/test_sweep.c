@@ -405,6 +405,98 @@ static void tiny_speed_is_elastic_not_an_error(void **state)
         }
 }
 
+/* ct_sweep_blocks hands out the rows of ct_sweep, bit for bit and in order, for any block
+ * size: 300 speeds in random order (some crushed: failed rows) x 3 impacts, with and without
+ * the impacts in time, on the curve path (the sampled check chosen over all speeds: 64 rods x
+ * 900 rows is beyond its budget at depth 63, segments) and the rod path, in skip mode; under
+ * stop_on_error the first failure is returned after its block. */
+typedef struct {
+    ct_sweep_row *rows;
+    size_t n, calls;
+} collected;
+
+static int collect(const ct_sweep_row *rows, size_t n, void *ctx)
+{
+    collected *c = ctx;
+    memcpy(c->rows + c->n, rows, n * sizeof *rows);
+    c->n += n;
+    c->calls++;
+    return 0;
+}
+
+static int stop_after_one(const ct_sweep_row *rows, size_t n, void *ctx)
+{
+    (void)rows, (void)n;
+    return ++*(int *)ctx >= 1;
+}
+
+static void blocks_equal_the_whole_sweep(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    enum { NV = 300, IMP = 3 };
+    static double V[NV];
+    uint64_t x = 12345;
+    for (size_t v = 0; v < NV; v++) { /* a fixed pseudo-random order over 1e-5 .. 0.3 */
+        x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+        V[v] = 1e-5 * pow(3e4, (double)(x >> 11) * 0x1p-53);
+    }
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 10, INFINITY), CT_OK);
+    static ct_sweep_row whole[NV * IMP], got[NV * IMP];
+    const size_t blocks[] = {1, 7, 64, NV, 1000};
+    for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++)
+        for (int dyn = 0; dyn <= (path == CT_PATH_CURVE); dyn++) {
+            ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = IMP, .path = path};
+            ct_impact_opts_default(&spec.opts);
+            spec.opts.check = CT_CHECK_AUTO;
+            spec.dynamics = dyn;
+            assert_int_equal(ct_sweep(b, &spec, whole), CT_OK);
+            size_t failed = 0, unchecked = 0;
+            for (size_t k = 0; k < NV * IMP; k++) {
+                failed += whole[k].status != CT_OK;
+                unchecked += whole[k].status == CT_OK && isnan(whole[k].r.e_closed);
+            }
+            assert_true(failed > 0 && failed < NV * IMP / 2); /* crushed speeds */
+            if (path == CT_PATH_CURVE)
+                assert_true(unchecked > 0); /* the check sampled */
+            for (size_t q = 0; q < sizeof blocks / sizeof *blocks; q++) {
+                collected c = {got, 0, 0};
+                assert_int_equal(ct_sweep_blocks(b, &spec, blocks[q], collect, &c), CT_OK);
+                assert_int_equal(c.n, NV * IMP);
+                assert_int_equal(c.calls, (NV + blocks[q] - 1) / blocks[q]);
+                for (size_t k = 0; k < NV * IMP; k++) {
+                    const ct_sweep_row *a = &whole[k], *g = &got[k];
+                    if (a->speed != g->speed || a->impact != g->impact || a->status != g->status ||
+                        memcmp(&a->r, &g->r, sizeof a->r) ||
+                        (dyn && memcmp(&a->dyn, &g->dyn, sizeof a->dyn)) ||
+                        strcmp(a->message, g->message))
+                        fail_msg("path %d, dynamics %d, block %zu: row %zu differs", path, dyn,
+                                 blocks[q], k);
+                }
+            }
+            /* stop_on_error: the first failure, after its block was handed out */
+            spec.stop_on_error = 1;
+            collected c = {got, 0, 0};
+            assert_int_equal(ct_sweep_blocks(b, &spec, 16, collect, &c), CT_ERANGE);
+            size_t first = 0;
+            while (whole[first].status == CT_OK || whole[first].status == CT_ESKIPPED)
+                first++;
+            assert_true(c.n > first && c.n <= first + 16 * IMP);
+            /* the caller stops */
+            int calls = 0;
+            spec.stop_on_error = 0;
+            assert_int_equal(ct_sweep_blocks(b, &spec, 16, stop_after_one, &calls), CT_ESKIPPED);
+            assert_int_equal(calls, 1);
+        }
+    ct_sweep_spec bad = {.V_star = V, .nvel = NV, .impacts = 1};
+    ct_impact_opts_default(&bad.opts);
+    assert_int_equal(ct_sweep_blocks(b, &bad, 0, collect, NULL), CT_EINVAL);
+    bad.observe = no_op_observer;
+    assert_int_equal(ct_sweep_blocks(b, &bad, 8, collect, NULL), CT_EINVAL);
+    ct_bundle_free(b);
+}
+
 /* Far below V*_c, down to the smallest energy a double holds normally (V* = 1e-150: W ~ 1e-297
  * in these units), the impact is elastic and computed: u_max against the paper's series (which
  * sums stages in closed form, not the curve) and e = 1 exactly. At V* = 1e-130 the curve's
@@ -572,6 +664,7 @@ int main(void)
         cmocka_unit_test(rod_path_equals_curve_path),
         cmocka_unit_test(two_rods_five_impacts_on_paper),
         cmocka_unit_test(tiny_speed_is_elastic_not_an_error),
+        cmocka_unit_test(blocks_equal_the_whole_sweep),
         cmocka_unit_test(tiny_energies_down_to_the_smallest_double),
         cmocka_unit_test(tiny_speed_on_offset_rods_is_elastic),
         cmocka_unit_test(stiff_rod_at_contact_states_its_rounding),

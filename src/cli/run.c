@@ -13,6 +13,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/statvfs.h>
 
 /* The outputs of a run besides a bounce sequence and an ensemble, in the order of their
  * files: the e table at output.file, the others beside it (FILE_curve.csv, ...) when there
@@ -39,25 +40,6 @@ static const struct {
                     {CT_OUT_HISTORY, "history"},
                     {CT_OUT_BEARING, "bearing"}};
 #define NOUTPUTS (sizeof output_kinds / sizeof output_kinds[0])
-
-/* What the closed-form check covered, when it sampled (solver.check = auto beyond its budget):
- * the rows without e_closed_form are the unchecked ones. */
-static void check_note(const ct_sweep_row *rows, size_t nrows, const ct_scene *sc, size_t rods)
-{
-    size_t ok = 0, checked = 0, speeds = 0;
-    for (size_t k = 0; k < nrows; k++) {
-        ok += rows[k].status == CT_OK;
-        checked += rows[k].status == CT_OK && !isnan(rows[k].r.e_closed);
-        speeds += rows[k].impact == 1 && rows[k].status == CT_OK && !isnan(rows[k].r.e_closed);
-    }
-    if (sc->opts.check == CT_CHECK_AUTO && checked > 0 && checked < ok)
-        fprintf(stderr,
-                "cantact: closed-form check: every impact of %zu of %zu speeds, a sample (%zu rods "
-                "x %zu rows = %.3g rod evaluations, above the budget %.0f: the slowest, the "
-                "fastest, the two around V*_c, log-spaced between; solver.check = all checks "
-                "every one)\n",
-                speeds, sc->nvel, rods, nrows, (double)rods * (double)nrows, CT_CHECK_BUDGET);
-}
 
 static FILE *output_file(output_list *l, unsigned bit)
 {
@@ -294,32 +276,58 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, co
     fputc('\n', f);
 }
 
-/* Checks every row, writes the e table, and says how many impacts failed. */
-static int write_e_table(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, size_t nrows,
-                         const double *cmp, size_t ncmp, int quiet)
+/* What the rows written so far held: failures (the first one kept) and the closed-form
+ * check's coverage. */
+typedef struct {
+    size_t rows, failed, ok, checked, checked_speeds;
+    ct_sweep_row first_failed;
+} row_tally;
+
+/* Checks rows and writes them to the e table (f NULL: checks only), counting into t. */
+static int write_e_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, size_t nrows,
+                        const double *cmp, size_t ncmp, row_tally *t)
 {
     char err[512];
-    size_t failed = 0;
-    const ct_sweep_row *first_failed = NULL;
     for (size_t k = 0; k < nrows; k++) {
-        if (rows[k].status == CT_OK && !(isfinite(rows[k].r.e) && isfinite(rows[k].r.u_max))) {
-            ct_cli_fail("V* = %g impact %ld: a non-finite result", rows[k].V_star, rows[k].impact);
+        const ct_sweep_row *row = &rows[k];
+        if (row->status == CT_OK && !(isfinite(row->r.e) && isfinite(row->r.u_max))) {
+            ct_cli_fail("V* = %g impact %ld: a non-finite result", row->V_star, row->impact);
             return EXIT_FAILED;
         }
-        if ((sc->what & CT_OUT_TIME) && ct_cli_time_check(&rows[k], err, sizeof err)) {
+        if ((sc->what & CT_OUT_TIME) && ct_cli_time_check(row, err, sizeof err)) {
             ct_cli_fail("%s", err); /* two computations of the rebound disagree: a defect */
             return EXIT_FAILED;
         }
-        if (rows[k].status && !failed++)
-            first_failed = &rows[k];
+        if (row->status && !t->failed++)
+            t->first_failed = *row;
+        t->rows++;
+        t->ok += row->status == CT_OK;
+        t->checked += row->status == CT_OK && !isnan(row->r.e_closed);
+        t->checked_speeds += row->impact == 1 && row->status == CT_OK && !isnan(row->r.e_closed);
         if (f)
-            write_e_row(f, sc, &rows[k], cmp ? cmp + ncmp * k : NULL, ncmp);
+            write_e_row(f, sc, row, cmp ? cmp + ncmp * k : NULL, ncmp);
     }
-    if (failed && !quiet)
+    return EXIT_DONE;
+}
+
+/* The notes after the e table: failed impacts, and what a sampled check covered. */
+static void tally_notes(const row_tally *t, const ct_scene *sc, size_t rods, int quiet)
+{
+    if (quiet)
+        return;
+    if (sc->opts.check == CT_CHECK_AUTO && t->checked > 0 && t->checked < t->ok)
+        fprintf(stderr,
+                "cantact: closed-form check: every impact of %zu of %zu speeds, a sample (%zu rods "
+                "x %zu rows = %.3g rod evaluations, above the budget %.0f: the slowest, the "
+                "fastest, the two around V*_c, log-spaced between; solver.check = all checks "
+                "every one)\n",
+                t->checked_speeds, sc->nvel, rods, t->rows, (double)rods * (double)t->rows,
+                CT_CHECK_BUDGET);
+    if (t->failed)
         fprintf(stderr,
                 "cantact: %zu of %zu impacts failed or not run (first: V* = %g, impact %ld: %s)\n",
-                failed, nrows, first_failed->V_star, first_failed->impact, first_failed->message);
-    return EXIT_DONE;
+                t->failed, t->rows, t->first_failed.V_star, t->first_failed.impact,
+                t->first_failed.message);
 }
 
 /* ---- run ---- */
@@ -439,8 +447,6 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, 
     st = ct_sweep(b, &spec, rows);
     ct_progress_end(&prog);
     ct_curve_free(obs.post);
-    if (!quiet)
-        check_note(rows, nrows, sc, ct_bundle_size(b));
     FILE *fp = output_file(outs, CT_OUT_PROFILE), *fb = output_file(outs, CT_OUT_BEARING);
     if (!st)
         st = ct_surface_after_sweep(sc->surface, rows, nrows);
@@ -456,13 +462,84 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, 
     }
     size_t ncmp;
     double *cmp = compare_columns(sc, rows, nrows, &ncmp, quiet, &oom);
+    row_tally t = {0};
     if (oom)
         ct_cli_fail("compare: out of memory");
     else
-        rc = write_e_table(output_file(outs, CT_OUT_E), sc, rows, nrows, cmp, ncmp, quiet);
+        rc = write_e_rows(output_file(outs, CT_OUT_E), sc, rows, nrows, cmp, ncmp, &t);
+    if (rc == EXIT_DONE && !oom)
+        tally_notes(&t, sc, ct_bundle_size(b), quiet);
     free(cmp);
     free(rows);
     return oom ? EXIT_FAILED : rc;
+}
+
+/* ---- the sweep streamed ---- */
+
+/* Rows per block of a streamed sweep (about 540 bytes each: 8.8 MB), whole speeds: a block
+ * holds max(1, 16384 / impacts) speeds. */
+#define STREAM_ROWS 16384
+
+static size_t block_speeds(const ct_scene *sc)
+{
+    const size_t n = STREAM_ROWS / (size_t)sc->impacts;
+    return n ? n : 1;
+}
+
+typedef struct {
+    FILE *f;
+    const ct_scene *sc;
+    row_tally t;
+    int rc;
+} stream_ctx;
+
+static int emit_rows(const ct_sweep_row *rows, size_t n, void *ctx)
+{
+    stream_ctx *c = ctx;
+    c->rc = write_e_rows(c->f, c->sc, rows, n, NULL, 0, &c->t);
+    return c->rc != EXIT_DONE;
+}
+
+/* Whether the run's outputs can be written block by block as the sweep goes: the e table
+ * and its time columns only (the curve, history and profile outputs observe the sweep; a
+ * kind's comparison columns and bearing curve are computed from all rows). */
+static int streamable(const ct_scene *sc)
+{
+    return !(sc->what &
+             (CT_OUT_CURVE | CT_OUT_HISTORY | CT_OUT_PROFILE | CT_OUT_COMPARE | CT_OUT_BEARING)) &&
+           sc->nvel > block_speeds(sc);
+}
+
+/* The sweep in blocks of speeds, each written as soon as it is computed (ct_sweep_blocks):
+ * the same bytes as the whole sweep, in memory of one block. */
+static int sweep_streamed(ct_scene *sc, output_list *outs, const ct_bundle *b, int quiet)
+{
+    ct_progress prog;
+    ct_progress_start(&prog, sc->nvel);
+    ct_sweep_spec spec = {
+        .V_star = sc->V_star,
+        .nvel = sc->nvel,
+        .impacts = sc->impacts,
+        .opts = sc->opts,
+        .stop_on_error = !sc->skip_failed,
+        .progress = show_progress,
+        .progress_ctx = &prog,
+        .path = sc->path,
+        .dynamics = !!(sc->what & CT_OUT_TIME),
+    };
+    stream_ctx c = {output_file(outs, CT_OUT_E), sc, {0}, EXIT_DONE};
+    int st = ct_sweep_blocks(b, &spec, block_speeds(sc), emit_rows, &c);
+    ct_progress_end(&prog);
+    if (c.rc != EXIT_DONE)
+        return c.rc;                  /* said already */
+    ct_cli_notes(sc->surface, quiet); /* (no kind's after-sweep step: what needs it is not
+                                        streamed) */
+    if (st) {
+        ct_cli_fail("%s", ct_error_message());
+        return ct_cli_status_exit(st);
+    }
+    tally_notes(&c.t, sc, ct_bundle_size(b), quiet);
+    return EXIT_DONE;
 }
 
 static int run_sweep(ct_scene *sc, int quiet);
@@ -509,9 +586,11 @@ static int run_sweep(ct_scene *sc, int quiet)
     ct_plan_info info;
     ct_build_request req;
     int st, rc;
-    /* the result rows (speeds x impacts) are held in memory: refuse up front what would not
-     * fit, with the figure (1e6 speeds x 1e6 impacts are allowed by the scene's ranges) */
-    const double bytes = (double)sc->nvel * (double)sc->impacts * (double)sizeof(ct_sweep_row);
+    /* the result rows (speeds x impacts) are held in memory unless streamed: refuse up front
+     * what would not fit, with the figure (1e6 speeds x 1e6 impacts are allowed by the scene's
+     * ranges; streamed, a block holds whole speeds: 1e6 impacts of one speed are 540 MB) */
+    const size_t held = streamable(sc) ? block_speeds(sc) : sc->nvel;
+    const double bytes = (double)held * (double)sc->impacts * (double)sizeof(ct_sweep_row);
     const double avail = (double)ct_available_memory();
     if (bytes > 0.9 * avail) {
         ct_cli_fail("%zu speeds x %ld impacts = %.3g result rows need %.3g GiB, more than the "
@@ -526,6 +605,21 @@ static int run_sweep(ct_scene *sc, int quiet)
         close_outputs(&outs);
         return EXIT_USAGE;
     }
+    FILE *fe = output_file(&outs, CT_OUT_E);
+    struct statvfs fs;
+    /* streamed, the rows are not held but written: refuse up front, with the figure, a table
+     * its filesystem cannot take (at least 100 bytes a row, 200 with the time columns) */
+    const double rows = (double)sc->nvel * (double)sc->impacts,
+                 need = rows * ((sc->what & CT_OUT_TIME) ? 200.0 : 100.0);
+    if (streamable(sc) && fe && !fstatvfs(fileno(fe), &fs) &&
+        need > (double)fs.f_bavail * (double)fs.f_frsize) {
+        ct_cli_fail("%zu speeds x %ld impacts = %.3g result rows need at least %.3g GiB of "
+                    "output, more than the %.3g GiB free where it is written: split the scene",
+                    sc->nvel, sc->impacts, rows, need / 1073741824.0,
+                    (double)fs.f_bavail * (double)fs.f_frsize / 1073741824.0);
+        close_outputs(&outs);
+        return EXIT_FAILED;
+    }
     ct_scene_request(sc, !!(sc->what & CT_OUT_PROFILE), &req);
     if ((st = ct_surface_build(sc->surface, &req, &b, &info))) {
         ct_cli_fail("%s", ct_error_message());
@@ -537,10 +631,10 @@ static int run_sweep(ct_scene *sc, int quiet)
         ct_surface_describe(sc->surface, &info, what, sizeof what);
         fprintf(stderr, "cantact: %s, %d thread(s)\n", what, ct_bundle_set_threads(b, sc->threads));
     }
-    FILE *fe = output_file(&outs, CT_OUT_E);
     if (fe)
         write_e_header(fe, sc);
-    rc = sweep_and_write(sc, &outs, b, quiet);
+    rc =
+        streamable(sc) ? sweep_streamed(sc, &outs, b, quiet) : sweep_and_write(sc, &outs, b, quiet);
     ct_bundle_free(b);
     if (rc == EXIT_DONE && commit_outputs(&outs, err, sizeof err)) {
         ct_cli_fail("%s", err);
