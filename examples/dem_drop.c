@@ -3,27 +3,35 @@
  *
  * Build: cc -O2 dem_drop.c -lm -I/path/to/include   (cantact_table.h only: no libcantact)
  * Usage: dem_drop TABLE.csv [--height H] [--speed V0] [--gravity G] [--bounces N]
- *                 [--v-per-V-star S] [--steps-per-contact K] [--check TOL]
+ *                 [--v-per-V-star S] [--steps-per-contact K] [--law tension|clipped]
+ *                 [--check TOL]
  *
  * The contact, per contact (the three lines a DEM code needs, marked below):
  *   at first touch, with the normal approach speed v_impact:
- *     e    = ct_tab_e_of_speed(&table, v_impact)        (the table's e(V*), V* = v / S)
- *     zeta = -ln e / sqrt(pi^2 + ln^2 e)               (the linear spring-dashpot's damping
- *                                                        ratio that returns e)
+ *     e    = ct_tab_e_of_speed(&table, v_impact)   (the table's e(V*), V* = v / S)
+ *     zeta = ct_tab_zeta_of_e(e, law)              (the linear spring-dashpot's damping ratio
+ *                                                   that rebounds with e under the law)
  *     c_n  = 2 zeta sqrt(m_eff k_n)
- *   then F_n = k_n delta + c_n d(delta)/dt while delta > 0 (delta: the overlap). Without
- *   gravity, this oscillator leaves the wall (delta = 0) with speed e v_impact exactly: the
- *   damped half period pi / omega_d and the decay exp(-zeta omega_n t) give
- *   e = exp(-pi zeta / sqrt(1 - zeta^2)), whose inverse is the relation above.
+ *   then F_n = k_n delta + c_n d(delta)/dt (delta: the overlap) until the contact ends:
+ *     --law tension (the default): F_n may pull; the contact ends at delta = 0, and without
+ *       gravity the sphere leaves with e v_impact exactly for zeta = -ln e / sqrt(pi^2 +
+ *       ln^2 e) (the inverse of e = exp(-pi zeta / sqrt(1 - zeta^2)));
+ *     --law clipped: F_n = max(0, ...) as in Yade (Law2_ScGeom_ViscElPhys_Basic) or LAMMPS
+ *       (limit_damping): the sphere separates when k_n delta + c_n d(delta)/dt reaches 0,
+ *       with delta still > 0, and flies out of the overlap freely; without gravity it leaves
+ *       with e v_impact for the zeta of e = exp(-2 zeta h(zeta)) (cantact_table.h's top).
+ *   Each law needs its own relation: the tension one's zeta under the clipped law rebounds
+ *   faster (e too high), the clipped one's under tension slower.
  *
  * The loop: fixed steps dt = (damped contact time) / K. In flight the motion is ballistic
  * (exact); in contact the step is classical Runge-Kutta (RK4); a step that crosses first touch
  * or separation is cut there (the touch time from the ballistic quadratic, the separation by
- * regula falsi on the RK4 step length), so that v_impact and v_rebound are not blurred by
- * the step. Prints one CSV row per contact: the rebound speed against e_table v_impact.
- * With --check TOL it exits 1 when some |v_rebound / v_impact - e_table| exceeds TOL (the
- * test runs it without gravity: the difference is then the integrator's error alone; with
- * gravity, the weight acting during the contact adds about g t_contact / v_impact). */
+ * regula falsi on the RK4 step length: where delta, or for the clipped law the force, reaches
+ * 0; then, clipped, the ballistic flight out of the overlap to delta = 0), so that v_impact
+ * and v_rebound are not blurred by the step. Prints one CSV row per contact: the rebound speed
+ * against e_table v_impact. With --check TOL it exits 1 when some |v_rebound / v_impact - e_table|
+ * exceeds TOL (the test runs it without gravity: the difference is then the integrator's error
+ * alone; with gravity, the weight acting during the contact adds about g t_contact / v_impact). */
 #include "cantact_table.h"
 
 #include <math.h>
@@ -42,15 +50,14 @@ typedef struct {
     double g;       /* m/s^2, pulls towards the wall */
     double c_n;     /* N s/m, set per contact */
     double v_per_V; /* impact speed per unit V* (m/s) */
+    int law;        /* CT_TAB_TENSION or CT_TAB_CLIPPED */
 } sim;
 
-/* e -> damping ratio of the linear spring-dashpot (contact ends at zero overlap). */
-static double damping_ratio(double e)
+/* What ends the contact, as a function of the state (z < 0 in contact): tension, the overlap
+ * -z reaching 0; clipped, the force k_n (-z) + c_n (-v) reaching 0. < 0 while in contact. */
+static double contact_end(const sim *s, double z, double v)
 {
-    if (!(e > 0.0))
-        return 1.0; /* e = 0: critical damping, no rebound */
-    const double l = log(e);
-    return -l / sqrt(M_PI * M_PI + l * l);
+    return s->law == CT_TAB_TENSION ? z : s->k_n * z + s->c_n * v;
 }
 
 /* d/dt (z, v) in contact: z < 0 is the overlap delta = -z. */
@@ -91,7 +98,10 @@ int main(int argc, char **argv)
 {
     const char *path = NULL;
     double height = 1.0, speed = 0.0, tol = -1.0, v_per_V = NAN, steps = 400.0, bounces = 8.0;
-    sim s = {.mass = 7850.0 * 4.0 / 3.0 * M_PI * 0.002 * 0.002 * 0.002, .k_n = 1e5, .g = 9.81};
+    sim s = {.mass = 7850.0 * 4.0 / 3.0 * M_PI * 0.002 * 0.002 * 0.002,
+             .k_n = 1e5,
+             .g = 9.81,
+             .law = CT_TAB_TENSION};
     for (int k = 1; k < argc; k++) {
         if (!strcmp(argv[k], "--height"))
             height = arg_value(argc, argv, &k);
@@ -107,7 +117,17 @@ int main(int argc, char **argv)
             steps = arg_value(argc, argv, &k);
         else if (!strcmp(argv[k], "--check"))
             tol = arg_value(argc, argv, &k);
-        else if (argv[k][0] == '-') {
+        else if (!strcmp(argv[k], "--law")) {
+            const char *law = k + 1 < argc ? argv[++k] : "";
+            if (!strcmp(law, "tension"))
+                s.law = CT_TAB_TENSION;
+            else if (!strcmp(law, "clipped"))
+                s.law = CT_TAB_CLIPPED;
+            else {
+                fprintf(stderr, "dem_drop: --law %s: must be tension or clipped\n", law);
+                return 2;
+            }
+        } else if (argv[k][0] == '-') {
             fprintf(stderr, "dem_drop: unknown option %s\n", argv[k]);
             return 2;
         } else {
@@ -118,7 +138,7 @@ int main(int argc, char **argv)
         !(bounces >= 1.0)) {
         fprintf(stderr, "usage: dem_drop TABLE.csv [--height H >= 0] [--speed V0 >= 0] "
                         "[--gravity G >= 0] [--bounces N >= 1] [--v-per-V-star S] "
-                        "[--steps-per-contact K >= 4] [--check TOL]\n");
+                        "[--steps-per-contact K >= 4] [--law tension|clipped] [--check TOL]\n");
         return 2;
     }
     ct_tab table;
@@ -172,28 +192,29 @@ int main(int argc, char **argv)
             /* ---- the contact starts: e from the table, then the damping (3 lines) ---- */
             v_in = -v;
             e = ct_tab_e_of_speed(&table, v_in);
-            const double zeta = damping_ratio(e);
+            const double zeta = ct_tab_zeta_of_e(e, s.law);
             s.c_n = 2.0 * zeta * sqrt(s.mass * s.k_n);
             in_contact = 1;
             continue;
         }
         double z1, v1;
         rk4(&s, z, v, dt, &z1, &v1);
-        if (z1 < 0.0) {
+        if (contact_end(&s, z1, v1) < 0.0) {
             z = z1;
             v = v1;
             t += dt;
             continue;
         }
-        /* separation inside this step: z(h) = 0 by regula falsi (Illinois) on the step
-         * length, bracketed by z(a) <= 0 < z(b) */
-        double a = 0.0, za = z, b = dt, zb = z1, h = dt;
+        /* separation inside this step: contact_end(h) = 0 by regula falsi (Illinois) on the
+         * step length, bracketed by contact_end(a) <= 0 <= contact_end(b) */
+        double a = 0.0, za = contact_end(&s, z, v), b = dt, zb = contact_end(&s, z1, v1), h = dt;
         for (int it = 0, side = 0; it < 200 && b - a > 4e-16 * dt; it++) {
             h = (a * zb - b * za) / (zb - za);
             if (!(h > a && h < b))
                 h = 0.5 * (a + b);
             double zh, vh;
             rk4(&s, z, v, h, &zh, &vh);
+            zh = contact_end(&s, zh, vh);
             if (zh == 0.0)
                 break;
             if (zh < 0.0) {
@@ -212,15 +233,32 @@ int main(int argc, char **argv)
         }
         rk4(&s, z, v, h, &z1, &v1);
         t += h;
-        z = 0.0;
+        z = s.law == CT_TAB_TENSION ? 0.0 : fmin(z1, 0.0);
         v = v1;
+        if (z < 0.0) {
+            /* clipped: no force from here on (k_n delta + c_n d(delta)/dt only falls); the
+             * ballistic flight out of the overlap, z + v h - g h^2 / 2 = 0 (v > 0, z < 0) */
+            const double disc = v * v + 2.0 * s.g * z;
+            if (!(disc >= 0.0)) {
+                fprintf(stderr,
+                        "dem_drop: contact %d: the sphere falls back before it leaves "
+                        "the overlap (not modelled)\n",
+                        contacts + 1);
+                status = 1;
+                break;
+            }
+            h = -2.0 * z / (v + sqrt(disc));
+            v -= s.g * h;
+            t += h;
+            z = 0.0;
+        }
         in_contact = 0;
         contacts++;
         const double V = v_in / s.v_per_V, measured = v / v_in;
         const double diff = measured - e;
         worst = fmax(worst, fabs(diff));
         printf("%d,%.9g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.3g,%d\n", contacts, t, v_in, V, e,
-               damping_ratio(e), v, measured, diff, ct_tab_covers(&table, V));
+               ct_tab_zeta_of_e(e, s.law), v, measured, diff, ct_tab_covers(&table, V));
         if (!ct_tab_covers(&table, V))
             fprintf(stderr,
                     "dem_drop: contact %d: V* = %g is outside the table (e of its nearest "

@@ -23,7 +23,63 @@
  *     it there: ct_tab_covers() says so).
  *
  * Numbers are read in the "C" format (a point before the decimals) whatever the locale.
- * SPDX-License-Identifier: GPL-3.0-or-later
+ *
+ * e <-> damping (ct_tab_zeta_of_e, ct_tab_e_of_zeta): a DEM code that turns e into the damping
+ * of a linear spring-dashpot normal contact, F = k delta + c delta' (delta >= 0 the overlap,
+ * delta' its rate, > 0 while approaching; k the normal stiffness, m the contact's mass, m1 m2 /
+ * (m1 + m2)), needs the damping ratio zeta = c / (2 sqrt(m k)) that rebounds with e:
+ *     c = 2 ct_tab_zeta_of_e(e, law) sqrt(m k).
+ * From delta(0) = 0, delta'(0) = v > 0, m delta'' = -F gives (omega = sqrt(k / m); zeta < 1:
+ * omega_d = omega sqrt(1 - zeta^2)) delta = (v / omega_d) exp(-zeta omega t) sin(omega_d t), and
+ * e = (speed when the contact ends) / v depends on zeta alone, and on the law that ends it:
+ *
+ * CT_TAB_TENSION: the dashpot may pull (F < 0 near the end; LIGGGHTS's Hooke model,
+ *   examples/dem_drop.c); the contact ends when delta returns to 0, at omega_d t = pi:
+ *     e = exp(-pi zeta / sqrt(1 - zeta^2))  (zeta < 1),  zeta = -ln e / sqrt(pi^2 + ln^2 e).
+ *   zeta >= 1: delta = v t exp(-omega t) (zeta = 1) or (v / (2 omega s)) (exp(-omega (zeta - s) t)
+ *   - exp(-omega (zeta + s) t)) (zeta > 1, s = sqrt(zeta^2 - 1)) is > 0 for every t > 0: the
+ *   overlap never returns to 0 in finite time, the body creeps out with a speed that tends to
+ *   0: no rebound, e = 0 (the limit of e as zeta -> 1 from below, too). Every zeta >= 1 gives
+ *   e = 0, so ct_tab_zeta_of_e(0, CT_TAB_TENSION) = 1 (the least: critical damping).
+ *
+ * CT_TAB_CLIPPED: the force is max(0, k delta + c delta') (Yade's Law2_ScGeom_ViscElPhys_Basic,
+ *   LAMMPS's pair granular with limit_damping): the body separates when k delta + c delta'
+ *   falls to 0, i.e. delta'' = 0, with delta > 0 and delta' < 0 (from there on F would be
+ *   < 0 and stays so: free flight), and e = -delta' there / v. With x = zeta / sqrt(1 - zeta^2),
+ *   delta'' = 0 at omega_d t = pi - 2 atan x, where delta' = -v exp(-x (pi - 2 atan x)); at
+ *   zeta = 1, delta = v t exp(-omega t) has delta'' = 0 at omega t = 2; for zeta > 1 (real roots
+ *   -omega (zeta -+ s)) delta'' = 0 at omega t = 2 acosh(zeta) / s, where delta' = -v (zeta -
+ *   s)^2 exp(-2 (zeta - s) acosh(zeta) / s). All three are one formula, analytic in zeta:
+ *     ln e = -2 zeta h(zeta),  h = acos(zeta) / sqrt(1 - zeta^2)     (zeta < 1; then
+ *                                                                     e = exp(-x (pi - 2 atan x)))
+ *                              h = 1                                 (zeta = 1: e = e^-2)
+ *                              h = acosh(zeta) / sqrt(zeta^2 - 1)    (zeta > 1)
+ *   (h = 1 - (zeta - 1) / 3 + 2 (zeta - 1)^2 / 15 - ... about 1). e falls strictly from 1
+ *   (zeta = 0) through e^-2 = 0.1353... (zeta = 1) to 0 (e ~ 1 / (2 zeta)^2 for large zeta):
+ *   every e in (0, 1] has one zeta, < 1 above e^-2 and > 1 below it. zeta_of_e solves
+ *   2 zeta h(zeta) = -ln e by Newton's method kept inside a bracket (bisection where a step
+ *   would leave it), to within 4e-16 max(1, -ln e) relative of the exact root (checked against
+ *   50-digit arithmetic from e = 1e-300 to 1; e = 1e-300 gives zeta ~ 1e150).
+ *
+ * Outside: e_of_zeta is NaN for zeta NaN or < 0, 0 for zeta = +infinity; zeta_of_e is NaN for
+ * e NaN, < 0 or > 1, 0 for e = 1, and for e = 0 gives 1 (CT_TAB_TENSION) or +infinity
+ * (CT_TAB_CLIPPED); both are NaN for a law that is neither. No errno, no locale.
+ *
+ * This header alone is under the MIT licence (the rest of cantact is GPL-3.0-or-later), so that
+ * DEM engines under any licence can include it: LAMMPS is GPL-2.0-only (dem/lammps/).
+ * Copyright (c) 2026 the cantact developers. Permission is hereby granted, free of charge, to
+ * any person obtaining a copy of this software and associated documentation files (the
+ * "Software"), to deal in the Software without restriction, including without limitation the
+ * rights to use, copy, modify, merge, publish, distribute, sublicense, and/or sell copies of the
+ * Software, and to permit persons to whom the Software is furnished to do so, subject to the
+ * following conditions: The above copyright notice and this permission notice shall be
+ * included in all copies or substantial portions of the Software. THE SOFTWARE IS PROVIDED "AS
+ * IS", WITHOUT WARRANTY OF ANY KIND, EXPRESS OR IMPLIED, INCLUDING BUT NOT LIMITED TO THE
+ * WARRANTIES OF MERCHANTABILITY, FITNESS FOR A PARTICULAR PURPOSE AND NONINFRINGEMENT. IN NO
+ * EVENT SHALL THE AUTHORS OR COPYRIGHT HOLDERS BE LIABLE FOR ANY CLAIM, DAMAGES OR OTHER
+ * LIABILITY, WHETHER IN AN ACTION OF CONTRACT, TORT OR OTHERWISE, ARISING FROM, OUT OF OR IN
+ * CONNECTION WITH THE SOFTWARE OR THE USE OR OTHER DEALINGS IN THE SOFTWARE.
+ * SPDX-License-Identifier: MIT
  */
 #ifndef CANTACT_TABLE_H
 #define CANTACT_TABLE_H
@@ -358,6 +414,110 @@ fail:
     fclose(f);
     ct_tab_free(t);
     return -1;
+}
+
+/* ---- e <-> damping ratio of a linear spring-dashpot normal contact (see the top) ---- */
+
+/* How the contact ends: CT_TAB_TENSION at zero overlap (the dashpot may pull), CT_TAB_CLIPPED
+ * when the force max(0, k delta + c delta') reaches 0. */
+enum { CT_TAB_TENSION = 0, CT_TAB_CLIPPED = 1 };
+
+#define CT_TAB_PI 3.14159265358979323846
+
+/* -ln e of the clipped law, 2 zeta h(zeta), at a finite zeta >= 0. */
+static inline double ct_tab_clipped_loss(double zeta)
+{
+    double h;
+    if (zeta < 1.0) /* (1 - zeta)(1 + zeta): no cancellation near 1 */
+        h = acos(zeta) / sqrt((1.0 - zeta) * (1.0 + zeta));
+    else if (zeta > 1.0) /* sqrt of each factor: no overflow for large zeta */
+        h = acosh(zeta) / (sqrt(zeta - 1.0) * sqrt(zeta + 1.0));
+    else
+        h = 1.0;
+    return 2.0 * zeta * h;
+}
+
+/* d/dzeta of ct_tab_clipped_loss: 2 h + 2 zeta h', h' = (zeta h - 1) / (1 - zeta^2) (both
+ * branches), -1/3 - 4 (1 - zeta) / 15 near 1 (the series). Newton's direction only. */
+static inline double ct_tab_clipped_loss_slope(double zeta)
+{
+    const double t = 1.0 - zeta, h = 0.5 * ct_tab_clipped_loss(zeta) / (zeta > 0.0 ? zeta : 1.0);
+    double dh;
+    if (fabs(t) < 1e-4)
+        dh = -1.0 / 3.0 - 4.0 * t / 15.0;
+    else
+        dh = (zeta * h - 1.0) / (t * (1.0 + zeta));
+    return 2.0 * (zeta > 0.0 ? h : CT_TAB_PI / 2.0) + 2.0 * zeta * dh;
+}
+
+/* e of a linear spring-dashpot contact with damping ratio zeta under `law` (the top of this
+ * file): CT_TAB_TENSION exp(-pi zeta / sqrt(1 - zeta^2)), 0 for zeta >= 1; CT_TAB_CLIPPED
+ * exp(-2 zeta h(zeta)). NaN for zeta NaN or < 0 or another law; 0 at zeta = +infinity. */
+static inline double ct_tab_e_of_zeta(double zeta, int law)
+{
+    if (!(zeta >= 0.0) || (law != CT_TAB_TENSION && law != CT_TAB_CLIPPED))
+        return NAN;
+    if (law == CT_TAB_TENSION)
+        return zeta < 1.0 ? exp(-CT_TAB_PI * zeta / sqrt((1.0 - zeta) * (1.0 + zeta))) : 0.0;
+    if (isinf(zeta))
+        return 0.0;
+    return exp(-ct_tab_clipped_loss(zeta));
+}
+
+/* The damping ratio zeta that rebounds with e under `law`: CT_TAB_TENSION -ln e /
+ * sqrt(pi^2 + ln^2 e) (< 1; 1 for e = 0); CT_TAB_CLIPPED the root of 2 zeta h(zeta) = -ln e
+ * (< 1 for e > e^-2, 1 at e^-2, > 1 below; +infinity for e = 0). 0 for e = 1; NaN for e NaN,
+ * < 0 or > 1, or another law. The contact's damping is c = 2 zeta sqrt(m k). */
+static inline double ct_tab_zeta_of_e(double e, int law)
+{
+    if (!(e >= 0.0 && e <= 1.0) || (law != CT_TAB_TENSION && law != CT_TAB_CLIPPED))
+        return NAN;
+    if (e == 1.0)
+        return 0.0;
+    if (e == 0.0)
+        return law == CT_TAB_TENSION ? 1.0 : INFINITY;
+    const double L = -log(e); /* > 0, <= 745 */
+    if (law == CT_TAB_TENSION)
+        return L / sqrt(CT_TAB_PI * CT_TAB_PI + L * L);
+    /* 2 zeta h(zeta) rises from 0 (slope pi) to 2 at zeta = 1, then as 2 ln(2 zeta): bracket
+     * [0, 1] or [1, exp(L / 2)] (2 zeta h >= 2 ln zeta there), and a first guess */
+    double lo, hi, z;
+    if (L <= 2.0) {
+        /* pi z - (pi - 2) z^2 = L: the quadratic through (0, 0) and (1, 2) with slope pi */
+        const double a = CT_TAB_PI - 2.0;
+        lo = 0.0;
+        hi = 1.0;
+        z = 2.0 * L / (CT_TAB_PI + sqrt(fmax(CT_TAB_PI * CT_TAB_PI - 4.0 * a * L, 0.0)));
+    } else {
+        lo = 1.0;
+        hi = exp(0.5 * L);
+        z = 0.5 * hi + 0.5;
+    }
+    double best = z, best_f = INFINITY;
+    for (int it = 0; it < 200; it++) {
+        const double f = ct_tab_clipped_loss(z) - L;
+        if (fabs(f) < best_f) {
+            best = z;
+            best_f = fabs(f);
+        }
+        if (f == 0.0)
+            break;
+        if (f < 0.0)
+            lo = z;
+        else
+            hi = z;
+        double next = z - f / ct_tab_clipped_loss_slope(z);
+        if (!(next > lo && next < hi)) /* bisection, geometric over a wide bracket */
+            next = (lo > 0.0 && hi > 4.0 * lo) ? sqrt(lo * hi) : lo + 0.5 * (hi - lo);
+        if (!(next > lo && next < hi))
+            break; /* lo and hi are neighbours: the best of them is the root */
+        if (fabs(next - z) <= 2e-16 * z) { /* Newton's step is at rounding level */
+            best = next;
+            break;
+        }
+        z = next;
+    }
+    return best;
 }
 
 #endif
