@@ -7,6 +7,7 @@ rods (Cantor-fractal, random Cantor, a measured profile or your own rods), throu
     r.e[:, 0], r.u_max_over_h0[:, 0], r.V_star_crit[:, 0]     # arrays [speed, impact - 1]
     t = cantact.table(s, V_star=(1e-5, 1e-2), tolerance=1e-6)  # e(V*) with a checked error
     t(0.003)                                                   # its interpolation
+    cantact.zeta_of_e(t(0.003), law="clipped")                 # the damping ratio (DEM)
 
 Results are dimensionless as the cantact program's (V*, u/h0, P/P_Y); errors raise
 cantact.Error subclasses carrying the library's status and message. See README.md.
@@ -15,14 +16,14 @@ from ._errors import (Error, InvalidInput, IOFailure, NoConvergence, NotRun, Out
                       OutsideModel, strerror)
 from ._ffi import LIBRARY_PATH, ffi, lib
 from ._surfaces import Cantor, Profile, RandomCantor, Rods
-from ._api import (COLUMNS, ROW_FIELDS, Ensemble, LoadCurve, Restitution, Table, asym_load,
-                   asym_unload, ensemble, law_restitution, load_curve, read_table, restitution,
-                   series_load, series_unload, table)
+from ._api import (COLUMNS, DAMPING_LAWS, ROW_FIELDS, Ensemble, LoadCurve, Restitution, Table,
+                   asym_load, asym_unload, e_of_zeta, ensemble, law_restitution, load_curve,
+                   read_table, restitution, series_load, series_unload, table, zeta_of_e)
 
 __all__ = [
     "Cantor", "RandomCantor", "Rods", "Profile", "restitution", "Restitution", "ensemble", "Ensemble",
     "load_curve", "LoadCurve", "series_load", "series_unload", "asym_load", "asym_unload",
     "law_restitution", "table", "Table", "read_table", "Error", "InvalidInput", "OutOfMemory",
     "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS", "COLUMNS",
-    "LIBRARY_PATH",
+    "LIBRARY_PATH", "zeta_of_e", "e_of_zeta", "DAMPING_LAWS",
 ]

@@ -1,5 +1,9 @@
 """Restitution, ensembles, the load curve, the paper's laws and e(V*) tables: NumPy arrays in,
 NumPy arrays out, every call through libcantact's own path (the same as `cantact run`)."""
+import math
+import os
+import re
+
 import numpy as np
 
 from . import _check as chk
@@ -459,6 +463,115 @@ def law_restitution(surface, V_star=None, *, mass=None, speed=None, law="asympto
     return e, u
 
 
+# ---- e <-> damping ratio of a linear spring-dashpot contact ---------------------------------
+# A line-by-line port of include/cantact_table.h's ct_tab_e_of_zeta and ct_tab_zeta_of_e (the
+# same operations in the same order, libm's acos, acosh, exp, log and sqrt through math): the
+# same bits as the C functions (python/tests/test_table.py compiles the header and compares).
+# The relations, their ranges and derivations are in the header's first comment.
+
+DAMPING_LAWS = {"tension": 0, "clipped": 1}  # CT_TAB_TENSION, CT_TAB_CLIPPED
+_PI = 3.14159265358979323846
+
+
+def _clipped_loss(zeta):
+    """-ln e of the clipped law, 2 zeta h(zeta), at a finite zeta >= 0."""
+    if zeta < 1.0:
+        h = math.acos(zeta) / math.sqrt((1.0 - zeta) * (1.0 + zeta))
+    elif zeta > 1.0:
+        h = math.acosh(zeta) / (math.sqrt(zeta - 1.0) * math.sqrt(zeta + 1.0))
+    else:
+        h = 1.0
+    return 2.0 * zeta * h
+
+
+def _clipped_loss_slope(zeta):
+    t = 1.0 - zeta
+    h = 0.5 * _clipped_loss(zeta) / (zeta if zeta > 0.0 else 1.0)
+    if abs(t) < 1e-4:
+        dh = -1.0 / 3.0 - 4.0 * t / 15.0
+    else:
+        dh = (zeta * h - 1.0) / (t * (1.0 + zeta))
+    return 2.0 * (h if zeta > 0.0 else _PI / 2.0) + 2.0 * zeta * dh
+
+
+def _e_of_zeta(zeta, law):
+    if law == 0:
+        return math.exp(-_PI * zeta / math.sqrt((1.0 - zeta) * (1.0 + zeta))) if zeta < 1.0 \
+            else 0.0
+    if math.isinf(zeta):
+        return 0.0
+    return math.exp(-_clipped_loss(zeta))
+
+
+def _zeta_of_e(e, law):
+    if e == 1.0:
+        return 0.0
+    if e == 0.0:
+        return 1.0 if law == 0 else math.inf
+    L = -math.log(e)
+    if law == 0:
+        return L / math.sqrt(_PI * _PI + L * L)
+    if L <= 2.0:
+        a = _PI - 2.0
+        lo, hi = 0.0, 1.0
+        z = 2.0 * L / (_PI + math.sqrt(max(_PI * _PI - 4.0 * a * L, 0.0)))
+    else:
+        lo, hi = 1.0, math.exp(0.5 * L)
+        z = 0.5 * hi + 0.5
+    best, best_f = z, math.inf
+    for _ in range(200):
+        f = _clipped_loss(z) - L
+        if abs(f) < best_f:
+            best, best_f = z, abs(f)
+        if f == 0.0:
+            break
+        if f < 0.0:
+            lo = z
+        else:
+            hi = z
+        nxt = z - f / _clipped_loss_slope(z)
+        if not (lo < nxt < hi):
+            nxt = math.sqrt(lo * hi) if (lo > 0.0 and hi > 4.0 * lo) else lo + 0.5 * (hi - lo)
+        if not (lo < nxt < hi):
+            break
+        if abs(nxt - z) <= 2e-16 * z:
+            best = nxt
+            break
+        z = nxt
+    return best
+
+
+def _damping_map(name, value, law, fn, check):
+    law_code = chk.choice("law", law, DAMPING_LAWS)
+    a = chk._reals(name, value)
+    flat = a.reshape(-1)
+    for k, x in enumerate(flat.tolist()):
+        if not check(x):
+            where = f"{name}[{k}]" if a.ndim else name
+            raise invalid(f"{where} = {x!r}: must be "
+                          + ("in [0, 1]" if name == "e" else "a number >= 0 (or inf)"))
+    out = np.array([fn(x, law_code) for x in flat.tolist()], dtype=np.float64).reshape(a.shape)
+    return float(out) if a.ndim == 0 else out
+
+
+def zeta_of_e(e, *, law):
+    """The damping ratio zeta = c / (2 sqrt(m k)) of a linear spring-dashpot normal contact
+    (F = k delta + c delta') that rebounds with e: law "tension" (the contact ends at zero
+    overlap: zeta = -ln e / sqrt(pi^2 + ln^2 e), < 1; 1 for e = 0) or "clipped" (the force is
+    max(0, F), as Yade's Law2_ScGeom_ViscElPhys_Basic and LAMMPS's limit_damping: the root of
+    ln e = -2 zeta h(zeta); zeta > 1 below e = e^-2; inf for e = 0). e in [0, 1], a number or
+    an array (same shape back). include/cantact_table.h's ct_tab_zeta_of_e, the same bits."""
+    return _damping_map("e", e, law, _zeta_of_e, lambda x: 0.0 <= x <= 1.0)
+
+
+def e_of_zeta(zeta, *, law):
+    """e of a linear spring-dashpot contact of damping ratio zeta >= 0 (inf allowed: e = 0)
+    under law "tension" (exp(-pi zeta / sqrt(1 - zeta^2)), 0 for zeta >= 1) or "clipped"
+    (exp(-2 zeta h(zeta)), h = acos(zeta) / sqrt(1 - zeta^2), 1 at 1, acosh(zeta) /
+    sqrt(zeta^2 - 1) above). include/cantact_table.h's ct_tab_e_of_zeta, the same bits."""
+    return _damping_map("zeta", zeta, law, _e_of_zeta, lambda x: x >= 0.0)
+
+
 # ---- e(V*) tables ------------------------------------------------------------------------
 
 
@@ -468,7 +581,9 @@ class Table:
     V_star_crit, worst_error, worst_V_star, checked, kinks, rounds, evaluations). Calling it
     evaluates the interpolation (the library's, which include/cantact_table.h shares): e = 1 at
     and below V_star_crit, the nearest end's e outside the nodes (covers() says where the table
-    knows e)."""
+    knows e). v_per_V_star: the impact speed per unit V* (from table(..., mass=m) or the
+    file's key; None when unknown), which e_of_speed() uses; save() writes the file
+    include/cantact_table.h reads."""
 
     def __init__(self, handle, tolerance=None):
         self._t = handle
@@ -488,10 +603,98 @@ class Table:
                                                    "checked", "kinks", "rounds", "evaluations")}
         self.V_star_crit = info.V_star_crit
         self.tolerance = tolerance
+        self.v_per_V_star = None
+        # what the file's header says beyond the numbers: the version, scene and surface lines,
+        # check_points (points checked inside every interval), for save()
+        self.header = {"version": None, "scene": None, "surface": None, "check_points": None}
 
     def __call__(self, V_star):
         V = chk.array("V_star", V_star, positive=True)
         return np.array([lib.ct_table_eval(self._t, v) for v in V], dtype=np.float64)
+
+    def e_of_speed(self, speed):
+        """e at impact speeds in the units of the mass that gave v_per_V_star: e(speed /
+        v_per_V_star), as ct_tab_e_of_speed computes it."""
+        if self.v_per_V_star is None:
+            raise invalid("e_of_speed: the table has no v_per_V_star (build it with mass=..., "
+                          "or set table.v_per_V_star)")
+        v = chk.array("speed", speed, positive=True)
+        return self(v / self.v_per_V_star)
+
+    def save(self, path, *, scene=None, surface=None, version=None, v_per_V_star=None):
+        """Writes the table as `cantact table` writes it (ct_table_write: '# key = value' lines,
+        then V_star,e,de_dlnV_star rows, every number as %.17g), the file
+        include/cantact_table.h and read_table() read. scene, surface, version: the header's
+        text (default: what the table was read with, else left out; version "" as the library
+        writes it without one); v_per_V_star: overrides the table's (written when known). A
+        key the table does not know (tolerance, worst_error, its place, the points checked) is
+        left out rather than written as NaN, which the C reader refuses."""
+        name = chk.path("path", path)
+        h = self.header
+        scene = h["scene"] if scene is None else scene
+        surface = h["surface"] if surface is None else surface
+        version = (h["version"] or "") if version is None else version
+        for key, text in (("scene", scene), ("surface", surface), ("version", version)):
+            if text is not None and (not isinstance(text, str) or "\n" in text or "\r" in text):
+                raise invalid(f"{key} = {text!r}: must be one line of text")
+        vpv = self.v_per_V_star if v_per_V_star is None else chk.real(
+            "v_per_V_star", v_per_V_star, 0.0)
+
+        def g(x):
+            return "%.17g" % x
+
+        def known(x):
+            return x is not None and math.isfinite(x)
+
+        info = self.info
+        lines = [f"# cantact {version} table: e of the first impact on the virgin surface "
+                 "against V*"]
+        if scene is not None:
+            lines.append(f"# scene = {scene}")
+        if surface is not None:
+            lines.append(f"# surface = {surface}")
+        lines.append("# units: V_star = sqrt(m v^2 / (2 l0 E h0)) dimensionless; e "
+                     "dimensionless; de_dlnV_star = de/d(ln V_star) dimensionless")
+        lines.append(f"# interpolation = {self.interpolation}")
+        if self.interpolation == "linear":
+            lines.append("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, t = "
+                         "(x - x_i) / (x_i+1 - x_i): e = e_i + (e_i+1 - e_i) t (de_dlnV_star is "
+                         "not used: 0)")
+        else:
+            lines.append("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, h = "
+                         "x_i+1 - x_i, t = (x - x_i) / h, d = de_dlnV_star: e = e_i + (e_i+1 - "
+                         "e_i) t^2 (3 - 2 t) + h t (1 - t) ((1 - t) d_i - t d_i+1)")
+        lines.append("# rule: e = 1 exactly for V_star <= V_star_crit; outside the nodes above "
+                     "it, the nearest end's e (the table does not cover it)")
+        lines.append(f"# V_star_crit = {g(self.V_star_crit)}")
+        if known(self.tolerance):
+            lines.append(f"# tolerance = {g(self.tolerance)}")
+        if known(info.get("worst_error")):
+            lines.append(f"# worst_error = {g(info['worst_error'])}")
+            if known(info.get("worst_V_star")):
+                lines.append(f"# worst_error_at_V_star = {g(info['worst_V_star'])}")
+            elif h.get("worst_at_none"):
+                lines.append("# worst_error_at_V_star = none (no point above V_star_crit in "
+                             "the range)")
+        if info.get("checked") is not None and h["check_points"]:
+            lines.append(f"# checked = {info['checked']} points against the exact model "
+                         f"({h['check_points']} equally spaced in ln V_star inside every "
+                         "interval above V_star_crit; the nodes are exact)")
+        if info.get("kinks") is not None:
+            lines.append(f"# nodes = {self.V_star.size} ({info['kinks']} at kinks of e, where "
+                         "u_max reaches a rod's contact or yield point)")
+        if vpv is not None:
+            lines.append(f"# v_per_V_star = {g(vpv)} (impact speed = V_star * v_per_V_star, in "
+                         "the units of the scene's mass, l0, E and h0)")
+        lines.append("V_star,e,de_dlnV_star")
+        lines.extend(f"{g(V)},{g(e)},{g(d)}" for V, e, d in
+                     zip(self.V_star.tolist(), self.e.tolist(), self.slope.tolist()))
+        text = "\n".join(lines) + "\n"
+        try:
+            with open(name, "w", encoding="utf-8", newline="\n") as f:
+                f.write(text)
+        except OSError as exc:
+            raise error(lib.CT_EIO, f"{os.fsdecode(name)}: cannot write: {exc.strerror}") from None
 
     def covers(self, V_star):
         """True where the table knows e: at or below V*_c, or within its nodes."""
@@ -509,9 +712,15 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
           quadrature="breakpoints", nodes=64, check=True, path="auto"):
     """e(V*) of the first impact on the virgin surface as a table whose interpolation meets
     `tolerance` (absolute, in e) at every checked point (ct_table_build): V_star = (from, to),
-    or mass and speed = (from, to). Raises NoConvergence when max_nodes would not do."""
+    or mass and speed = (from, to). A mass (with either) sets the table's v_per_V_star =
+    sqrt(2 l0 E h0 / m), the impact speed per unit V* with the surface's physical l0, E, h0, as
+    `cantact table` writes it from [impact] mass (1 / ct_V_star_of(m, 1, l0, E, h0)). Raises
+    NoConvergence when max_nodes would not do."""
     surface = surface_of("surface", surface)
-    V = _speeds(surface, V_star, mass, speed)
+    if V_star is not None and mass is not None and speed is None:
+        V = _speeds(surface, V_star, None, None)  # the range in V*; the mass for v_per_V_star
+    else:
+        V = _speeds(surface, V_star, mass, speed)
     if V.size != 2 or not V[0] < V[1]:
         raise invalid(f"V_star (or speed): the range (from, to) with from < to, got {V!r}")
     spec = ffi.new("ct_table_spec *")
@@ -527,7 +736,13 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
     b, _ = surface._build(V, 1, opts)
     out = ffi.new("ct_table **")
     _ok(lib.ct_table_build(out, b, spec))
-    return Table(ffi.gc(out[0], lib.ct_table_free), spec.tolerance)
+    t = Table(ffi.gc(out[0], lib.ct_table_free), spec.tolerance)
+    t.header["check_points"] = int(spec.check_points)
+    t.header["worst_at_none"] = not math.isfinite(t.info["worst_V_star"])
+    if mass is not None:
+        l0, E, h0 = surface._physical_scales()
+        t.v_per_V_star = 1.0 / lib.ct_V_star_of(chk.real("mass", mass, 0.0), 1.0, l0, E, h0)
+    return t
 
 
 def read_table(path):
@@ -541,9 +756,22 @@ def read_table(path):
         f = open(chk.path("path", path), encoding="utf-8")
     except OSError as exc:
         raise error(lib.CT_EIO, f"{name}: cannot open: {exc.strerror}") from None
+    meta = {"version": None, "scene": None, "surface": None, "check_points": None}
+    info = {}
     with f:
         for lineno, line in enumerate(f, 1):
             if line.startswith("#"):
+                m = _HEADER_LINE.match(line.rstrip("\r\n"))
+                if m:
+                    d = {k: v for k, v in m.groupdict().items() if v is not None}
+                    for k in ("version", "scene", "surface"):
+                        if k in d:
+                            meta[k] = d[k]
+                    if "checked" in d:
+                        info["checked"] = int(d["checked"])
+                        meta["check_points"] = int(d["points_each"])
+                    if "kinks" in d:
+                        info["kinks"] = int(d["kinks"])
                 if "=" in line:
                     k, v = line[1:].split("=", 1)
                     keys[k.strip()] = v.split()[0] if v.split() else ""
@@ -578,7 +806,31 @@ def read_table(path):
                                   rule, Vc))
     t = Table(ffi.gc(out[0], lib.ct_table_free),
               float(keys["tolerance"]) if "tolerance" in keys else None)
+    # what the build found, as far as the file tells it (None: not in the file)
+    for k in ("worst_error", "worst_V_star", "checked", "kinks", "rounds", "evaluations"):
+        t.info[k] = None
     for k in ("worst_error", "v_per_V_star"):
         if k in keys:
             t.info[k] = float(keys[k])
+    if "worst_error_at_V_star" in keys:
+        try:
+            t.info["worst_V_star"] = float(keys["worst_error_at_V_star"])
+        except ValueError:  # "none (no point above V_star_crit in the range)"
+            meta["worst_at_none"] = True
+    if "v_per_V_star" in keys:
+        t.v_per_V_star = float(keys["v_per_V_star"])
+    t.info.update(info)
+    t.header = meta
     return t
+
+
+# The header lines read_table keeps for save(): the version, scene and surface text, the points
+# checked (and how many inside every interval) and the nodes at kinks, as ct_table_write
+# writes them.
+_HEADER_LINE = re.compile(
+    r"# cantact (?P<version>.*) table: e of the first impact on the virgin surface against V\*$"
+    r"|# scene = (?P<scene>.*)$"
+    r"|# surface = (?P<surface>.*)$"
+    r"|# checked = (?P<checked>[0-9]+) points against the exact model \((?P<points_each>[0-9]+) "
+    r"equally spaced"
+    r"|# nodes = [0-9]+ \((?P<kinks>[0-9]+) at kinks")

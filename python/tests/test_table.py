@@ -88,3 +88,175 @@ def test_read_table_refuses_what_is_no_table(tmp_path):
         write(tmp_path / "bad.csv", slope)
         with pytest.raises(cantact.InvalidInput, match="not those of a monotone cubic"):
             cantact.read_table(tmp_path / "bad.csv")
+
+
+# ---- Table.save, v_per_V_star, the damping relations ----------------------------------------
+
+# A C program on include/cantact_table.h alone (compiled by the test): "load FILE" prints the
+# header's numbers and e at the V* read from stdin, "zeta LAW" / "e LAW" the damping relations
+# at the numbers read from stdin, all as %a (exact bits).
+_READER_C = r"""
+#include "cantact_table.h"
+int main(int argc, char **argv)
+{
+    double x;
+    if (argc == 3 && !strcmp(argv[1], "load")) {
+        ct_tab t;
+        char err[512];
+        if (ct_tab_load(&t, argv[2], err, sizeof err)) {
+            fprintf(stderr, "%s\n", err);
+            return 1;
+        }
+        printf("%zu %a %a %a %a %d\n", t.n, t.V_star_crit, t.v_per_V_star, t.tolerance,
+               t.worst_error, t.rule);
+        while (scanf("%lf", &x) == 1)
+            printf("%a\n", ct_tab_eval(&t, x));
+        ct_tab_free(&t);
+        return 0;
+    }
+    if (argc == 3) {
+        const int law = atoi(argv[2]);
+        while (scanf("%lf", &x) == 1)
+            printf("%a\n", argv[1][0] == 'z' ? ct_tab_zeta_of_e(x, law) : ct_tab_e_of_zeta(x, law));
+        return 0;
+    }
+    return 2;
+}
+"""
+
+
+@pytest.fixture(scope="session")
+def c_reader(source, tmp_path_factory):
+    """The compiled reader (C99, no fused multiply-add: the port's operations exactly)."""
+    import shutil
+    import subprocess
+    cc = shutil.which("cc") or shutil.which("gcc")
+    if not cc:
+        pytest.skip("no C compiler to build the header's reader")
+    d = tmp_path_factory.mktemp("reader")
+    (d / "reader.c").write_text(_READER_C)
+    exe = d / "reader"
+    subprocess.run([cc, "-std=c99", "-O2", "-ffp-contract=off", f"-I{source}/include",
+                    str(d / "reader.c"), "-o", str(exe), "-lm"], check=True)
+
+    def run(*args, numbers=()):
+        out = subprocess.run([str(exe), *map(str, args)], check=True, capture_output=True,
+                             text=True, input="".join("%r\n" % float(x) for x in numbers))
+        return out.stdout.split("\n")[:-1]
+
+    return run
+
+
+def _bits(values):
+    return [float.fromhex(v) if isinstance(v, str) else float(v) for v in values]
+
+
+def test_save_writes_the_cli_file(run_cli, source, tmp_path):
+    """The file `cantact table` writes for the DEM scene (SI units, [impact] mass): read back
+    and saved, and built in Python from the same surface and mass and saved, byte for byte."""
+    path = run_cli("table", f"{source}/scripts/scenes/dem_table.ini")
+    cli_text = path.read_bytes()
+    f = cantact.read_table(path)
+    f.save(tmp_path / "again.csv")
+    assert (tmp_path / "again.csv").read_bytes() == cli_text
+    s = cantact.Cantor(fx=1.5, fz=1.3, H=10, E=200e9, sigma_y=400e6, h0=1e-6, l0=1e-3)
+    t = cantact.table(s, V_star=(1e-5, 1e-2), mass=1e-3, tolerance=1e-6)
+    # v_per_V_star = sqrt(2 l0 E h0 / m) = sqrt(2 1e-3 200e9 1e-6 / 1e-3) = sqrt(4e5)
+    assert t.v_per_V_star == f.v_per_V_star
+    assert t.v_per_V_star == pytest.approx(math.sqrt(4e5), rel=1e-15)
+    t.save(tmp_path / "py.csv", scene=f.header["scene"], surface=f.header["surface"],
+           version=f.header["version"])
+    assert (tmp_path / "py.csv").read_bytes() == cli_text
+    # e at speeds: V* = v / v_per_V_star
+    v = np.array([0.02, 0.3, 6.0])
+    assert t.e_of_speed(v).tobytes() == t(v / t.v_per_V_star).tobytes()
+    # mass and speed give the same table and v_per_V_star
+    u = cantact.table(s, mass=1e-3, speed=(1e-5 * t.v_per_V_star, 1e-2 * t.v_per_V_star),
+                      tolerance=1e-6)
+    assert u.v_per_V_star == t.v_per_V_star and u.V_star.size == t.V_star.size
+
+
+def test_saved_table_read_by_c_to_the_same_bits(c_reader, tmp_path):
+    rods = cantact.Rods([0.0, 0.5], [1.0, 1.0], E=10.0, Hstar=2.0, l0=1.0, h0=1.0)
+    for rule in ("monotone_cubic", "linear"):
+        t = cantact.table(rods, V_star=(0.05, 0.5), tolerance=1e-6, interpolation=rule,
+                          mass=2.0)
+        t.save(tmp_path / "t.csv")
+        V = np.geomspace(0.01, 1.0, 2001)
+        head, *values = c_reader("load", tmp_path / "t.csv", numbers=V)
+        n, Vc, vpv, tol, worst, code = head.split()
+        assert int(n) == t.V_star.size and float.fromhex(Vc) == t.V_star_crit
+        assert float.fromhex(vpv) == t.v_per_V_star == 1.0 / math.sqrt(2.0 / 2.0 / 10.0)
+        assert float.fromhex(tol) == 1e-6 and float.fromhex(worst) == t.info["worst_error"]
+        assert int(code) == (0 if rule == "monotone_cubic" else 1)
+        assert np.array(_bits(values)).tobytes() == t(V).tobytes()
+        back = cantact.read_table(tmp_path / "t.csv")
+        assert back(V).tobytes() == t(V).tobytes() and back.v_per_V_star == t.v_per_V_star
+    # a table that does not know its tolerance or worst error: those keys are left out (the C
+    # reader refuses a NaN), and the file still loads
+    bare = tmp_path / "bare.csv"
+    with open(bare, "w") as f:
+        f.write("# interpolation = linear\n# V_star_crit = 0.5\nV_star,e,de_dlnV_star\n"
+                "1,0.8,0\n4,0.4,0\n")
+    b = cantact.read_table(bare)
+    b.save(tmp_path / "bare2.csv", v_per_V_star=3.0)
+    text = (tmp_path / "bare2.csv").read_text()
+    assert "tolerance" not in text and "worst_error" not in text and "nan" not in text
+    head, mid = c_reader("load", tmp_path / "bare2.csv", numbers=[2.0])
+    assert float.fromhex(head.split()[2]) == 3.0 and float.fromhex(mid) == pytest.approx(0.6)
+    with pytest.raises(cantact.InvalidInput, match="one line"):
+        b.save(tmp_path / "x.csv", scene="a\nb")
+    with pytest.raises(cantact.IOFailure, match="cannot write"):
+        b.save(tmp_path / "no" / "such" / "dir.csv")
+    with pytest.raises(cantact.InvalidInput, match="no v_per_V_star"):
+        b.e_of_speed(1.0)
+
+
+def test_damping_relations_are_the_headers(c_reader):
+    """The port gives the C functions' bits, at e from 1e-300 to 1 and zeta from 1e-12 to
+    1e150 and the ends."""
+    rng = np.random.default_rng(11)
+    es = np.concatenate([10.0 ** -np.linspace(0, 300, 3001), rng.random(2000),
+                         [0.0, 1.0, math.exp(-2.0), 1 - 1e-16, 5e-324]])
+    zetas = np.concatenate([[0.0, 1.0, math.inf, 1 - 1e-12, 1 + 1e-12],
+                            np.geomspace(1e-12, 1e150, 3001), rng.random(1000) * 3])
+    for law, code in cantact.DAMPING_LAWS.items():
+        z = cantact.zeta_of_e(es, law=law)
+        assert z.tobytes() == np.array(_bits(c_reader("zeta", code, numbers=es))).tobytes()
+        e = cantact.e_of_zeta(zetas, law=law)
+        assert e.tobytes() == np.array(_bits(c_reader("e", code, numbers=zetas))).tobytes()
+
+
+def test_damping_relations_values_and_refusals():
+    # tension: e = exp(-pi zeta / sqrt(1 - zeta^2)), by hand at zeta = 0.6 (sqrt(0.64) = 0.8)
+    assert cantact.e_of_zeta(0.6, law="tension") == pytest.approx(math.exp(-0.75 * math.pi),
+                                                                  rel=1e-15)
+    assert cantact.zeta_of_e(math.exp(-0.75 * math.pi), law="tension") == pytest.approx(0.6,
+                                                                                        rel=1e-15)
+    # clipped at zeta = 0.6: x = 0.75, e = exp(-0.75 (pi - 2 atan 0.75))
+    x = 0.75
+    assert cantact.e_of_zeta(0.6, law="clipped") == pytest.approx(
+        math.exp(-x * (math.pi - 2 * math.atan(x))), rel=1e-14)
+    assert cantact.e_of_zeta(1.0, law="clipped") == math.exp(-2.0)
+    assert cantact.zeta_of_e(math.exp(-2.0), law="clipped") == pytest.approx(1.0, abs=3e-16)
+    # zeta = 2: s = sqrt(3), e = exp(-2 zeta acosh(zeta) / s)
+    assert cantact.e_of_zeta(2.0, law="clipped") == pytest.approx(
+        math.exp(-4 * math.acosh(2) / math.sqrt(3)), rel=1e-14)
+    assert cantact.zeta_of_e(0.0, law="clipped") == math.inf
+    assert cantact.zeta_of_e(0.0, law="tension") == 1.0
+    assert cantact.e_of_zeta(5.0, law="tension") == 0.0
+    a = cantact.zeta_of_e([[0.5, 0.25]], law="clipped")
+    assert a.shape == (1, 2) and isinstance(cantact.zeta_of_e(0.5, law="clipped"), float)
+    for bad in (-0.1, 1.0000000000000002, math.nan):
+        with pytest.raises(cantact.InvalidInput, match="must be in"):
+            cantact.zeta_of_e(bad, law="clipped")
+    with pytest.raises(cantact.InvalidInput, match=r"e\[1\]"):
+        cantact.zeta_of_e([0.5, 2.0], law="tension")
+    for bad in (-1e-300, math.nan, -math.inf):
+        with pytest.raises(cantact.InvalidInput, match=">= 0"):
+            cantact.e_of_zeta(bad, law="tension")
+    for law in ("Clipped", None, 1):
+        with pytest.raises(cantact.InvalidInput, match="law"):
+            cantact.zeta_of_e(0.5, law=law)
+    with pytest.raises(TypeError):
+        cantact.zeta_of_e(0.5)  # the law must be named: the two relations differ by far
