@@ -1,0 +1,850 @@
+/* ----------------------------------------------------------------------
+   gran/hooke/history/cantact: see pair_gran_hooke_history_cantact.h and README.md.
+
+   compute() and single() are PairGranHookeHistory's (LAMMPS 29 Sep 2021,
+   src/GRANULAR/pair_gran_hooke_history.cpp; contributing authors of that code: Leo Silbert
+   (SNL), Gary Grest (SNL); Copyright (2003) Sandia Corporation, GPL-2) with three changes:
+     1. the history holds 6 values per contact instead of 3 (the shear, then a flag, e and
+        gamma_n of the contact);
+     2. at the first step of a contact (flag 0), e is looked up from the normal approach speed
+        and gamma_n = 2 zeta(e) sqrt(kn / meff) is stored; every later step of the contact reads
+        it back (LAMMPS's damping force is meff gamma_n v_n, so c_n = 2 zeta sqrt(meff kn));
+     3. gamma_t given as NULL means 0.5 gamma_n of the contact (stock: 0.5 gamma_n).
+   Every floating-point expression of the force is otherwise the stock one, in the same order:
+   with a constant e, and the stock style given this style's gamma_n, the trajectories are the
+   same to the bit (test.sh checks it).
+   SPDX-License-Identifier: GPL-2.0-only (derived from LAMMPS, GPL-2)
+------------------------------------------------------------------------- */
+
+#include "pair_gran_hooke_history_cantact.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "error.h"
+#include "fix.h"
+#include "fix_neigh_history.h"
+#include "force.h"
+#include "memory.h"
+#include "modify.h"
+#include "neigh_list.h"
+#include "neighbor.h"
+#include "update.h"
+
+#include "cantact_table.h"
+
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+using namespace LAMMPS_NS;
+
+#ifndef MY_PI
+#define CT_PI 3.14159265358979323846
+#else
+#define CT_PI MY_PI
+#endif
+
+struct PairGranHookeHistoryCantact::Table {
+  ct_tab t;
+};
+
+/* ---------------------------------------------------------------------- */
+
+PairGranHookeHistoryCantact::PairGranHookeHistoryCantact(LAMMPS *lmp) : PairGranHookeHistory(lmp)
+{
+  // the base constructor set size_history = 3; FixNeighHistory is created in
+  // PairGranHookeHistory::init_style() with this size
+  size_history = N_HISTORY;
+  // e and gamma_n of a contact are the same seen from either atom (the shear changes sign)
+  nondefault_history_transfer = 1;
+  // the tables and settings are not written to restart files: give pair_style and pair_coeff
+  // again after read_restart
+  restartinfo = 0;
+
+  source_of = nullptr;
+  default_source = -1;
+  gammat_from_gamman = 0;
+  law = 0;
+  report_left = 0;
+  gamman = 0.0;
+}
+
+/* ---------------------------------------------------------------------- */
+
+PairGranHookeHistoryCantact::~PairGranHookeHistoryCantact()
+{
+  if (copymode) return;
+  for (Table *t : tables) {
+    ct_tab_free(&t->t);
+    delete t;
+  }
+  memory->destroy(source_of);
+}
+
+/* ----------------------------------------------------------------------
+   e <-> zeta for a linear spring-dashpot (k, c = 2 zeta sqrt(m k)) hit at speed v from zero
+   overlap (cantact_table.h states and derives both; the 29 Sep 2021 force is exactly this
+   oscillator, stopped as the law says):
+   law 0, tension allowed (stock gran/hooke/history): the contact ends at zero overlap after half
+     a damped period, e = exp(-pi zeta / sqrt(1 - zeta^2)), zeta = -ln e / sqrt(pi^2 + ln^2 e)
+     (e = 0 for zeta >= 1);
+   law 1, force clipped at zero (limit_damping): the contact ends, in free flight, when
+     k d + c d' = 0: ln e = -2 zeta h(zeta), h = acos(zeta) / sqrt(1 - zeta^2) (zeta < 1; this
+     is e = exp(-x (pi - 2 atan x)), x = zeta / sqrt(1 - zeta^2)), 1 (zeta = 1, e = e^-2),
+     acosh(zeta) / sqrt(zeta^2 - 1) (zeta > 1: overdamped, e < e^-2).
+   The header's ct_tab_zeta_of_e / ct_tab_e_of_zeta are used when it has them (CT_TAB_PI marks
+   that part of it); else the local copies below (the same relations; the inverse by bisection).
+------------------------------------------------------------------------- */
+
+#if defined(CT_TAB_PI) && !defined(CANTACT_LOCAL_ZETA)
+#define CANTACT_ZETA_FROM_HEADER 1
+#endif
+
+#ifndef CANTACT_ZETA_FROM_HEADER
+static double local_clipped_loss(double zeta)    // -ln e of law 1: 2 zeta h(zeta)
+{
+  double h;
+  if (zeta < 1.0)
+    h = acos(zeta) / sqrt((1.0 - zeta) * (1.0 + zeta));
+  else if (zeta > 1.0)
+    h = acosh(zeta) / (sqrt(zeta - 1.0) * sqrt(zeta + 1.0));
+  else
+    h = 1.0;
+  return 2.0 * zeta * h;
+}
+#endif
+
+const char *PairGranHookeHistoryCantact::zeta_relations()
+{
+#ifdef CANTACT_ZETA_FROM_HEADER
+  return "cantact_table.h's ct_tab_zeta_of_e";
+#else
+  return "a local copy (this cantact_table.h has no ct_tab_zeta_of_e)";
+#endif
+}
+
+double PairGranHookeHistoryCantact::e_of_zeta(double zeta, int law)
+{
+#ifdef CANTACT_ZETA_FROM_HEADER
+  return ct_tab_e_of_zeta(zeta, law ? CT_TAB_CLIPPED : CT_TAB_TENSION);
+#else
+  if (!(zeta > 0.0)) return 1.0;
+  if (law == 0) return zeta < 1.0 ? exp(-CT_PI * zeta / sqrt((1.0 - zeta) * (1.0 + zeta))) : 0.0;
+  if (std::isinf(zeta)) return 0.0;
+  return exp(-local_clipped_loss(zeta));
+#endif
+}
+
+double PairGranHookeHistoryCantact::zeta_of_e(double e, int law)
+{
+#ifdef CANTACT_ZETA_FROM_HEADER
+  return ct_tab_zeta_of_e(e, law ? CT_TAB_CLIPPED : CT_TAB_TENSION);
+#else
+  if (!(e < 1.0)) return 0.0;
+  if (law == 0) {
+    if (!(e > 0.0)) return 1.0;
+    const double l = log(e);
+    return -l / sqrt(CT_PI * CT_PI + l * l);
+  }
+  if (!(e > 0.0)) return INFINITY;    // refused at setup (check_source)
+  // 2 zeta h(zeta) rises from 0 to infinity: bracket, then bisection to the last bit
+  const double L = -log(e);
+  double lo = 0.0, hi = 1.0;
+  while (local_clipped_loss(hi) < L) {
+    lo = hi;
+    hi *= 2.0;
+  }
+  for (int it = 0; it < 2200; it++) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    if (local_clipped_loss(mid) < L)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return 0.5 * (lo + hi);
+#endif
+}
+
+/* ----------------------------------------------------------------------
+   e at normal approach speed vn (> 0 approaching) from one source
+------------------------------------------------------------------------- */
+
+double PairGranHookeHistoryCantact::e_of_speed(const Source &s, double vn) const
+{
+  if (s.table < 0) return s.e;
+  double V = vn / s.v_per_V_star;
+  // a contact that starts without approaching (created overlapping): the low-speed limit
+  if (!(V > 0.0)) V = DBL_MIN;
+  return ct_tab_eval(&tables[s.table]->t, V);
+}
+
+void PairGranHookeHistoryCantact::contact_damping(int itype, int jtype, double vn, double meff,
+                                                  double &e, double &gn) const
+{
+  const Source &s = sources[source_of[itype][jtype]];
+  double zeta;
+  if (s.table < 0) {
+    e = s.e;
+    zeta = s.zeta;
+  } else {
+    e = e_of_speed(s, vn);
+    zeta = zeta_of_e(e, law);
+  }
+  gn = 2.0 * zeta * sqrt(kn / meff);
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranHookeHistoryCantact::compute(int eflag, int vflag)
+{
+  int i, j, ii, jj, inum, jnum;
+  double xtmp, ytmp, ztmp, delx, dely, delz, fx, fy, fz;
+  double radi, radj, radsum, rsq, r, rinv, rsqinv;
+  double vr1, vr2, vr3, vnnr, vn1, vn2, vn3, vt1, vt2, vt3;
+  double wr1, wr2, wr3;
+  double vtr1, vtr2, vtr3, vrel;
+  double mi, mj, meff, damp, ccel, tor1, tor2, tor3;
+  double fn, fs, fs1, fs2, fs3;
+  double shrmag, rsht;
+  int *ilist, *jlist, *numneigh, **firstneigh;
+  int *touch, **firsttouch;
+  double *shear, *allshear, **firstshear;
+  double gn, gt;
+
+  ev_init(eflag, vflag);
+
+  int shearupdate = 1;
+  if (update->setupflag) shearupdate = 0;
+
+  if (fix_rigid && neighbor->ago == 0) {
+    int tmp;
+    int *body = (int *) fix_rigid->extract("body", tmp);
+    double *mass_body = (double *) fix_rigid->extract("masstotal", tmp);
+    if (atom->nmax > nmax) {
+      memory->destroy(mass_rigid);
+      nmax = atom->nmax;
+      memory->create(mass_rigid, nmax, "pair:mass_rigid");
+    }
+    int nlocal = atom->nlocal;
+    for (i = 0; i < nlocal; i++)
+      if (body[i] >= 0)
+        mass_rigid[i] = mass_body[body[i]];
+      else
+        mass_rigid[i] = 0.0;
+    comm->forward_comm_pair(this);
+  }
+
+  double **x = atom->x;
+  double **v = atom->v;
+  double **f = atom->f;
+  double **omega = atom->omega;
+  double **torque = atom->torque;
+  double *radius = atom->radius;
+  double *rmass = atom->rmass;
+  int *mask = atom->mask;
+  int *type = atom->type;
+  int nlocal = atom->nlocal;
+  int newton_pair = force->newton_pair;
+
+  inum = list->inum;
+  ilist = list->ilist;
+  numneigh = list->numneigh;
+  firstneigh = list->firstneigh;
+  firsttouch = fix_history->firstflag;
+  firstshear = fix_history->firstvalue;
+
+  for (ii = 0; ii < inum; ii++) {
+    i = ilist[ii];
+    xtmp = x[i][0];
+    ytmp = x[i][1];
+    ztmp = x[i][2];
+    radi = radius[i];
+    touch = firsttouch[i];
+    allshear = firstshear[i];
+    jlist = firstneigh[i];
+    jnum = numneigh[i];
+
+    for (jj = 0; jj < jnum; jj++) {
+      j = jlist[jj];
+      j &= NEIGHMASK;
+
+      delx = xtmp - x[j][0];
+      dely = ytmp - x[j][1];
+      delz = ztmp - x[j][2];
+      rsq = delx * delx + dely * dely + delz * delz;
+      radj = radius[j];
+      radsum = radi + radj;
+
+      if (rsq >= radsum * radsum) {
+
+        // unset non-touching neighbors: the next touch is a new contact
+
+        touch[jj] = 0;
+        shear = &allshear[N_HISTORY * jj];
+        for (int m = 0; m < N_HISTORY; m++) shear[m] = 0.0;
+
+      } else {
+        r = sqrt(rsq);
+        rinv = 1.0 / r;
+        rsqinv = 1.0 / rsq;
+
+        vr1 = v[i][0] - v[j][0];
+        vr2 = v[i][1] - v[j][1];
+        vr3 = v[i][2] - v[j][2];
+
+        vnnr = vr1 * delx + vr2 * dely + vr3 * delz;
+        vn1 = delx * vnnr * rsqinv;
+        vn2 = dely * vnnr * rsqinv;
+        vn3 = delz * vnnr * rsqinv;
+
+        vt1 = vr1 - vn1;
+        vt2 = vr2 - vn2;
+        vt3 = vr3 - vn3;
+
+        wr1 = (radi * omega[i][0] + radj * omega[j][0]) * rinv;
+        wr2 = (radi * omega[i][1] + radj * omega[j][1]) * rinv;
+        wr3 = (radi * omega[i][2] + radj * omega[j][2]) * rinv;
+
+        mi = rmass[i];
+        mj = rmass[j];
+        if (fix_rigid) {
+          if (mass_rigid[i] > 0.0) mi = mass_rigid[i];
+          if (mass_rigid[j] > 0.0) mj = mass_rigid[j];
+        }
+
+        meff = mi * mj / (mi + mj);
+        if (mask[i] & freeze_group_bit) meff = mj;
+        if (mask[j] & freeze_group_bit) meff = mi;
+
+        // the contact's damping: set at its first step from the normal approach speed
+        // -vnnr / r (vnnr < 0 approaching), kept in its history until it ends
+
+        shear = &allshear[N_HISTORY * jj];
+        if (shear[H_SET] == 0.0) {
+          double e;
+          contact_damping(type[i], type[j], -vnnr * rinv, meff, e, gn);
+          shear[H_SET] = 1.0;
+          shear[H_E] = e;
+          shear[H_GAMMAN] = gn;
+          if (report_left > 0 && comm->me == 0) {
+            report_left--;
+            const std::string line = fmt::format(
+                "cantact: contact {} {} step {} v_n {:.17g} e {:.17g} zeta {:.17g} meff "
+                "{:.17g} gamma_n {:.17g}\n",
+                atom->tag[i], atom->tag[j], update->ntimestep, -vnnr * rinv, e,
+                zeta_of_e(e, law), meff, gn);
+            if (screen) fputs(line.c_str(), screen);
+            if (logfile) fputs(line.c_str(), logfile);
+          }
+        }
+        gn = shear[H_GAMMAN];
+        gt = gammat_from_gamman ? 0.5 * gn : gammat;
+        if (dampflag == 0) gt = 0.0;
+
+        // normal forces = Hookian contact + normal velocity damping
+
+        damp = meff * gn * vnnr * rsqinv;
+        ccel = kn * (radsum - r) * rinv - damp;
+        if (limit_damping && (ccel < 0.0)) ccel = 0.0;
+
+        vtr1 = vt1 - (delz * wr2 - dely * wr3);
+        vtr2 = vt2 - (delx * wr3 - delz * wr1);
+        vtr3 = vt3 - (dely * wr1 - delx * wr2);
+        vrel = vtr1 * vtr1 + vtr2 * vtr2 + vtr3 * vtr3;
+        vrel = sqrt(vrel);
+
+        // shear history effects
+
+        touch[jj] = 1;
+
+        if (shearupdate) {
+          shear[0] += vtr1 * dt;
+          shear[1] += vtr2 * dt;
+          shear[2] += vtr3 * dt;
+        }
+        shrmag = sqrt(shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]);
+
+        rsht = shear[0] * delx + shear[1] * dely + shear[2] * delz;
+        rsht *= rsqinv;
+        if (shearupdate) {
+          shear[0] -= rsht * delx;
+          shear[1] -= rsht * dely;
+          shear[2] -= rsht * delz;
+        }
+
+        fs1 = -(kt * shear[0] + meff * gt * vtr1);
+        fs2 = -(kt * shear[1] + meff * gt * vtr2);
+        fs3 = -(kt * shear[2] + meff * gt * vtr3);
+
+        fs = sqrt(fs1 * fs1 + fs2 * fs2 + fs3 * fs3);
+        fn = xmu * fabs(ccel * r);
+
+        if (fs > fn) {
+          if (shrmag != 0.0) {
+            shear[0] = (fn / fs) * (shear[0] + meff * gt * vtr1 / kt) - meff * gt * vtr1 / kt;
+            shear[1] = (fn / fs) * (shear[1] + meff * gt * vtr2 / kt) - meff * gt * vtr2 / kt;
+            shear[2] = (fn / fs) * (shear[2] + meff * gt * vtr3 / kt) - meff * gt * vtr3 / kt;
+            fs1 *= fn / fs;
+            fs2 *= fn / fs;
+            fs3 *= fn / fs;
+          } else
+            fs1 = fs2 = fs3 = 0.0;
+        }
+
+        fx = delx * ccel + fs1;
+        fy = dely * ccel + fs2;
+        fz = delz * ccel + fs3;
+        f[i][0] += fx;
+        f[i][1] += fy;
+        f[i][2] += fz;
+
+        tor1 = rinv * (dely * fs3 - delz * fs2);
+        tor2 = rinv * (delz * fs1 - delx * fs3);
+        tor3 = rinv * (delx * fs2 - dely * fs1);
+        torque[i][0] -= radi * tor1;
+        torque[i][1] -= radi * tor2;
+        torque[i][2] -= radi * tor3;
+
+        if (newton_pair || j < nlocal) {
+          f[j][0] -= fx;
+          f[j][1] -= fy;
+          f[j][2] -= fz;
+          torque[j][0] -= radj * tor1;
+          torque[j][1] -= radj * tor2;
+          torque[j][2] -= radj * tor3;
+        }
+
+        if (evflag) ev_tally_xyz(i, j, nlocal, newton_pair, 0.0, 0.0, fx, fy, fz, delx, dely, delz);
+      }
+    }
+  }
+
+  if (vflag_fdotr) virial_fdotr_compute();
+}
+
+/* ----------------------------------------------------------------------
+   history seen from the other atom: shear negated (the stock rule), e and gamma_n kept
+------------------------------------------------------------------------- */
+
+void PairGranHookeHistoryCantact::transfer_history(double *source, double *target)
+{
+  for (int m = 0; m < 3; m++) target[m] = -source[m];
+  for (int m = 3; m < N_HISTORY; m++) target[m] = source[m];
+}
+
+/* ----------------------------------------------------------------------
+   pair_style gran/hooke/history/cantact Kn Kt gamma_t xmu dampflag keyword value ...
+     keywords: table FILE | e E   (where e comes from: required here or in every pair_coeff)
+               v_per_V_star S     (impact speed per unit V*: overrides the table's)
+               limit_damping      (as stock; damping from e by the force-clipped relation)
+               report N           (print the first N new contacts seen by proc 0)
+------------------------------------------------------------------------- */
+
+void PairGranHookeHistoryCantact::settings(int narg, char **arg)
+{
+  if (narg < 5)
+    error->all(FLERR,
+               "Illegal pair_style gran/hooke/history/cantact command: Kn Kt gamma_t xmu "
+               "dampflag [table FILE | e E] [v_per_V_star S] [limit_damping] [report N]");
+
+  kn = utils::numeric(FLERR, arg[0], false, lmp);
+  if (strcmp(arg[1], "NULL") == 0)
+    kt = kn * 2.0 / 7.0;
+  else
+    kt = utils::numeric(FLERR, arg[1], false, lmp);
+
+  gamman = 0.0;    // per contact: not used
+  gammat_from_gamman = 0;
+  gammat = 0.0;
+  if (strcmp(arg[2], "NULL") == 0)
+    gammat_from_gamman = 1;
+  else
+    gammat = utils::numeric(FLERR, arg[2], false, lmp);
+
+  xmu = utils::numeric(FLERR, arg[3], false, lmp);
+  dampflag = utils::inumeric(FLERR, arg[4], false, lmp);
+  if (dampflag == 0) {
+    gammat = 0.0;
+    gammat_from_gamman = 0;
+  }
+
+  if (kn < 0.0 || kt < 0.0 || gammat < 0.0 || xmu < 0.0 || xmu > 10000.0 || dampflag < 0 ||
+      dampflag > 1)
+    error->all(FLERR, "Illegal pair_style gran/hooke/history/cantact command");
+
+  // the keywords; limit_damping first, as the source's zeta depends on the law
+  limit_damping = 0;
+  report_left = 0;
+  for (int iarg = 5; iarg < narg; iarg++)
+    if (strcmp(arg[iarg], "limit_damping") == 0) limit_damping = 1;
+  law = limit_damping ? 1 : 0;
+
+  int src = -1;
+  double v_override = -1.0;
+  int iarg = 5;
+  while (iarg < narg) {
+    if (strcmp(arg[iarg], "limit_damping") == 0) {
+      iarg++;
+    } else if (strcmp(arg[iarg], "report") == 0) {
+      if (iarg + 1 >= narg) error->all(FLERR, "pair_style gran/hooke/history/cantact: report N");
+      report_left = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else if (!parse_source(narg, arg, iarg, src, v_override, "pair_style")) {
+      error->all(FLERR, "Illegal pair_style gran/hooke/history/cantact keyword: {}", arg[iarg]);
+    }
+  }
+  if (v_override > 0.0 && src >= 0 && sources[src].table < 0)
+    error->all(FLERR, "pair_style gran/hooke/history/cantact: v_per_V_star needs a table");
+  if (src >= 0 && v_override > 0.0) {
+    Source s = sources[src];
+    s.v_per_V_star = v_override;
+    check_source(s);
+    src = add_source(s);
+  }
+  default_source = src;
+
+  // a pair_style command given again: the type pairs set by pair_coeff keep their own source,
+  // recomputed below for the (maybe new) law
+  for (Source &s : sources)
+    if (s.table < 0) s.zeta = zeta_of_e(s.e, law);
+  for (const Source &s : sources) check_source(s);
+  if (comm->me == 0)
+    utils::logmesg(lmp, "gran/hooke/history/cantact: e -> damping by the {} relation, from {}\n",
+                   law ? "force-clipped (limit_damping)" : "tension-allowed (stock)",
+                   zeta_relations());
+}
+
+/* ----------------------------------------------------------------------
+   table FILE | e E | v_per_V_star S at arg[iarg]: 1 and iarg advanced, or 0 when not one of
+   them. src is set to the source (a table or a constant); v_override to S.
+------------------------------------------------------------------------- */
+
+int PairGranHookeHistoryCantact::parse_source(int narg, char **arg, int &iarg, int &src,
+                                              double &v_override, const char *cmd)
+{
+  if (strcmp(arg[iarg], "table") == 0) {
+    if (iarg + 1 >= narg) error->all(FLERR, "{} gran/hooke/history/cantact: table FILE", cmd);
+    Source s;
+    s.table = add_table(arg[iarg + 1]);
+    s.e = 0.0;
+    s.zeta = 0.0;
+    s.v_per_V_star = tables[s.table]->t.v_per_V_star;
+    src = add_source(s);
+    iarg += 2;
+    return 1;
+  }
+  if (strcmp(arg[iarg], "e") == 0) {
+    if (iarg + 1 >= narg) error->all(FLERR, "{} gran/hooke/history/cantact: e E", cmd);
+    Source s;
+    s.table = -1;
+    s.e = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    if (!(s.e >= 0.0 && s.e <= 1.0))
+      error->all(FLERR, "{} gran/hooke/history/cantact: e {} is not in [0, 1]", cmd, s.e);
+    s.zeta = zeta_of_e(s.e, law);
+    s.v_per_V_star = 1.0;
+    check_source(s);
+    src = add_source(s);
+    iarg += 2;
+    return 1;
+  }
+  if (strcmp(arg[iarg], "v_per_V_star") == 0) {
+    if (iarg + 1 >= narg) error->all(FLERR, "{} gran/hooke/history/cantact: v_per_V_star S", cmd);
+    v_override = utils::numeric(FLERR, arg[iarg + 1], false, lmp);
+    if (!(v_override > 0.0 && std::isfinite(v_override)))
+      error->all(FLERR, "{} gran/hooke/history/cantact: v_per_V_star must be > 0", cmd);
+    iarg += 2;
+    return 1;
+  }
+  return 0;
+}
+
+/* ----------------------------------------------------------------------
+   load a table once per path: proc 0 reads it, every proc gets a copy
+------------------------------------------------------------------------- */
+
+int PairGranHookeHistoryCantact::add_table(const std::string &path)
+{
+  for (size_t k = 0; k < table_paths.size(); k++)
+    if (table_paths[k] == path) return (int) k;
+
+  Table *tab = new Table;
+  ct_tab &t = tab->t;
+  char err[1024] = "";
+  int status = 0;
+  if (comm->me == 0) status = ct_tab_load(&t, path.c_str(), err, sizeof err) ? 1 : 0;
+  MPI_Bcast(&status, 1, MPI_INT, 0, world);
+  if (status) {
+    delete tab;
+    error->all(FLERR, "gran/hooke/history/cantact: {}", err);
+  }
+  bigint n = comm->me == 0 ? (bigint) t.n : 0;
+  MPI_Bcast(&n, 1, MPI_LMP_BIGINT, 0, world);
+  double head[5] = {(double) t.rule, t.V_star_crit, t.tolerance, t.worst_error, t.v_per_V_star};
+  MPI_Bcast(head, 5, MPI_DOUBLE, 0, world);
+  if (comm->me != 0) {
+    t.n = (size_t) n;
+    t.rule = (int) head[0];
+    t.V_star_crit = head[1];
+    t.tolerance = head[2];
+    t.worst_error = head[3];
+    t.v_per_V_star = head[4];
+    t.V_star = (double *) malloc(t.n * sizeof(double));
+    t.ln_V_star = (double *) malloc(t.n * sizeof(double));
+    t.e = (double *) malloc(t.n * sizeof(double));
+    t.slope = (double *) malloc(t.n * sizeof(double));
+    if (!t.V_star || !t.ln_V_star || !t.e || !t.slope)
+      error->one(FLERR, "gran/hooke/history/cantact: out of memory for table {}", path);
+  }
+  MPI_Bcast(t.V_star, (int) n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(t.ln_V_star, (int) n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(t.e, (int) n, MPI_DOUBLE, 0, world);
+  MPI_Bcast(t.slope, (int) n, MPI_DOUBLE, 0, world);
+
+  tables.push_back(tab);
+  table_paths.push_back(path);
+  if (comm->me == 0)
+    utils::logmesg(lmp,
+                   "gran/hooke/history/cantact: table {}: {} nodes on V* {:.6g} .. {:.6g}, e "
+                   "{:.6g} .. 1, v_per_V_star {:.17g}\n",
+                   path, t.n, t.V_star[0], t.V_star[t.n - 1], t.e[t.n - 1], t.v_per_V_star);
+  return (int) tables.size() - 1;
+}
+
+int PairGranHookeHistoryCantact::add_source(const Source &s)
+{
+  sources.push_back(s);
+  return (int) sources.size() - 1;
+}
+
+/* ----------------------------------------------------------------------
+   refuse what the damping cannot give: with limit_damping (force clipped at zero) e = 0 needs
+   an infinite gamma_n (every finite one rebounds: e ~ 1 / (2 zeta)^2)
+------------------------------------------------------------------------- */
+
+void PairGranHookeHistoryCantact::check_source(const Source &s)
+{
+  double emin;
+  if (s.table < 0)
+    emin = s.e;
+  else {
+    const ct_tab &t = tables[s.table]->t;
+    if (!(s.v_per_V_star > 0.0))
+      error->all(FLERR,
+                 "gran/hooke/history/cantact: table {} has no v_per_V_star (give [impact] mass in "
+                 "the scene, or v_per_V_star S here)",
+                 table_paths[s.table]);
+    emin = 1.0;
+    for (size_t k = 0; k < t.n; k++)
+      if (t.e[k] < emin) emin = t.e[k];    // both rules keep e within its nodes
+  }
+  if (law == 1 && !(emin > 0.0))
+    error->all(FLERR,
+               "gran/hooke/history/cantact: e = 0 with limit_damping (force clipped at zero) "
+               "needs an infinite damping; every finite one rebounds");
+}
+
+void PairGranHookeHistoryCantact::allocate_sources()
+{
+  if (source_of) return;
+  const int n = atom->ntypes;
+  memory->create(source_of, n + 1, n + 1, "pair:source_of");
+  for (int i = 0; i <= n; i++)
+    for (int j = 0; j <= n; j++) source_of[i][j] = -1;
+}
+
+/* ----------------------------------------------------------------------
+   pair_coeff I J [table FILE | e E] [v_per_V_star S]
+------------------------------------------------------------------------- */
+
+void PairGranHookeHistoryCantact::coeff(int narg, char **arg)
+{
+  if (narg < 2) error->all(FLERR, "Incorrect args for pair coefficients");
+  int src = default_source;
+  double v_override = -1.0;
+  int iarg = 2;
+  while (iarg < narg)
+    if (!parse_source(narg, arg, iarg, src, v_override, "pair_coeff"))
+      error->all(FLERR, "Incorrect args for pair coefficients: {}", arg[iarg]);
+  if (src < 0)
+    error->all(FLERR,
+               "pair_coeff gran/hooke/history/cantact: no e for these types (table FILE or e E, "
+               "here or in pair_style)");
+  if (v_override > 0.0) {
+    if (sources[src].table < 0)
+      error->all(FLERR, "pair_coeff gran/hooke/history/cantact: v_per_V_star needs a table");
+    Source s = sources[src];
+    s.v_per_V_star = v_override;
+    check_source(s);
+    src = add_source(s);
+  }
+
+  PairGranHookeHistory::coeff(2, arg);    // allocate(), setflag
+  allocate_sources();
+  int ilo, ihi, jlo, jhi;
+  utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
+  utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
+  for (int i = ilo; i <= ihi; i++)
+    for (int j = MAX(jlo, i); j <= jhi; j++) source_of[i][j] = source_of[j][i] = src;
+}
+
+/* ---------------------------------------------------------------------- */
+
+void PairGranHookeHistoryCantact::init_style()
+{
+  PairGranHookeHistory::init_style();
+  if (!source_of) error->all(FLERR, "gran/hooke/history/cantact: no pair_coeff given");
+  for (int i = 1; i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++)
+      if (setflag[i][j] && source_of[i][j] < 0)
+        error->all(FLERR, "gran/hooke/history/cantact: no e for types {} {}", i, j);
+}
+
+/* ----------------------------------------------------------------------
+   the stock single() with the contact's gamma_n (for compute pair/local)
+------------------------------------------------------------------------- */
+
+double PairGranHookeHistoryCantact::single(int i, int j, int itype, int jtype, double rsq,
+                                           double /*factor_coul*/, double /*factor_lj*/,
+                                           double &fforce)
+{
+  double radi, radj, radsum;
+  double r, rinv, rsqinv, delx, dely, delz;
+  double vr1, vr2, vr3, vnnr, vn1, vn2, vn3, vt1, vt2, vt3, wr1, wr2, wr3;
+  double mi, mj, meff, damp, ccel;
+  double vtr1, vtr2, vtr3, vrel, shrmag, rsht;
+  double fs1, fs2, fs3, fs, fn;
+
+  double *radius = atom->radius;
+  radi = radius[i];
+  radj = radius[j];
+  radsum = radi + radj;
+
+  if (rsq >= radsum * radsum) {
+    fforce = 0.0;
+    for (int m = 0; m < single_extra; m++) svector[m] = 0.0;
+    return 0.0;
+  }
+
+  r = sqrt(rsq);
+  rinv = 1.0 / r;
+  rsqinv = 1.0 / rsq;
+
+  double **v = atom->v;
+  vr1 = v[i][0] - v[j][0];
+  vr2 = v[i][1] - v[j][1];
+  vr3 = v[i][2] - v[j][2];
+
+  double **x = atom->x;
+  delx = x[i][0] - x[j][0];
+  dely = x[i][1] - x[j][1];
+  delz = x[i][2] - x[j][2];
+
+  vnnr = vr1 * delx + vr2 * dely + vr3 * delz;
+  vn1 = delx * vnnr * rsqinv;
+  vn2 = dely * vnnr * rsqinv;
+  vn3 = delz * vnnr * rsqinv;
+
+  vt1 = vr1 - vn1;
+  vt2 = vr2 - vn2;
+  vt3 = vr3 - vn3;
+
+  double **omega = atom->omega;
+  wr1 = (radi * omega[i][0] + radj * omega[j][0]) * rinv;
+  wr2 = (radi * omega[i][1] + radj * omega[j][1]) * rinv;
+  wr3 = (radi * omega[i][2] + radj * omega[j][2]) * rinv;
+
+  double *rmass = atom->rmass;
+  int *mask = atom->mask;
+
+  mi = rmass[i];
+  mj = rmass[j];
+  if (fix_rigid) {
+    if (mass_rigid[i] > 0.0) mi = mass_rigid[i];
+    if (mass_rigid[j] > 0.0) mj = mass_rigid[j];
+  }
+
+  meff = mi * mj / (mi + mj);
+  if (mask[i] & freeze_group_bit) meff = mj;
+  if (mask[j] & freeze_group_bit) meff = mi;
+
+  int jnum = list->numneigh[i];
+  int *jlist = list->firstneigh[i];
+  double *allshear = fix_history->firstvalue[i];
+
+  for (int jj = 0; jj < jnum; jj++) {
+    neighprev++;
+    if (neighprev >= jnum) neighprev = 0;
+    if (jlist[neighprev] == j) break;
+  }
+
+  double *shear = &allshear[N_HISTORY * neighprev];
+  double gn, e;
+  if (shear[H_SET] != 0.0)
+    gn = shear[H_GAMMAN];
+  else
+    contact_damping(itype, jtype, -vnnr * rinv, meff, e, gn);
+  double gt = gammat_from_gamman ? 0.5 * gn : gammat;
+  if (dampflag == 0) gt = 0.0;
+
+  damp = meff * gn * vnnr * rsqinv;
+  ccel = kn * (radsum - r) * rinv - damp;
+  if (limit_damping && (ccel < 0.0)) ccel = 0.0;
+
+  vtr1 = vt1 - (delz * wr2 - dely * wr3);
+  vtr2 = vt2 - (delx * wr3 - delz * wr1);
+  vtr3 = vt3 - (dely * wr1 - delx * wr2);
+  vrel = vtr1 * vtr1 + vtr2 * vtr2 + vtr3 * vtr3;
+  vrel = sqrt(vrel);
+
+  shrmag = sqrt(shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2]);
+
+  rsht = shear[0] * delx + shear[1] * dely + shear[2] * delz;
+  rsht *= rsqinv;
+
+  fs1 = -(kt * shear[0] + meff * gt * vtr1);
+  fs2 = -(kt * shear[1] + meff * gt * vtr2);
+  fs3 = -(kt * shear[2] + meff * gt * vtr3);
+
+  fs = sqrt(fs1 * fs1 + fs2 * fs2 + fs3 * fs3);
+  fn = xmu * fabs(ccel * r);
+
+  if (fs > fn) {
+    if (shrmag != 0.0) {
+      fs1 *= fn / fs;
+      fs2 *= fn / fs;
+      fs3 *= fn / fs;
+      fs *= fn / fs;
+    } else
+      fs1 = fs2 = fs3 = fs = 0.0;
+  }
+
+  fforce = ccel;
+
+  svector[0] = fs1;
+  svector[1] = fs2;
+  svector[2] = fs3;
+  svector[3] = fs;
+  svector[4] = vn1;
+  svector[5] = vn2;
+  svector[6] = vn3;
+  svector[7] = vt1;
+  svector[8] = vt2;
+  svector[9] = vt3;
+
+  return 0.0;
+}
+
+/* ----------------------------------------------------------------------
+   extract("limit_damping"), extract("kn"): for scripts that check the setup
+------------------------------------------------------------------------- */
+
+void *PairGranHookeHistoryCantact::extract(const char *str, int &dim)
+{
+  dim = 0;
+  if (strcmp(str, "limit_damping") == 0) return (void *) &limit_damping;
+  if (strcmp(str, "kn") == 0) return (void *) &kn;
+  return nullptr;
+}

@@ -1,0 +1,78 @@
+#!/bin/sh
+# The LAMMPS test of gran/hooke/history/cantact (README.md): installs Debian 12's LAMMPS and the
+# build tools when missing, builds the add-on, writes the e(V*) table with the project's CLI,
+# and runs head-on collisions of 2 mm steel spheres in the stock lmp (collide_test.py says what
+# it checks). Exit 0 only when every check passes.
+#
+#   dem/lammps/test.sh [PATH/TO/cantact]     (default build/cantact of this checkout)
+#
+# KEEP=1 keeps the work directory (inputs, dumps) and prints its name.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+repo=$(cd "$here/../.." && pwd)
+cantact=${1:-$repo/build/cantact}
+cd "$repo"
+t_all=$(date +%s.%N)
+elapsed() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
+
+# ---- install what is missing ----
+pkgs="lammps liblammps-dev python3-lammps libopenmpi-dev openmpi-bin g++ gcc pkg-config python3"
+missing=""
+for p in $pkgs; do
+    s=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+    [ "$s" = "install ok installed" ] || missing="$missing $p"
+done
+if [ -n "$missing" ]; then
+    sudo=""
+    [ "$(id -u)" -eq 0 ] || sudo=sudo
+    echo "test.sh: installing:$missing"
+    t=$(date +%s.%N)
+    # shellcheck disable=SC2086
+    if ! $sudo apt-get install -y --no-install-recommends $missing; then
+        $sudo apt-get update
+        # shellcheck disable=SC2086
+        $sudo apt-get install -y --no-install-recommends $missing
+    fi
+    echo "test.sh: install: $(elapsed "$t") s"
+else
+    echo "test.sh: lammps, liblammps-dev, python3-lammps, MPI and compilers already installed"
+fi
+t_start=$(date +%s.%N)
+[ -x "$cantact" ] || { echo "test.sh: $cantact: not an executable (build the project: meson compile -C build)" >&2; exit 1; }
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/cantact-lammps.XXXXXX")
+if [ "${KEEP:-0}" = 1 ]; then
+    echo "test.sh: work directory $work (kept)"
+else
+    trap 'rm -rf "$work"' EXIT
+fi
+
+# ---- build ----
+t=$(date +%s.%N)
+"$here/build.sh" "$work/build"
+echo "test.sh: build: $(elapsed "$t") s"
+# the same style with its own copy of the e <-> zeta relations (used when cantact_table.h lacks
+# ct_tab_zeta_of_e): checked too, at dt only
+EXTRA_CXXFLAGS=-DCANTACT_LOCAL_ZETA "$here/build.sh" "$work/build-local" >/dev/null
+cc -O2 -Wall -I"$repo/include" "$here/e_of_speed.c" -o "$work/e_of_speed" -lm
+
+# ---- the table (SI units, the [impact] mass gives v_per_V_star) ----
+t=$(date +%s.%N)
+"$cantact" table scripts/scenes/dem_table.ini -o "$work/e_table.csv"
+echo "test.sh: table: $(elapsed "$t") s"
+
+# ---- the collisions ----
+t=$(date +%s.%N)
+status=0
+python3 "$here/collide_test.py" --lmp lmp --lib "$work/build/libcantact_lammps.so" \
+    --loader "$here/cantact_load.py" --table "$work/e_table.csv" \
+    --e-of-speed "$work/e_of_speed" --work "$work/runs" || status=$?
+echo
+echo "test.sh: again with the style's local e <-> zeta relations (-DCANTACT_LOCAL_ZETA), dt 1e-8 only:"
+python3 "$here/collide_test.py" --quick --lmp lmp --lib "$work/build-local/libcantact_lammps.so" \
+    --loader "$here/cantact_load.py" --table "$work/e_table.csv" \
+    --e-of-speed "$work/e_of_speed" --work "$work/runs-local" >"$work/local.txt" 2>&1 || status=$?
+sed -n '/^worst/,$p' "$work/local.txt"
+echo "test.sh: collisions: $(elapsed "$t") s; after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
+[ "$status" -eq 0 ] && echo "test.sh: PASS" || echo "test.sh: FAIL"
+exit "$status"
