@@ -73,6 +73,13 @@ python3 "$here/collide_test.py" --quick --lmp lmp --lib "$work/build-local/libca
     --loader "$here/cantact_load.py" --table "$work/e_table.csv" \
     --e-of-speed "$work/e_of_speed" --work "$work/runs-local" >"$work/local.txt" 2>&1 || status=$?
 sed -n '/^worst/,$p' "$work/local.txt"
+echo
+echo "test.sh: a measured surface's table (the Dektak profile, scripts/scenes/dem_profile_table.ini), dt 1e-8 only:"
+"$cantact" table -q scripts/scenes/dem_profile_table.ini -o "$work/e_profile.csv"
+python3 "$here/collide_test.py" --quick --lmp lmp --lib "$work/build/libcantact_lammps.so" \
+    --loader "$here/cantact_load.py" --table "$work/e_profile.csv" \
+    --e-of-speed "$work/e_of_speed" --work "$work/runs-profile" >"$work/profile.txt" 2>&1 || status=$?
+sed -n '/^worst/,$p' "$work/profile.txt"
 echo "test.sh: collisions: $(elapsed "$t") s; after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
 [ "$status" -eq 0 ] && echo "test.sh: PASS" || echo "test.sh: FAIL"
 exit "$status"

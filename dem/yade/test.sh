@@ -72,4 +72,11 @@ if run --dt 1e-7 --tol 1e-4 --no-first-step --no-dt-compensation; then
 fi
 bad=$(sed -n 's/.*worst |e_yade - e_table| = \([^ ]*\).*/\1/p' "$tmp/out.txt")
 echo "ok: without the corrections at dt = 1e-7 s the check fails (worst $bad)"
+# a measured surface's table (the Dektak profile, scripts/scenes/dem_profile_table.ini)
+"$cantact" table -q "$root/scripts/scenes/dem_profile_table.ini" -o "$tmp/e_profile.csv" ||
+    fail "cantact table scripts/scenes/dem_profile_table.ini"
+(cd "$tmp" && yade -n -x "$here/head_on.py" "$tmp/e_profile.csv" --dt 1e-8 --tol 1e-4 \
+    >"$tmp/out.txt" 2>&1) || fail "Yade with the measured surface's table: $(tail -5 "$tmp/out.txt")"
+worst=$(sed -n 's/.*worst |e_yade - e_table| = \([^ ]*\).*/\1/p' "$tmp/out.txt")
+echo "ok: a measured surface's table (Dektak profile) in Yade within 1e-4 at dt = 1e-8 s (worst $worst)"
 echo "dem/yade: passed in $(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }') s"
