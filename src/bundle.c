@@ -20,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #ifdef _OPENMP
@@ -111,9 +112,9 @@ int ct_bundle_team_from(const ct_bundle *b, size_t factor)
     return ct_bundle_team(b);
 }
 
-size_t ct_available_memory(void)
+/* What the system can give: MemAvailable (what the kernel can give without swapping). */
+static size_t system_available(void)
 {
-    /* MemAvailable is what the kernel can give without swapping. */
     FILE *f = fopen("/proc/meminfo", "r");
     if (f) {
         char line[256];
@@ -130,6 +131,16 @@ size_t ct_available_memory(void)
     if (pages > 0 && page > 0)
         return (size_t)pages * (size_t)page;
     return SIZE_MAX;
+}
+
+size_t ct_available_memory(void)
+{
+    /* and no more than the process may map (ulimit -v) */
+    size_t avail = system_available();
+    struct rlimit r;
+    if (!getrlimit(RLIMIT_AS, &r) && r.rlim_cur != RLIM_INFINITY && (size_t)r.rlim_cur < avail)
+        avail = (size_t)r.rlim_cur;
+    return avail;
 }
 
 void ct_bundle_free(ct_bundle *b)

@@ -7,12 +7,16 @@
 
 static _Thread_local char error_message[512];
 
+/* Formatted into a buffer of its own first: a message that quotes the previous one
+ * (ct_error_set(st, "%s: %s", where, ct_error_message())) must not read what it overwrites. */
 int ct_error_set(int status, const char *fmt, ...)
 {
+    char next[sizeof error_message];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(error_message, sizeof error_message, fmt, ap);
+    vsnprintf(next, sizeof next, fmt, ap);
     va_end(ap);
+    memcpy(error_message, next, sizeof next);
     return status;
 }
 

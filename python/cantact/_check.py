@@ -13,7 +13,11 @@ def real(name, value, lo=None, hi=None, lo_closed=False, hi_closed=False):
     """A finite real number (not a bool) with lo < value < hi (closed ends if asked)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         raise invalid(f"{name} = {value!r}: must be a real number")
-    v = float(value)
+    try:
+        v = float(value)
+    except OverflowError:  # an integer like 10**400: beyond doubles
+        raise invalid(f"{name} = an integer of {len(str(abs(int(value))))} digits: beyond double "
+                      "precision (|value| < 1.8e308)") from None
     if not math.isfinite(v):
         raise invalid(f"{name} = {v!r}: must be finite")
     if lo is not None and not (v >= lo if lo_closed else v > lo):
@@ -49,6 +53,8 @@ def _reals(name, value):
         a = np.asarray(value)
     except Exception as exc:  # ragged lists and the like
         raise invalid(f"{name}: not an array of numbers ({exc})") from None
+    if a.dtype == object and all(isinstance(x, numbers.Integral) for x in a.flat):
+        raise invalid(f"{name}: integers beyond double precision (|value| < 1.8e308)")
     if a.dtype == object or a.dtype.kind not in "biuf":
         raise invalid(f"{name}: must hold real numbers, got dtype {a.dtype}")
     if a.dtype.kind == "b":

@@ -366,8 +366,11 @@ class Profile:
             # a line: finite heights; a grid (rows along x): NaN marks an invalid point
             zz = chk.real_array("z", z, ndims=(1, 2), nan_ndims=(2,))
             if zz.ndim == 1:
-                if dy is not None or (x is None) == (dx is None):
-                    raise invalid("a line profile z: give x (positions) or dx (spacing), not dy")
+                if dy is not None:
+                    raise invalid("a line profile z (1-D): dy is for a grid (2-D z)")
+                if (x is None) == (dx is None):
+                    raise invalid("a line profile z: give x (positions) or dx (spacing), "
+                                  + ("not both" if x is not None else "one of them"))
                 if x is not None:
                     xx = chk.real_array("x", x, ndims=(1,))
                     if xx.shape != zz.shape:
@@ -384,8 +387,12 @@ class Profile:
                                                    chk.real("dx", dx, 0.0),
                                                    ffi.from_buffer("double[]", zz)))
             else:
-                if x is not None or dx is None or dy is None:
-                    raise invalid("a grid z (2-D): give dx and dy, not x")
+                if x is not None:
+                    raise invalid("a grid z (2-D): x is for a line profile; give dx and dy")
+                if dx is None or dy is None:
+                    raise invalid("a grid z (2-D): give dx and dy (missing: "
+                                  + " and ".join(n for n, v in (("dx", dx), ("dy", dy)) if v is None)
+                                  + ")")
                 check(lib.ct_profile_from_grid(out, zz.shape[1], zz.shape[0],
                                                chk.real("dx", dx, 0.0), chk.real("dy", dy, 0.0),
                                                ffi.from_buffer("double[]", zz)))

@@ -125,3 +125,24 @@ def test_read_table_refuses_other_files(tmp_path):
     p.write_text("# interpolation = linear\n# V_star_crit = 0.1\nV_star,e,de_dlnV_star\n"
                  "1,1,0\n0.5,0.5,0\n")
     raises(cantact.InvalidInput, "increasing", cantact.read_table, p)
+
+
+def test_hostile_round_four():
+    """Integers beyond doubles, a flat profile, and Profile's messages naming what was given
+    (issue 24's hostile pass): cantact.InvalidInput, never OverflowError or a made-up e."""
+    for kw in (dict(fx=10**400, fz=1.3, H=10, E=500), dict(fx=1.5, fz=1.3, H=10**400, E=500)):
+        with pytest.raises(cantact.InvalidInput, match="beyond double precision"):
+            cantact.Cantor(**kw)
+    s = cantact.Cantor(fx=1.5, fz=1.3, H=10, E=500)
+    with pytest.raises(cantact.InvalidInput, match="beyond double precision"):
+        cantact.restitution(s, V_star=[10**400])
+    # a flat line levels to its rounding residue (1e-23 m): no roughness, not an e of 0.30
+    with pytest.raises(cantact.InvalidInput, match="no roughness"):
+        cantact.Profile(z=np.full(50, 1e-7), dx=1e-6, E=2e11, sigma_y=4e8, H=10)
+    z, x = np.sin(np.arange(40.0)) * 1e-7, np.arange(40.0) * 1e-6
+    with pytest.raises(cantact.InvalidInput, match="not both"):
+        cantact.Profile(z=z, x=x, dx=1e-6, E=2e11, sigma_y=4e8, H=10)
+    with pytest.raises(cantact.InvalidInput, match="dy is for a grid"):
+        cantact.Profile(z=z, dx=1e-6, dy=1e-6, E=2e11, sigma_y=4e8, H=10)
+    with pytest.raises(cantact.InvalidInput, match=r"missing: dy\)"):
+        cantact.Profile(z=z.reshape(4, 10), dx=1e-6, E=2e11, sigma_y=4e8, H=10)

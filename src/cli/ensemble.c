@@ -593,8 +593,9 @@ static int part_line(FILE *f, char *buf)
 }
 
 /* The values of one row as the run would have written them: e in [0, 1], u_max and V*_c
- * finite and >= 0, clip counts at most the draws; empty only for a failed impact (a row with
- * its error), and failed impacts only in a scene with solver.on_error = skip. NULL or why not. */
+ * finite and >= 0, u_max below H*, clip counts at most the draws; empty only for a failed impact (a
+ * row with its error), and failed impacts only in a scene with solver.on_error = skip. NULL or why
+ * not. */
 static const char *row_values(const ct_scene *sc, double u, double e, double vc, uint64_t cx,
                               uint64_t cz, const char *error)
 {
@@ -613,6 +614,9 @@ static const char *row_values(const ct_scene *sc, double u, double e, double vc,
         return "e outside [0, 1]";
     if (!(isfinite(u) && u >= 0.0) || !(isfinite(vc) && vc >= 0.0))
         return "u_max_over_h0 or V_star_crit not a finite number >= 0";
+    const ct_layer *L = &sc->scales.layer;
+    if (!(u < L->Hstar / L->h0)) /* u_max >= H* is a crushed layer: refused, never a row */
+        return "u_max_over_h0 not below H*/h0 (a crushed layer)";
     return NULL;
 }
 

@@ -4,6 +4,7 @@
 #include "args.h"
 #include "ensemble.h"
 #include "fit.h"
+#include "output.h"
 #include "ranks.h"
 #include "run.h"
 #include "scene.h"
@@ -76,7 +77,7 @@ static const char *run_help_tail =
     "\n";
 
 static const char *geometry_help =
-    "Usage: cantact geometry SCENE.ini [--set section.key=value]...\n"
+    "Usage: cantact geometry SCENE.ini [--set section.key=value]... [-o FILE]\n"
     "\n"
     "Prints alpha, beta, D and, per stage, l_i/l0, h_i/h0, s_i/l0 and the rod length\n"
     "(H* - h_i)/h0 of the scene's Cantor surface at its depth (auto: the depth the run would\n"
@@ -282,14 +283,32 @@ static int cmd_geometry(int argc, char **argv)
         ct_args_free(&a);
         return rc;
     }
-    ct_build_request req;
-    ct_scene_request(&sc, 0, &req);
-    int st = ct_surface_write_geometry(sc.surface, &req, stdout);
-    if (st)
-        ct_cli_fail("%s", ct_error_message());
+    /* to output.file (-o FILE), written whole or not at all, like every output */
+    ct_out out;
+    char err[512];
+    const char *path = sc.output;
+    rc = EXIT_DONE;
+    if (ct_cli_outputs_not_inputs(&sc, &path, 1, NULL, 0) >= 0) {
+        rc = EXIT_USAGE;
+    } else if (ct_out_open(&out, sc.output, err, sizeof err)) {
+        ct_cli_fail("%s", err);
+        rc = EXIT_USAGE;
+    } else {
+        ct_build_request req;
+        ct_scene_request(&sc, 0, &req);
+        int st = ct_surface_write_geometry(sc.surface, &req, out.f);
+        if (st) {
+            ct_out_abort(&out);
+            ct_cli_fail("%s", ct_error_message());
+            rc = ct_cli_status_exit(st);
+        } else if (ct_out_commit(&out, err, sizeof err)) {
+            ct_cli_fail("%s", err);
+            rc = EXIT_USAGE;
+        }
+    }
     ct_scene_free(&sc);
     ct_args_free(&a);
-    return st ? ct_cli_status_exit(st) : EXIT_DONE;
+    return rc;
 }
 
 static int dispatch(int argc, char **argv)
@@ -340,6 +359,7 @@ static int dispatch(int argc, char **argv)
 
 int main(int argc, char **argv)
 {
+    ct_out_guard_std();
     int rc = dispatch(argc, argv);
     /* what went to standard output through stdio (help, geometry) must have arrived */
     if (fflush(stdout) != 0 || ferror(stdout)) {

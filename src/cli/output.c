@@ -125,11 +125,29 @@ static void big_buffer(ct_out *o)
     }
 }
 
+static int stdout_closed;
+
+void ct_out_guard_std(void)
+{
+    for (int fd = 0; fd <= 2; fd++) {
+        if (fcntl(fd, F_GETFD) != -1 || errno != EBADF)
+            continue;
+        stdout_closed |= fd == 1;
+        int n = open("/dev/null", O_RDONLY); /* read-only: a write to it fails, as it should */
+        if (n >= 0 && n != fd) { /* a lower descriptor was closed too: filled in order */
+            dup2(n, fd);
+            close(n);
+        }
+    }
+}
+
 int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
     if (!(o->shown = strdup(path)))
         return fail(o, err, errlen, "out of memory", 0);
+    if (!strcmp(path, "-") && stdout_closed)
+        return fail(o, err, errlen, "standard output is closed: give -o FILE", 0);
     if (!strcmp(path, "-")) {
         o->spooled = 1;
         if (!(o->f = spool()))

@@ -23,6 +23,12 @@ typedef struct {
     char *buf;      /* f's buffer (1 MiB: a 2000-row CSV in one write, not 67) */
 } ct_out;
 
+/* Opens /dev/null read-only on any of descriptors 0-2 that is closed, so that no file the
+ * program opens takes their place (a temporary output on descriptor 2 would receive the
+ * notes); writing to a closed standard output then fails, as it did (exit 2), and an output
+ * "-" is refused up front. Called first thing in main. */
+void ct_out_guard_std(void);
+
 /* Opens an output: "-" for standard output, else a path (checked now: a directory, an
  * unwritable place or a dangling symbolic link fail before any work is done). Returns 0, or
  * -1 with a message in err. */

@@ -589,6 +589,15 @@ static int run_sweep(ct_scene *sc, int quiet)
     /* the result rows (speeds x impacts) are held in memory unless streamed: refuse up front
      * what would not fit, with the figure (1e6 speeds x 1e6 impacts are allowed by the scene's
      * ranges; streamed, a block holds whole speeds: 1e6 impacts of one speed are 540 MB) */
+    /* an impact's history is held whole while written (about 48 bytes a point) */
+    const double hist = (sc->what & CT_OUT_HISTORY) ? (double)sc->history_points * 48.0 : 0.0;
+    if (hist > 0.9 * (double)ct_available_memory()) {
+        ct_cli_fail("output.history_points = %zu: an impact's history needs about %.3g GiB (48 "
+                    "bytes a point), more than the %.3g GiB of memory available",
+                    sc->history_points, hist / 1073741824.0,
+                    (double)ct_available_memory() / 1073741824.0);
+        return EXIT_FAILED;
+    }
     const size_t held = streamable(sc) ? block_speeds(sc) : sc->nvel;
     const double bytes = (double)held * (double)sc->impacts * (double)sizeof(ct_sweep_row);
     const double avail = (double)ct_available_memory();

@@ -322,15 +322,30 @@ int ct_profile_level(ct_profile *p, ct_detrend how)
         return st;
     const int m = L.m;
     const size_t total = p->nx * p->ny;
+    double big = 0.0, lo = INFINITY, hi = -INFINITY;
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
             continue;
+        big = fmax(big, fabs(p->z[j]));
         level_terms(p, &L, j, f);
         double t = 0.0;
         for (int a = 0; a < m; a++)
             t += coef[a] * f[a];
         p->z[j] -= t;
+        lo = fmin(lo, p->z[j]);
+        hi = fmax(hi, p->z[j]);
     }
+    /* A flat or exactly tilted profile levels to its rounding residue (1e-23 m from heights of
+     * 1e-7 m), which is no roughness: an e computed from it would be noise. Heights left within
+     * 1e-11 of the heights' size carry fewer than five digits: refused. */
+    if (hi - lo <= 1e-11 * big)
+        return ct_error_set(CT_EINVAL,
+                            "all heights are equal after levelling (%s), to rounding: they vary "
+                            "by %.3g, heights of %.3g: no roughness (a flat or tilted profile)",
+                            how == CT_DETREND_MEAN     ? "mean"
+                            : how == CT_DETREND_LINEAR ? "linear"
+                                                       : "quadratic",
+                            hi - lo, big);
     return CT_OK;
 }
 
@@ -711,8 +726,11 @@ static int profile_prepare(ct_surface *s, const char *dir)
     size_t clipped = 0;
     if ((st = ct_profile_stats_of(p, &raw)) || (st = ct_profile_level(p, c->detrend)) ||
         (c->trim_k > 0.0 && (st = ct_profile_trim(p, c->trim_k, &clipped))) ||
-        (st = ct_profile_stats_of(p, &c->stats)))
-        return st;
+        (st = ct_profile_stats_of(p, &c->stats))) {
+        char why[512]; /* the file named */
+        snprintf(why, sizeof why, "%s", ct_error_message());
+        return ct_error_set(st, "%s: %s", c->file, why);
+    }
     const ct_profile_stats *q = &c->stats;
     if (!(q->Rt > 0.0))
         return ct_error_set(CT_EINVAL, "%s: all heights are equal after levelling: no roughness",

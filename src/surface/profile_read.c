@@ -10,6 +10,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <locale.h>
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -620,6 +621,14 @@ static int x3p_header(const char *path, xmlNode *root, x3p_grid *g)
     if (!(dx > 0.0) || (sy > 1 && !(dy > 0.0)))
         return ct_error_set(CT_EINVAL, "%s: main.xml: increments CX %g, CY %g: must be > 0", path,
                             dx, dy);
+    /* a sample's share (dx, or dx dy on a grid) and the whole must be normal doubles: an
+     * increment of 1e-320 m leaves no digits (the surface's l0 would be 0) */
+    const double pixel = sy > 1 ? dx * dy : dx, whole = pixel * sx * sy;
+    if (!(pixel >= DBL_MIN) || !isfinite(whole))
+        return ct_error_set(CT_EINVAL,
+                            "%s: main.xml: increments CX %g, CY %g give a sample of %g m%s and %g "
+                            "in all: not normal doubles (between %g and %g)",
+                            path, dx, dy, pixel, sy > 1 ? "^2" : "", whole, DBL_MIN, DBL_MAX);
     const char *tp[] = {"CZ", "DataType"}, *lp[] = {"DataLink", "PointDataLink"},
                *mp[] = {"DataLink", "ValidPointsLink"};
     const char *type = text_at(root, tp, 2, g->type, sizeof g->type);
@@ -633,6 +642,15 @@ static int x3p_header(const char *path, xmlNode *root, x3p_grid *g)
                             "%s: main.xml: DataLink/PointDataLink missing (only binary "
                             "point data is read)",
                             path);
+    /* its heights (8 bytes a point) and, to be of use, its rods (32): refused up front, with
+     * the figure, rather than read for a minute into memory that cannot hold the rods */
+    const double need = sx * sy * (8.0 + CT_BYTES_PER_ROD), avail = (double)ct_available_memory();
+    if (need > 0.9 * avail)
+        return ct_error_set(CT_ENOMEM,
+                            "%s: an X3P grid of %g x %g points needs at least %.3g GiB (its "
+                            "heights and rods, 40 bytes a point), more than the %.3g GiB of "
+                            "memory available",
+                            path, sx, sy, need / 1073741824.0, avail / 1073741824.0);
     g->nx = (size_t)sx;
     g->ny = (size_t)sy;
     g->dx = dx;
