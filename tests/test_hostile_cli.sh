@@ -401,5 +401,11 @@ rc=$?
 [ $rc -eq 1 ] && grep -q "history_points = 100000000: an impact's history needs about 4.47 GiB" "$tmp/err" &&
     [ "$(cat "$tmp/h.csv")" = old ] && ok || bad "history_points 1e8 under 2 GB: exit $rc: $(cat "$tmp/err")"
 
+# a dropped body's speed from an overflowing gravity: the message names drop_height and gravity
+# (it blamed impact.velocity, which the scene does not set)
+printf '[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n[impact]\nsequence = bounce\nmass = 1e-3\ndrop_height = 1\n' >"$tmp/drop2.ini"
+refused "gravity 1.7e308" "impact.drop_height (speed 1 of the list; with mass 0.001, gravity 1.7e+308" -- \
+    "$ct" run -q "$tmp/drop2.ini" --set impact.gravity=1.7e308
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -514,7 +514,7 @@ static int impact_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
     sp->n = 0;
     sc->mass = ev ? 0.0 : k->mass;
     sc->speeds_are_velocities = !ev;
-    sc->speeds_key = ev ? "V_star" : "velocity";
+    sc->speeds_key = ev ? "V_star" : edrop ? "drop_height" : "velocity";
     snprintf(sc->where_speeds, sizeof sc->where_speeds, "%s", (ev ? ev : evel)->where);
     sc->bounce = k->sequence == 1;
     entry *e = find_entry(s, "impact", "stop_speed");
@@ -816,20 +816,26 @@ static int check_speeds(ct_scene *sc)
     for (size_t k = 0; k < sc->nvel; k++) {
         if (sc->speeds_are_velocities) {
             sc->V_star[k] = ct_speed_to_V_star(u, sc->mass, sc->V_star[k]);
-            if (!isfinite(sc->V_star[k]) || !(sc->V_star[k] > 0.0))
+            if (!isfinite(sc->V_star[k]) || !(sc->V_star[k] > 0.0)) {
+                char drop[96] = ""; /* a dropped body's speed comes from gravity too */
+                if (!strcmp(sc->speeds_key, "drop_height"))
+                    snprintf(drop, sizeof drop, ", gravity %g: v = sqrt(2 gravity drop_height)",
+                             sc->gravity);
                 return scene_error(CT_EINVAL,
-                                   "%s: impact.velocity (value %zu): gives a V* that is not a "
-                                   "finite number > 0",
-                                   sc->where_speeds, k + 1);
+                                   "%s: impact.%s (speed %zu of the list; with mass %g%s): gives "
+                                   "a V* that is not a finite number > 0",
+                                   sc->where_speeds, sc->speeds_key, k + 1, sc->mass, drop);
+            }
         }
         double W = sc->V_star[k] * sc->V_star[k] * u->energy_scale;
         if (!isfinite(W) || !(W >= DBL_MIN))
-            return scene_error(CT_EINVAL,
-                               "%s: impact.%s: V* = %g (value %zu) gives the impact energy V*^2 "
-                               "l0 E h0 = %g, not a finite number of at least %g, the smallest "
-                               "normal double (such an impact is elastic, e = 1, but not "
-                               "computable)",
-                               sc->where_speeds, sc->speeds_key, sc->V_star[k], k + 1, W, DBL_MIN);
+            return scene_error(
+                CT_EINVAL,
+                "%s: impact.%s: V* = %g (speed %zu of the list) gives the impact energy V*^2 "
+                "l0 E h0 = %g, not a finite number of at least %g, the smallest "
+                "normal double (such an impact is elastic, e = 1, but not "
+                "computable)",
+                sc->where_speeds, sc->speeds_key, sc->V_star[k], k + 1, W, DBL_MIN);
     }
     sc->speeds_are_velocities = 0;
     return CT_OK;
