@@ -387,6 +387,8 @@ with zipfile.ZipFile(sys.argv[1] + "/huge.x3p", "w") as f:
     f.writestr("main.xml", xml)
     f.writestr("bindata/data.bin", bytes(64))
 PY
+# (an AddressSanitizer build cannot start under ulimit -v: these two run in the release build)
+if bash -c 'ulimit -v 2000000; exec "$0" --version' "$ct" >/dev/null 2>&1; then
 bash -c 'ulimit -v 4000000; exec "$0" fit "$1"' "$ct" "$tmp/huge.x3p" >/dev/null 2>"$tmp/err"
 rc=$?
 [ $rc -eq 1 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "needs at least 7.45 GiB" "$tmp/err" &&
@@ -400,6 +402,9 @@ bash -c 'ulimit -v 2000000; exec "$0" run "$1" --set output.history_points=10000
 rc=$?
 [ $rc -eq 1 ] && grep -q "history_points = 100000000: an impact's history needs about 4.47 GiB" "$tmp/err" &&
     [ "$(cat "$tmp/h.csv")" = old ] && ok || bad "history_points 1e8 under 2 GB: exit $rc: $(cat "$tmp/err")"
+else
+    echo "hostile-cli: this build cannot run under ulimit -v (AddressSanitizer): 2 checks left to the release build"
+fi
 
 # a dropped body's speed from an overflowing gravity: the message names drop_height and gravity
 # (it blamed impact.velocity, which the scene does not set)
