@@ -412,5 +412,36 @@ printf '[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n[impact]\nse
 refused "gravity 1.7e308" "impact.drop_height (speed 1 of the list; with mass 0.001, gravity 1.7e+308" -- \
     "$ct" run -q "$tmp/drop2.ini" --set impact.gravity=1.7e308
 
+# infinite heights are no heights: an X3P whose CZ increment overflows its integers, or a D
+# point of inf, is refused naming the point (they were counted as invalid points); heights
+# spanning more than doubles hold are refused naming the file (it said "surface.Hstar = inf")
+/usr/bin/python3 - "$tmp" <<'PY' || bad "writing X3P files"
+import math, struct, sys, zipfile
+def x3p(name, z, typ, cz, n=16):
+    xml = ('<?xml version="1.0" encoding="UTF-8"?>\n<p:ISO5436_2 xmlns:p="http://www.opengps.eu/2008/ISO5436_2">'
+           '<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>'
+           '<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset></CX>'
+           '<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset>0</Offset></CY>'
+           '<CZ><AxisType>A</AxisType><DataType>%s</DataType><Increment>%s</Increment><Offset>0</Offset></CZ>'
+           '</Axes></Record1><Record3><MatrixDimension><SizeX>%d</SizeX><SizeY>%d</SizeY><SizeZ>1</SizeZ>'
+           '</MatrixDimension><DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink></Record3>'
+           '</p:ISO5436_2>' % (typ, cz, n, n))
+    with zipfile.ZipFile("%s/%s" % (sys.argv[1], name), "w") as f:
+        f.writestr("main.xml", xml)
+        f.writestr("bindata/data.bin", struct.pack("<%d%s" % (len(z), "i" if typ == "L" else "d"), *z))
+n = 16
+x3p("cz308.x3p", [int(100 * math.sin(0.3 * i + 0.7 * j)) for j in range(n) for i in range(n)], "L", "1e308")
+zd = [1e-7 * math.sin(0.3 * i + 0.7 * j) for j in range(n) for i in range(n)]
+zd[37] = float("inf")
+x3p("inf.x3p", zd, "D", "1")
+PY
+refused "an X3P CZ increment of 1e308 on int32" "height inf (the CZ increment times its integer)" -- \
+    "$ct" fit "$tmp/cz308.x3p"
+refused "an X3P point of inf" "point 37 (x 5, y 2): height inf" -- "$ct" fit "$tmp/inf.x3p"
+printf '0 1e308\n1 -1e308\n2 5e307\n3 0\n' >"$tmp/span.txt"
+printf '[surface]\ntype = profile\nfile = span.txt\nunit = m\nH = 10\ndetrend = none\n[material]\nE = 2e11\nsigma_y = 4e8\n[impact]\nV_star = 1e-3\n' >"$tmp/span.ini"
+refused "heights spanning beyond doubles" "span.txt: the heights span more than doubles hold" -- \
+    "$ct" run -q "$tmp/span.ini"
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -732,6 +732,11 @@ static int profile_prepare(ct_surface *s, const char *dir)
         return ct_error_set(st, "%s: %s", c->file, why);
     }
     const ct_profile_stats *q = &c->stats;
+    if (!isfinite(raw.Rt) || !isfinite(q->Rt))
+        return ct_error_set(CT_EINVAL,
+                            "%s: the heights span more than doubles hold (peak to valley %g m "
+                            "raw, %g m levelled): state them in a unit that fits",
+                            c->file, raw.Rt, q->Rt);
     if (!(q->Rt > 0.0))
         return ct_error_set(CT_EINVAL, "%s: all heights are equal after levelling: no roughness",
                             c->file);

@@ -704,7 +704,19 @@ static int x3p_heights(const char *path, zip_t *z, const x3p_grid *g, double **z
                               * and no statistic, is left out: added, it could only lose digits
                               * (an Offset of 1.7e308 swallowed them all) */
         if (mask && !((unsigned char)mask[k / 8] >> (k % 8) & 1u))
-            v = NAN; /* the mask's bit 0: an invalid point */
+            v = NAN;         /* the mask's bit 0: an invalid point */
+        else if (isinf(v)) { /* NaN marks a missing point; an infinity is no height */
+            st = ct_error_set(CT_EINVAL,
+                              "%s: point %zu (x %zu, y %zu): height %g%s: not a number doubles "
+                              "hold (NaN or the mask marks a missing point)",
+                              path, k, k % g->nx, k / g->nx, v,
+                              g->type[0] == 'I' || g->type[0] == 'L' ? " (the CZ increment times "
+                                                                       "its integer)"
+                                                                     : "");
+            free(*zz);
+            *zz = NULL;
+            goto done;
+        }
         (*zz)[k] = v;
     }
 done:
