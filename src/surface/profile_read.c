@@ -730,6 +730,13 @@ done:
 static int x3p_profile(const char *path, const x3p_grid *g, double *zz, ct_profile **out)
 {
     int st;
+    x3p_grid line = *g;
+    if (g->nx == 1 && g->ny > 1) { /* one column: a line profile along y, at y's spacing */
+        line.nx = g->ny;
+        line.ny = 1;
+        line.dx = g->dy;
+        g = &line;
+    }
     const size_t nx = g->nx;
     if (g->ny == 1) {
         size_t m = 0;
