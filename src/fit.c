@@ -331,10 +331,7 @@ int ct_profile_fit_of(const ct_profile *p, double d_lo, double d_hi, double tau_
      * beyond doubles in the structure function and the spectrum; their slopes, all the
      * dimensions take, do not depend on the heights' unit: such rows are taken in units of a
      * power of two (exact), heights of ordinary units as they are */
-    double zbig = 0.0;
-    for (size_t j = 0; j < r.nx * r.ny; j++)
-        zbig = isnan(r.z[j]) ? zbig : fmax(zbig, fabs(r.z[j]));
-    const int zk = zbig > 0.0 && isfinite(zbig) ? ilogb(zbig) : 0;
+    const int zk = ct_heights_exponent(r.z, r.nx * r.ny) - 1; /* ilogb of the largest */
     if (zk > 256 || zk < -256)
         for (size_t j = 0; j < r.nx * r.ny; j++)
             r.z[j] = ldexp(r.z[j], -zk);

@@ -170,6 +170,9 @@ int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result 
 /* CT_OK for an impact energy the solver can use: finite and a normal double (a subnormal W
  * has lost its digits, and 1/W overflows); CT_EINVAL naming V* otherwise. */
 int ct_energy_check(double W, double V_star);
+/* k with 2^(k-1) <= max |z| < 2^k over the heights that are not NaN (0 when none is finite and
+ * non-zero): heights far from 1 are summed in units of 2^k, an exact scaling (profile.c, fit.c). */
+int ct_heights_exponent(const double *z, size_t n);
 /* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
  * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
  * energy at u1[i] (bitwise ct_bundle_work and ct_bundle_elastic_energy of that state) and,

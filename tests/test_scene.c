@@ -352,7 +352,8 @@ static void messages_say_what_happened(void **state)
               "0");
     expect_error(buf, NULL, 0, "s.ini:5: control character 0x01", NULL);
     const char *tiny[] = {"impact.V_star=1e-200"};
-    expect_error(good, tiny, 1, "--set: impact.V_star: V* = 1e-200 (speed 1 of the list)", "impact energy");
+    expect_error(good, tiny, 1, "--set: impact.V_star: V* = 1e-200 (speed 1 of the list)",
+                 "impact energy");
 }
 
 /* A de_DE locale (decimal comma) for the test below: compiled once with localedef into a

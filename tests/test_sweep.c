@@ -364,6 +364,29 @@ static void two_rods_five_impacts_on_paper(void **state)
     ct_bundle_free(b);
 }
 
+/* b planned for the speeds V (stage rods at `depth`, 1e-12 bound) and its sweep on `path`: one
+ * impact per speed into rows. */
+static ct_bundle *planned_sweep(const ct_params *p, const double *V, size_t n, int depth, int path,
+                                ct_sweep_row *rows)
+{
+    ct_cantor_plan plan = {.params = *p,
+                           .depth = depth,
+                           .representation = CT_REP_STAGES,
+                           .depth_tolerance = 1e-12,
+                           .V_star = V,
+                           .nvel = n,
+                           .impacts = 1};
+    ct_impact_opts_default(&plan.opts);
+    ct_bundle *b;
+    ct_plan_info info;
+    if (ct_cantor_plan_build(&plan, &b, &info))
+        fail_msg("plan: %s", ct_error_message());
+    ct_sweep_spec spec = {.V_star = V, .nvel = n, .impacts = 1, .opts = plan.opts};
+    spec.path = (ct_sweep_path)path;
+    assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+    return b;
+}
+
 /* A speed far below V*_c (1e-17) is an elastic impact with e = 1 exactly: neither the depth
  * search nor the u_max solve may refuse it because its penetration is below the resolution of
  * u at shallow depths. Its u_max against the paper's series (Eq. 15: stage sums with
@@ -375,22 +398,8 @@ static void tiny_speed_is_elastic_not_an_error(void **state)
     const double V[] = {1e-17, 1e-12, 1e-3};
     for (int depth = CT_DEPTH_FRACTAL; depth <= CT_DEPTH_AUTO; depth++)
         for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++) {
-            ct_cantor_plan plan = {.params = p,
-                                   .depth = depth,
-                                   .representation = CT_REP_STAGES,
-                                   .depth_tolerance = 1e-12,
-                                   .V_star = V,
-                                   .nvel = 3,
-                                   .impacts = 1};
-            ct_impact_opts_default(&plan.opts);
-            ct_bundle *b;
-            ct_plan_info info;
-            if (ct_cantor_plan_build(&plan, &b, &info))
-                fail_msg("plan: %s", ct_error_message());
-            ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 1, .opts = plan.opts};
-            spec.path = (ct_sweep_path)path;
             ct_sweep_row rows[3];
-            assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+            ct_bundle *b = planned_sweep(&p, V, 3, depth, path, rows);
             for (int k = 0; k < 2; k++) {
                 if (rows[k].status)
                     fail_msg("V* = %g: %s", V[k], rows[k].message);
@@ -498,8 +507,8 @@ static void blocks_equal_the_whole_sweep(void **state)
 }
 
 /* Far below V*_c, down to the smallest energy a double holds normally (V* = 1e-150: W ~ 1e-297
- * in these units), the impact is elastic and computed: u_max against the paper's series (which
- * sums stages in closed form, not the curve) and e = 1 exactly. At V* = 1e-130 the curve's
+ * in these units), the impact is elastic and computed: u_max against a bisection of the rods'
+ * closed-form work (no curve, no quadratic) and e = 1 exactly. At V* = 1e-130 the curve's
  * inverse squared P ~ 1e-206 (underflow: |W(u) - W| / W = 0.66). A subnormal energy is refused. */
 static void tiny_energies_down_to_the_smallest_double(void **state)
 {
@@ -507,22 +516,8 @@ static void tiny_energies_down_to_the_smallest_double(void **state)
     ct_params p = base();
     const double V[] = {1e-100, 1e-130, 1e-150};
     for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++) {
-        ct_cantor_plan plan = {.params = p,
-                               .depth = CT_DEPTH_AUTO,
-                               .representation = CT_REP_STAGES,
-                               .depth_tolerance = 1e-12,
-                               .V_star = V,
-                               .nvel = 3,
-                               .impacts = 1};
-        ct_impact_opts_default(&plan.opts);
-        ct_bundle *b;
-        ct_plan_info info;
-        if (ct_cantor_plan_build(&plan, &b, &info))
-            fail_msg("plan: %s", ct_error_message());
-        ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 1, .opts = plan.opts};
-        spec.path = (ct_sweep_path)path;
         ct_sweep_row rows[3];
-        assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+        ct_bundle *b = planned_sweep(&p, V, 3, CT_DEPTH_AUTO, path, rows);
         for (int k = 0; k < 3; k++) {
             if (rows[k].status)
                 fail_msg("path %d, V* = %g: %s", path, V[k], rows[k].message);
@@ -547,9 +542,9 @@ static void tiny_energies_down_to_the_smallest_double(void **state)
             assert_rel(rows[k].r.u_max, d, 4.0 * DBL_EPSILON);
         }
         const double sub = 1e-160; /* W ~ 1e-317: subnormal */
-        ct_sweep_spec bad = spec;
-        bad.V_star = &sub;
-        bad.nvel = 1;
+        ct_sweep_spec bad = {.V_star = &sub, .nvel = 1, .impacts = 1};
+        ct_impact_opts_default(&bad.opts);
+        bad.path = (ct_sweep_path)path;
         assert_int_equal(ct_sweep(b, &bad, rows), CT_EINVAL);
         assert_non_null(strstr(ct_error_message(), "smallest normal double"));
         ct_bundle_free(b);

@@ -181,13 +181,18 @@ typedef struct {
  * heights and their squares are taken in units of it, which is exact (a power of two changes
  * no digit) and keeps them from overflowing at 1e300 m or underflowing at 1e-170 m, where Rq
  * came out 0 (squares below the smallest double) and trim clipped half the heights. */
-static int height_scale(const ct_profile *p)
+int ct_heights_exponent(const double *z, size_t n)
 {
     double big = 0.0;
-    for (size_t j = 0; j < p->nx * p->ny; j++)
-        if (!isnan(p->z[j]))
-            big = fmax(big, fabs(p->z[j]));
+    for (size_t j = 0; j < n; j++)
+        if (!isnan(z[j]))
+            big = fmax(big, fabs(z[j]));
     return big > 0.0 && isfinite(big) ? ilogb(big) + 1 : 0;
+}
+
+static int height_scale(const ct_profile *p)
+{
+    return ct_heights_exponent(p->z, p->nx * p->ny);
 }
 
 /* The frame of p's valid samples: their centre and the largest distance from it. */
@@ -727,9 +732,7 @@ static int profile_prepare(ct_surface *s, const char *dir)
     if ((st = ct_profile_stats_of(p, &raw)) || (st = ct_profile_level(p, c->detrend)) ||
         (c->trim_k > 0.0 && (st = ct_profile_trim(p, c->trim_k, &clipped))) ||
         (st = ct_profile_stats_of(p, &c->stats))) {
-        char why[512]; /* the file named */
-        snprintf(why, sizeof why, "%s", ct_error_message());
-        return ct_error_set(st, "%s: %s", c->file, why);
+        return ct_error_set(st, "%s: %s", c->file, ct_error_message()); /* the file named */
     }
     const ct_profile_stats *q = &c->stats;
     if (!isfinite(raw.Rt) || !isfinite(q->Rt))
@@ -751,10 +754,9 @@ static int profile_prepare(ct_surface *s, const char *dir)
                             "Rt = %g m after levelling",
                             c->layer.Hstar, q->Rt);
     if ((st = ct_layer_validate(&c->layer))) { /* lengths beyond what doubles hold, named */
-        char why[512];
-        snprintf(why, sizeof why, "%s", ct_error_message());
         return ct_error_set(st, "%s: %s; from %zu points at a spacing of %g m, Rt %g m", c->file,
-                            why, p->n, p->ny > 1 ? p->dx : q->length / (double)p->n, q->Rt);
+                            ct_error_message(), p->n, p->ny > 1 ? p->dx : q->length / (double)p->n,
+                            q->Rt);
     }
     ct_scales_of(&s->scales, &c->layer, &c->layer);
     ct_surface_note_set(s,
