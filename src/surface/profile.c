@@ -185,8 +185,8 @@ int ct_heights_exponent(const double *z, size_t n)
 {
     double big = 0.0;
     for (size_t j = 0; j < n; j++)
-        if (!isnan(z[j]))
-            big = fmax(big, fabs(z[j]));
+        if (!isnan(z[j]) && fabs(z[j]) > big)
+            big = fabs(z[j]);
     return big > 0.0 && isfinite(big) ? ilogb(big) + 1 : 0;
 }
 
@@ -262,13 +262,14 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
     const int m = L->m;
     const size_t total = p->nx * p->ny;
     const int k = height_scale(p); /* the right-hand side in units of 2^k: exact, no overflow */
+    const double m2 = ldexp(1.0, -k);
     double A[36] = {0}, bvec[6] = {0}, f[6];
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
             continue;
         level_terms(p, L, j, f);
         for (int a = 0; a < m; a++) {
-            bvec[a] += f[a] * ldexp(p->z[j], -k);
+            bvec[a] += f[a] * ct_times_pow2(p->z[j], m2, -k);
             for (int c = 0; c < m; c++)
                 A[a * m + c] += f[a] * f[c];
         }
@@ -363,12 +364,13 @@ int ct_profile_stats_of(const ct_profile *p, ct_profile_stats *s)
         return st;
     const size_t total = p->nx * p->ny;
     const int k = height_scale(p);
+    const double m2 = ldexp(1.0, -k);
     double w = 0.0, zw = 0.0, lo = INFINITY, hi = -INFINITY;
     for (size_t j = 0; j < total; j++)
         if (!isnan(p->z[j])) {
             double a = share(p, j);
             w += a;
-            zw += a * ldexp(p->z[j], -k);
+            zw += a * ct_times_pow2(p->z[j], m2, -k);
             lo = p->z[j] < lo ? p->z[j] : lo;
             hi = p->z[j] > hi ? p->z[j] : hi;
         }
@@ -376,7 +378,7 @@ int ct_profile_stats_of(const ct_profile *p, ct_profile_stats *s)
     double ra = 0.0, rq = 0.0;
     for (size_t j = 0; j < total; j++)
         if (!isnan(p->z[j])) {
-            double a = share(p, j), d = ldexp(p->z[j], -k) - mean;
+            double a = share(p, j), d = ct_times_pow2(p->z[j], m2, -k) - mean;
             ra += a * fabs(d);
             rq += a * d * d;
         }
