@@ -16,8 +16,7 @@
  * stages (O(n)), O(n log n) for arbitrary tops. Events are totally ordered (x, then the
  * slope change, then the force change), so the sorted sequence, and everything summed from
  * it, is the same for any thread count; only independent merges run in parallel. */
-#include "internal.h"
-#include "rod.h"
+#include "curve_lean.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -26,16 +25,6 @@
 #ifdef _OPENMP
 #include <omp.h>
 #endif
-
-typedef struct {
-    double x;    /* where [length] */
-    double dk;   /* change of slope [force/length]: >= +0 at a contact, <= -0 at a yield */
-    double dF;   /* change of the yielded rods' plateau force [force] */
-    double jump; /* at a yield: F - k (y - c), the plateau less the elastic line's value.
-                    0 but for rounding; a step when y and c round to the same double (a rod
-                    so short and stiff that it is rigid-plastic at this resolution) */
-    double L, c; /* at a yield: the rod's length and contact point (for the release point) */
-} event;
 
 struct ct_curve {
     size_t n, cap;
@@ -50,6 +39,7 @@ struct ct_curve {
     size_t ne;  /* events of the last build, sorted in ev */
     double *ux; /* an unloading curve's sorted events for its builder: x, then the slopes */
     size_t ucap;
+    ct_lean *lean; /* not NULL: a lean curve (curve_lean.c), none of the arrays above */
 };
 
 int ct_curve_alloc(ct_curve **out)
@@ -93,6 +83,7 @@ void ct_curve_free(ct_curve *c)
 {
     if (!c)
         return;
+    ct_lean_free(c->lean);
     free_points(c);
     free_work(c);
     free(c);
@@ -105,11 +96,13 @@ size_t ct_curve_size(const ct_curve *c)
 
 const double *ct_curve_points(const ct_curve *c)
 {
-    return c->x;
+    return c->lean ? NULL : c->x; /* the sweep's own lean curves are never the caller's */
 }
 
 double ct_curve_first_contact(const ct_curve *c)
 {
+    if (c->lean)
+        return ct_lean_first_contact(c->lean);
     return c->n ? c->x[0] : INFINITY;
 }
 
@@ -120,17 +113,7 @@ double ct_curve_first_yield(const ct_curve *c)
 
 static int less(const event *a, const event *b)
 {
-    if (a->x != b->x)
-        return a->x < b->x;
-    if (a->dk != b->dk)
-        return a->dk < b->dk;
-    if (a->dF != b->dF)
-        return a->dF < b->dF;
-    if (a->jump != b->jump)
-        return a->jump < b->jump;
-    if (a->L != b->L)
-        return a->L < b->L;
-    return a->c < b->c;
+    return ct_event_less(a, b);
 }
 
 /* Merges the sorted runs [lo, mid) and [mid, hi) of src into dst. */
@@ -227,11 +210,6 @@ static int grow(void **p, size_t *cap, size_t need, size_t size)
     return 0;
 }
 
-static int same_rod(const double *top, const double *length, const double *eps_p, size_t k)
-{
-    return top[k] == top[k - 1] && length[k] == length[k - 1] && eps_p[k] == eps_p[k - 1];
-}
-
 double ct_curve_bytes(size_t events)
 {
     /* events twice (the merge's buffer), run bounds, and 8 doubles per breakpoint */
@@ -250,7 +228,7 @@ static void count_runs(ct_curve *c, const rods_in *r, size_t j)
 {
     size_t k0 = j * CT_BLOCK, k1 = k0 + CT_BLOCK < r->n ? k0 + CT_BLOCK : r->n, runs = 1;
     for (size_t k = k0 + 1; k < k1; k++)
-        runs += !same_rod(r->top, r->length, r->eps_p, k);
+        runs += !ct_same_rod(r->top, r->length, r->eps_p, k);
     c->block_runs[j + 1] = runs;
 }
 
@@ -263,18 +241,9 @@ static void block_events(ct_curve *c, const rods_in *r, size_t j)
     size_t out = c->block_runs[j];
     event *ev = c->ev;
     for (size_t k = k0; k < k1;) {
-        double s = area[k], sc = 0.0;
-        size_t l = k + 1;
-        while (l < k1 && same_rod(top, length, eps_p, l))
-            ct_add_comp(&s, &sc, area[l++]);
-        s += sc;
-        double contact = ct_rod_contact(top[k], length[k], eps_p[k]);
-        double yield = ct_rod_yield(top[k], length[k], eps_p[k], eps_y);
-        double slope = E * s / length[k];
-        const double F = E * s * eps_y;
-        ev[out] = (event){contact, slope, 0.0, 0.0, 0.0, 0.0};
-        ev[r->nruns + out] =
-            (event){yield, -slope, F, F - slope * (yield - contact), length[k], contact};
+        size_t l;
+        const double s = ct_run_area(top, length, eps_p, area, k, k1, &l);
+        ct_run_events(top[k], length[k], eps_p[k], s, E, eps_y, &ev[out], &ev[r->nruns + out]);
         out++;
         k = l;
     }
@@ -302,7 +271,7 @@ size_t ct_curve_events(const ct_bundle *b)
     ct_bundle_arrays((ct_bundle *)b, &top, &length, &area, &eps_p); /* read only */
     size_t runs = 0;
     for (size_t k = 0; k < n; k++) /* block starts begin runs, as in ct_curve_build */
-        runs += k % CT_BLOCK == 0 || !same_rod(top, length, eps_p, k);
+        runs += k % CT_BLOCK == 0 || !ct_same_rod(top, length, eps_p, k);
     return 2 * runs;
 }
 
@@ -360,56 +329,26 @@ static int sweep_events(ct_curve *c, size_t ne)
         nx += ev[i].x != ev[i - 1].x;
     if (reserve_points(c, nx))
         return -1;
-    double ks = 0.0, kc = 0.0, As = 0.0, Ac = 0.0; /* slope and yielded force */
-    double Ps = 0.0, Pc = 0.0, Ws = 0.0, Wc = 0.0, Ds = 0.0, Dc = 0.0;
-    ptrdiff_t active = 0; /* rods between contact and yield */
-    double Lmax = 0.0;
-    size_t j = 0, i = 0;
-    double P_prev = 0.0, k_prev = 0.0, A_prev = 0.0, x_prev = ev[0].x;
+    ct_sweep_state st = {0};
+    size_t i = 0;
     while (i < ne) {
         const double x = ev[i].x;
-        if (j > 0) {
-            const double dx = x - x_prev;
-            ct_add_comp(&Ps, &Pc, k_prev * dx);
-            const double P = Ps + Pc;
-            ct_add_comp(&Ws, &Wc, 0.5 * (P_prev + P) * dx);
-            ct_add_comp(&Ds, &Dc, A_prev * dx);
-            P_prev = P;
-        }
-        for (; i < ne && ev[i].x == x; i++) {
-            ct_add_comp(&ks, &kc, ev[i].dk);
-            if (signbit(ev[i].dk)) { /* a yield (a rod of underflowed area: -0) */
-                ct_add_comp(&As, &Ac, ev[i].dF);
-                Lmax = ev[i].L > Lmax ? ev[i].L : Lmax;
-                if (ev[i].jump != 0.0) {
-                    ct_add_comp(&Ps, &Pc, ev[i].jump);
-                    P_prev = Ps + Pc;
-                }
-                active--;
-                if (x < c->first_yield)
-                    c->first_yield = x;
-            } else {
-                active++;
-            }
-        }
-        if (active == 0) { /* no rod elastic: the slope is 0, not a rounding residue */
-            ks = kc = 0.0;
-        }
-        c->x[j] = x;
-        c->P[j] = P_prev;
-        c->W[j] = Ws + Wc;
-        c->D[j] = Ds + Dc;
-        k_prev = ks + kc;
-        if (k_prev < 0.0)
-            k_prev = 0.0;
-        A_prev = As + Ac;
-        c->slope[j] = k_prev;
-        c->A[j] = A_prev;
-        c->Lmax[j] = Lmax;
-        x_prev = x;
-        j++;
+        ct_sweep_to(&st, x);
+        for (; i < ne && ev[i].x == x; i++)
+            if (ct_sweep_event(&st, &ev[i]) && x < c->first_yield)
+                c->first_yield = x;
+        const size_t j = st.j;
+        ct_point p;
+        ct_sweep_point(&st, x, &p);
+        c->x[j] = p.x;
+        c->P[j] = p.P;
+        c->W[j] = p.W;
+        c->D[j] = p.D;
+        c->slope[j] = p.slope;
+        c->A[j] = p.A;
+        c->Lmax[j] = p.Lmax;
     }
-    c->n = j;
+    c->n = st.j;
     return 0;
 }
 
@@ -445,6 +384,8 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     const int team = ct_bundle_team_from(b, 64);
     const size_t nb = (n + CT_BLOCK - 1) / CT_BLOCK;
     int st;
+    ct_lean_free(c->lean);
+    c->lean = NULL;
     c->n = 0;
     c->ne = 0;
     c->first_yield = INFINITY;
@@ -490,18 +431,35 @@ static size_t piece(const ct_curve *c, double u)
     return lo;
 }
 
+/* The lean curve's breakpoint at u (u > its first contact). */
+static ct_point lean_piece(const ct_curve *c, double u, double *cmin)
+{
+    ct_point p;
+    ct_lean_piece(c->lean, u, &p, cmin);
+    return p;
+}
+
 double ct_curve_force(const ct_curve *c, double u)
 {
-    if (!c->n || !(u > c->x[0]))
+    if (!c->n || !(u > ct_curve_first_contact(c)))
         return 0.0;
+    if (c->lean) {
+        const ct_point p = lean_piece(c, u, NULL);
+        return p.P + p.slope * (u - p.x);
+    }
     size_t j = piece(c, u);
     return c->P[j] + c->slope[j] * (u - c->x[j]);
 }
 
 double ct_curve_work(const ct_curve *c, double u)
 {
-    if (!c->n || !(u > c->x[0]))
+    if (!c->n || !(u > ct_curve_first_contact(c)))
         return 0.0;
+    if (c->lean) {
+        const ct_point p = lean_piece(c, u, NULL);
+        const double t = u - p.x;
+        return p.W + t * (p.P + 0.5 * p.slope * t);
+    }
     size_t j = piece(c, u);
     double t = u - c->x[j];
     return c->W[j] + t * (c->P[j] + 0.5 * c->slope[j] * t);
@@ -509,8 +467,12 @@ double ct_curve_work(const ct_curve *c, double u)
 
 double ct_curve_dissipation(const ct_curve *c, double u)
 {
-    if (!c->n || !(u > c->x[0]))
+    if (!c->n || !(u > ct_curve_first_contact(c)))
         return 0.0;
+    if (c->lean) {
+        const ct_point p = lean_piece(c, u, NULL);
+        return p.D + p.A * (u - p.x);
+    }
     size_t j = piece(c, u);
     return c->D[j] + c->A[j] * (u - c->x[j]);
 }
@@ -519,15 +481,36 @@ double ct_curve_release(const ct_curve *c, double u)
 {
     if (!c->n)
         return INFINITY;
-    if (!(u > c->x[0]))
-        return c->x[0];
-    size_t j = piece(c, u);
-    double r = c->cmin[j];
-    if (c->Lmax[j] > 0.0) {
-        double y = u - c->eps_y * c->Lmax[j]; /* the yielded rods' new contacts */
+    const double x0 = ct_curve_first_contact(c);
+    if (!(u > x0))
+        return x0;
+    double r, Lmax;
+    if (c->lean) {
+        Lmax = lean_piece(c, u, &r).Lmax;
+    } else {
+        size_t j = piece(c, u);
+        r = c->cmin[j];
+        Lmax = c->Lmax[j];
+    }
+    if (Lmax > 0.0) {
+        double y = u - c->eps_y * Lmax; /* the yielded rods' new contacts */
         r = y < r ? y : r;
     }
     return r;
+}
+
+/* The root u >= x of W(u) = W on the piece from x (its W_x, P and slope k; the next breakpoint
+ * at x_next, INFINITY: none). W_x + P t + k t^2 / 2 = W: t = 2R / (P + sqrt(P^2 + 2 k R)), no
+ * cancellation. The root as hypot(P, sqrt(2R) sqrt(k)): P^2 and k R underflow on deep Cantor
+ * tips at tiny speeds (P ~ 1e-206 at V* = 1e-130) where the energies themselves do not. */
+static double inverse_on(double x, double W_x, double P, double k, double x_next, double W)
+{
+    const double R = W - W_x;
+    const double den = P + hypot(P, sqrt(2.0 * (R > 0.0 ? R : 0.0)) * sqrt(k > 0.0 ? k : 0.0));
+    double t = den > 0.0 ? 2.0 * R / den : 0.0;
+    if (t > x_next - x)
+        t = x_next - x;
+    return x + t;
 }
 
 double ct_curve_inverse_work(const ct_curve *c, double W)
@@ -535,7 +518,13 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
     if (!c->n || !(W >= 0.0))
         return NAN;
     if (W == 0.0)
-        return c->x[0];
+        return ct_curve_first_contact(c);
+    if (c->lean) {
+        ct_point p;
+        double x_next;
+        ct_lean_piece_of_work(c->lean, W, &p, &x_next);
+        return inverse_on(p.x, p.W, p.P, p.slope, x_next, W);
+    }
     size_t lo = 0, hi = c->n; /* W[lo] <= W < W[hi] (W[n] = +inf) */
     while (hi - lo > 1) {
         size_t mid = lo + (hi - lo) / 2;
@@ -544,15 +533,30 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
         else
             hi = mid;
     }
-    /* W_j + P_j t + k t^2 / 2 = W: t = 2R / (P_j + sqrt(P_j^2 + 2 k R)), no cancellation.
-     * The root as hypot(P_j, sqrt(2R) sqrt(k)): P_j^2 and k R underflow on deep Cantor tips
-     * at tiny speeds (P ~ 1e-206 at V* = 1e-130) where the energies themselves do not. */
-    const double R = W - c->W[lo], P = c->P[lo], k = c->slope[lo];
-    const double den = P + hypot(P, sqrt(2.0 * (R > 0.0 ? R : 0.0)) * sqrt(k > 0.0 ? k : 0.0));
-    double t = den > 0.0 ? 2.0 * R / den : 0.0;
-    if (hi < c->n && t > c->x[hi] - c->x[lo])
-        t = c->x[hi] - c->x[lo];
-    return c->x[lo] + t;
+    return inverse_on(c->x[lo], c->W[lo], c->P[lo], c->slope[lo], hi < c->n ? c->x[hi] : INFINITY,
+                      W);
+}
+
+double ct_curve_lean_bytes(const ct_bundle *b)
+{
+    return ct_lean_bytes(ct_curve_events(b) / 2);
+}
+
+int ct_curve_build_lean(ct_curve *c, const ct_bundle *b)
+{
+    CT_NEED(c);
+    CT_NEED(b);
+    ct_lean *L;
+    int st = ct_lean_build(&L, b);
+    if (st)
+        return st;
+    ct_lean_free(c->lean);
+    c->lean = L;
+    c->n = ct_lean_size(L);
+    c->ne = 0;
+    c->first_yield = ct_lean_first_yield(L);
+    c->eps_y = ct_bundle_layer(b)->sigma_y / ct_bundle_layer(b)->E;
+    return CT_OK;
 }
 
 void ct_curve_view_of(const ct_curve *c, ct_curve_view *v)

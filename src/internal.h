@@ -4,6 +4,7 @@
 
 #include "cantact.h"
 
+#include <float.h>
 #include <math.h>
 
 #if defined(__GNUC__)
@@ -90,6 +91,15 @@ void ct_bundle_parallel(const ct_bundle *b, size_t count, size_t chunk, ct_chunk
  * scratch is kept in b for the next refill). For ensembles. */
 int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t realisation);
 
+/* The lean curve of b's state into c (curve_lean.c): the same answers, bit for bit, from
+ * ct_curve_first_contact, _first_yield, _force, _work, _dissipation, _release, _inverse_work
+ * and _size, in about 48 bytes per rod instead of 300; nothing else may be asked of it (no
+ * points, view or unloading curve). b must not change while c is used. CT_ESKIPPED: this
+ * bundle needs the full curve (its W rounds to a sequence that is not monotone). */
+int ct_curve_build_lean(ct_curve *c, const ct_bundle *b);
+/* Bytes a lean curve of b needs while it is built. */
+double ct_curve_lean_bytes(const ct_bundle *b);
+
 /* The breakpoints of a curve as arrays (x sorted; P, cumulative W and the slope on
  * [x_j, x_{j+1}) at each), for the dynamics. */
 typedef struct {
@@ -173,6 +183,12 @@ int ct_energy_check(double W, double V_star);
 /* k with 2^(k-1) <= max |z| < 2^k over the heights that are not NaN (0 when none is finite and
  * non-zero): heights far from 1 are summed in units of 2^k, an exact scaling (profile.c, fit.c). */
 int ct_heights_exponent(const double *z, size_t n);
+/* z 2^e, with m = 2^e (ldexp(1, e)): one multiplication when m is a normal double (the same
+ * correctly rounded value as ldexp(z, e), at a fraction of its cost), ldexp otherwise. */
+static inline double ct_times_pow2(double z, double m, int e)
+{
+    return e >= DBL_MIN_EXP - 1 && e <= DBL_MAX_EXP - 1 ? z * m : ldexp(z, e);
+}
 /* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
  * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
  * energy at u1[i] (bitwise ct_bundle_work and ct_bundle_elastic_energy of that state) and,

@@ -416,16 +416,31 @@ done:
     return st;
 }
 
+/* Whether the sweep only asks its first curve's queries (the fast path, nothing handed out):
+ * then the curve may be lean. */
+static int queries_only(const ct_sweep_spec *s)
+{
+    return !s->observe && !s->dynamics &&
+           (s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED);
+}
+
+/* Whether the sweep's curve is lean (ct_sweep_path). */
+static int use_lean(const ct_bundle *b, const ct_sweep_spec *s)
+{
+    return queries_only(s) && (s->path == CT_PATH_LEAN ||
+                               (s->path == CT_PATH_AUTO && ct_bundle_size(b) >= CT_LEAN_RODS));
+}
+
 /* Whether the rod path serves this sweep better than a curve (ct_sweep_path). */
 static int use_rods(const ct_bundle *b, const ct_sweep_spec *s)
 {
-    if (s->observe || s->dynamics ||
-        !(s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED))
+    if (!queries_only(s))
         return 0;
     if (s->path != CT_PATH_AUTO)
         return s->path == CT_PATH_RODS;
     size_t events = ct_curve_events(b);
-    double need = ct_curve_bytes(events), avail = (double)ct_available_memory();
+    double need = use_lean(b, s) ? ct_curve_lean_bytes(b) : ct_curve_bytes(events),
+           avail = (double)ct_available_memory();
     return need > 0.5 * avail || (events > 4000000 && s->nvel * (size_t)s->impacts <= 32);
 }
 
@@ -708,12 +723,23 @@ static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w
     const ct_layer *L = ct_bundle_layer(b);
     if (s->dynamics && (st = ct_dyn_work_alloc(&w->dw)))
         return st;
-    if (s->curve) /* the caller's workspace: its arrays are reused */
+    const int lean = use_lean(b, s);
+    if (s->curve && !lean) /* the caller's workspace: its arrays are reused */
         w->first = s->curve;
     else if ((st = ct_curve_alloc(&w->first)))
         return st;
-    if ((st = ct_curve_build(w->first, b)))
+    /* a lean curve that cannot be (W not monotone in its rounding) is a full one, unless
+     * the lean one was asked for */
+    if (lean && (st = ct_curve_build_lean(w->first, b)) != CT_ESKIPPED) {
+        if (st)
+            return st;
+    } else if (lean && s->path == CT_PATH_LEAN) {
+        return ct_error_set(CT_EINVAL, "solver.path = lean: this bundle's cumulative work rounds "
+                                       "to a sequence that is not monotone: take the full curve "
+                                       "(solver.path = curve or auto)");
+    } else if ((st = ct_curve_build(w->first, b))) {
         return st;
+    }
     if (w->dw && (st = ct_dyn_prepare(w->dw, w->first)))
         return st;
     if (!(*mask = malloc(s->nvel ? s->nvel : 1)))

@@ -648,6 +648,98 @@ static void stiff_rod_at_contact_states_its_rounding(void **state)
     ct_bundle_free(b);
 }
 
+/* The same bits from the lean curve as from the full one (CT_PATH_LEAN: sorted events and
+ * checkpoints, docs/library.md) for every field of every row: Cantor stages (long runs of
+ * identical rods, ties across blocks), segments, scattered tops, quantised tops with many
+ * equal ones of different areas (ties in the events' order), -0 and +0, runs across the
+ * 2048-rod blocks, a plastic state, three impacts per speed, the check on every row. */
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+static void lean_curve_equals_full_curve_bit_for_bit(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    enum { NV = 10, IMP = 3, NB = 7, NR = 5000 };
+    const double V[NV] = {1e-6, 3e-5, 1e-4, 2e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 60.0};
+    ct_bundle *b[NB];
+    assert_int_equal(ct_cantor_bundle(&b[0], &p, CT_REP_STAGES, 147, INFINITY), CT_OK);
+    assert_int_equal(ct_cantor_bundle(&b[1], &p, CT_REP_SEGMENTS, 12, INFINITY), CT_OK);
+    static double top[NR], area[NR];
+    ct_layer L = {.E = 500.0, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 1.0};
+    for (int k = 0; k < NR; k++) { /* scattered */
+        top[k] = 2.0 * fmod(0.618033988749895 * k, 1.0);
+        area[k] = 1.0 / NR;
+    }
+    assert_int_equal(ct_bundle_from_rods(&b[2], &L, NR, top, area), CT_OK);
+    for (int k = 0; k < NR; k++) { /* quantised: 13 levels, runs of 3, -0 beside +0 */
+        top[k] = (k / 3 % 13) * 0.125;
+        if (top[k] == 0.0 && k % 2)
+            top[k] = -0.0;
+        area[k] = (1.0 + (k / 3 % 7)) / (4.0 * NR);
+    }
+    assert_int_equal(ct_bundle_from_rods(&b[3], &L, NR, top, area), CT_OK);
+    assert_int_equal(ct_bundle_clone(&b[4], b[3]), CT_OK);
+    ct_bundle_advance(b[4], 0.4);  /* a plastic state: contacts and lengths of its own */
+    for (int k = 0; k < NR; k++) { /* one long run across blocks, then scattered */
+        top[k] = k < 3000 ? 0.5 : fmod(0.7548776662466927 * k, 1.0);
+        area[k] = 1.0 / NR;
+    }
+    assert_int_equal(ct_bundle_from_rods(&b[5], &L, NR, top, area), CT_OK);
+    /* a long rod at 0 that yields last (at 1) and 200 short ones above it that yield first:
+     * the release point is the long rod's contact, from a checkpoint far ahead */
+    ct_surface *sf;
+    assert_int_equal(ct_surface_new(&sf, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(sf, "material", "E", "100", "test"), CT_OK);
+    assert_int_equal(ct_surface_set(sf, "material", "sigma_y", "1", "test"), CT_OK);
+    double len[201];
+    for (int k = 0; k < 201; k++) {
+        top[k] = k ? 0.01 + 0.002 * (k - 1) : 0.0;
+        area[k] = k ? 1.0 / 200 : 1.0;
+        len[k] = k ? 1.0 : 100.0;
+    }
+    assert_int_equal(ct_surface_set_rods(sf, 201, top, area, len), CT_OK);
+    assert_int_equal(ct_surface_check(sf, "test"), CT_OK);
+    assert_int_equal(ct_surface_prepare(sf, NULL), CT_OK);
+    ct_build_request req = {.V_star = V, .nvel = 1, .impacts = 1};
+    ct_impact_opts_default(&req.opts);
+    assert_int_equal(ct_surface_build(sf, &req, &b[6], NULL), CT_OK);
+    ct_surface_free(sf);
+    static ct_sweep_row c[NV * IMP], l[NV * IMP];
+    for (int k = 0; k < NB; k++) {
+        ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = IMP};
+        ct_impact_opts_default(&spec.opts);
+        spec.opts.check = CT_CHECK_ALL;
+        spec.path = CT_PATH_CURVE;
+        assert_int_equal(ct_sweep(b[k], &spec, c), CT_OK);
+        spec.path = CT_PATH_LEAN;
+        assert_int_equal(ct_sweep(b[k], &spec, l), CT_OK);
+        int ok = 0;
+        for (int q = 0; q < NV * IMP; q++) {
+            assert_int_equal(l[q].status, c[q].status);
+            ok += c[q].status == CT_OK;
+            const ct_impact_result *x = &c[q].r, *y = &l[q].r;
+            const double fx[] = {x->kinetic_energy,  x->V_star,     x->u_contact, x->u_max,
+                                 x->u_release,       x->W_load,     x->W_unload,  x->W_load_closed,
+                                 x->W_unload_closed, x->e,          x->e_closed,  x->quad_error,
+                                 x->e_rounding,      x->V_star_crit};
+            const double fy[] = {y->kinetic_energy,  y->V_star,     y->u_contact, y->u_max,
+                                 y->u_release,       y->W_load,     y->W_unload,  y->W_load_closed,
+                                 y->W_unload_closed, y->e,          y->e_closed,  y->quad_error,
+                                 y->e_rounding,      y->V_star_crit};
+            for (size_t f = 0; f < sizeof fx / sizeof fx[0]; f++)
+                if (!same_bits(fx[f], fy[f]))
+                    fail_msg("bundle %d, row %d, field %zu: full %.17g, lean %.17g", k, q, f, fx[f],
+                             fy[f]);
+            assert_int_equal(x->elastic, y->elastic);
+        }
+        assert_true(ok >= 2 * IMP); /* rows that ran, not only failures */
+        ct_bundle_free(b[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -663,6 +755,7 @@ int main(void)
         cmocka_unit_test(tiny_energies_down_to_the_smallest_double),
         cmocka_unit_test(tiny_speed_on_offset_rods_is_elastic),
         cmocka_unit_test(stiff_rod_at_contact_states_its_rounding),
+        cmocka_unit_test(lean_curve_equals_full_curve_bit_for_bit),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }

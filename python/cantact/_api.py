@@ -14,7 +14,12 @@ from ._surfaces import Cantor, RandomCantor, surface_of
 QUADRATURES = {"breakpoints": lib.CT_QUAD_BREAKPOINTS, "trapezoid": lib.CT_QUAD_TRAPEZOID,
                "simpson": lib.CT_QUAD_SIMPSON, "gauss": lib.CT_QUAD_GAUSS,
                "closed": lib.CT_QUAD_CLOSED}
-PATHS = {"auto": lib.CT_PATH_AUTO, "curve": lib.CT_PATH_CURVE, "rods": lib.CT_PATH_RODS}
+PATHS = {
+    "auto": lib.CT_PATH_AUTO,
+    "curve": lib.CT_PATH_CURVE,
+    "rods": lib.CT_PATH_RODS,
+    "lean": lib.CT_PATH_LEAN,
+}
 SPLITS = {"auto": lib.CT_SPLIT_AUTO, "realisations": lib.CT_SPLIT_REALISATIONS,
           "rods": lib.CT_SPLIT_RODS}
 LAWS = {"series": lib.CT_LAW_SERIES, "asymptotic": lib.CT_LAW_ASYMPTOTIC,

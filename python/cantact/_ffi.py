@@ -189,7 +189,7 @@ typedef struct {
 typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);
 typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundle *b,
                               const ct_curve *c, void *ctx);
-typedef enum { CT_PATH_AUTO = 0, CT_PATH_CURVE = 1, CT_PATH_RODS = 2 } ct_sweep_path;
+typedef enum { CT_PATH_AUTO = 0, CT_PATH_CURVE = 1, CT_PATH_RODS = 2, CT_PATH_LEAN = 3 } ct_sweep_path;
 typedef struct {
     const double *V_star;
     size_t nvel;

@@ -91,8 +91,11 @@ static const ct_key cli_keys[] = {
      "closed) "
      "every impact",
      AT(check)},
-    {"solver", "path", CT_KEY_WORD, 0, 0, 0, "auto|curve|rods", "must be auto, curve or rods",
-     "auto", "the load curve, or Newton on the rods' closed forms (no curve in memory)", AT(path)},
+    {"solver", "path", CT_KEY_WORD, 0, 0, 0, "auto|curve|rods|lean",
+     "must be auto, curve, rods or lean", "auto",
+     "the load curve, Newton on the rods' closed forms (no curve in memory), or the lean curve "
+     "(its sorted events: same results, about a sixth of the memory)",
+     AT(path)},
     {"output", "file", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a path or -", "-",
      "where the e table goes (-: standard output); other outputs beside it", AT(file)},
     {"output", "what", CT_KEY_WORDS, 0, 0, 0, CT_OUTPUT_WORDS,

@@ -1,0 +1,414 @@
+/* The lean load curve (CT_PATH_LEAN): the same piecewise-linear P(u) as ct_curve_build, held as
+ * the sorted events themselves instead of the breakpoints' arrays.
+ *
+ * An event is 16 bytes: where it is and the first rod of its run; everything else (the run's
+ * summed area, slope, plateau force, ...) is recomputed from the bundle's rods by the same code
+ * the full build uses (curve_event.h). Contacts and yields are sorted apart (a radix sort on
+ * x, then the ties in the events' total order) and merged as they are swept, which is the
+ * full build's order. Every K-th breakpoint keeps the sweep's state (its compensated sums);
+ * a query finds its breakpoint among those and sweeps on from there, so it gets the very
+ * doubles the full curve holds, in O(log n + K).
+ *
+ * Memory: 32 bytes per run of rods (two events) plus a checkpoint per K breakpoints, and 16
+ * more per run while sorting, against about 300 for the full curve. The bundle's arrays are
+ * read, not copied: they must not change while the curve is used (the sweep's own curve). */
+#include "curve_lean.h"
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define K 32 /* breakpoints per checkpoint */
+
+typedef struct {
+    double x;   /* where */
+    uint64_t k; /* the run's first rod */
+} lev;
+
+struct ct_lean {
+    const double *top, *length, *area, *eps_p;
+    size_t nrods;
+    double E, eps_y;
+    lev *con, *yie; /* contacts and yields, each in the events' order */
+    size_t nruns;
+    uint64_t *mk; /* runs of more than one rod: first rod (ascending) and summed area */
+    double *ms;
+    size_t nm;
+    ct_sweep_state *cp; /* the state before breakpoint q K */
+    double *cx, *cW;    /* x and W of breakpoint q K (for the searches) */
+    double *ymin;       /* smallest contact of the yields after checkpoint q + 1's start */
+    size_t ncp, n;
+    double x0, first_yield;
+};
+
+/* The summed area of the run that starts at rod k. */
+static double run_area(const ct_lean *L, size_t k)
+{
+    const size_t k1 = (k / CT_BLOCK + 1) * CT_BLOCK;
+    if (!(k + 1 < L->nrods && k + 1 < k1 && ct_same_rod(L->top, L->length, L->eps_p, k + 1)))
+        return L->area[k];
+    size_t lo = 0, hi = L->nm; /* mk[lo] == k */
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (L->mk[mid] <= k)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return L->ms[lo];
+}
+
+/* The full event of a lean one (a yield when yield is set). */
+static void materialise(const ct_lean *L, const lev *e, int yield, event *out)
+{
+    const size_t k = (size_t)e->k;
+    event c, y;
+    ct_run_events(L->top[k], L->length[k], L->eps_p[k], run_area(L, k), L->E, L->eps_y, &c, &y);
+    *out = yield ? y : c;
+}
+
+/* ---- sorting: LSD radix on x, then each run of equal x in the total order ---- */
+
+static uint64_t key_of(double x)
+{
+    uint64_t u;
+    memcpy(&u, &x, sizeof u);
+    return (u >> 63) ? ~u : u | (UINT64_C(1) << 63);
+}
+
+typedef struct {
+    event e;
+    lev l;
+} tie;
+
+static int tie_cmp(const void *a, const void *b)
+{
+    const event *x = &((const tie *)a)->e, *y = &((const tie *)b)->e;
+    return ct_event_less(x, y) ? -1 : ct_event_less(y, x) ? 1 : 0;
+}
+
+#define BITS 11
+#define BUCKETS (1u << BITS)
+#define PASSES 6
+
+/* Sorts v[0..n) (tmp: room for n) into the events' order; -1 when out of memory. */
+static int sort_lean(const ct_lean *L, lev *v, lev *tmp, size_t n, int yield)
+{
+    size_t(*count)[BUCKETS] = calloc(PASSES, sizeof *count);
+    if (!count)
+        return -1;
+    for (size_t i = 0; i < n; i++) {
+        const uint64_t k = key_of(v[i].x);
+        for (int p = 0; p < PASSES; p++)
+            count[p][(k >> (p * BITS)) & (BUCKETS - 1)]++;
+    }
+    lev *src = v, *dst = tmp;
+    for (int p = 0; p < PASSES; p++) {
+        size_t *c = count[p], sum = 0;
+        int one = 0;
+        for (unsigned b = 0; b < BUCKETS; b++)
+            one |= c[b] == n;
+        if (one) /* every key has this digit: nothing to move */
+            continue;
+        for (unsigned b = 0; b < BUCKETS; b++) {
+            const size_t t = c[b];
+            c[b] = sum;
+            sum += t;
+        }
+        for (size_t i = 0; i < n; i++)
+            dst[c[(key_of(src[i].x) >> (p * BITS)) & (BUCKETS - 1)]++] = src[i];
+        lev *t = src;
+        src = dst;
+        dst = t;
+    }
+    free(count);
+    if (src != v)
+        memcpy(v, src, n * sizeof *v);
+    /* runs of equal x (-0 and +0 are adjacent keys) in the total order */
+    tie *t = NULL;
+    size_t tcap = 0;
+    for (size_t i = 0; i < n;) {
+        size_t j = i + 1;
+        while (j < n && v[j].x == v[i].x)
+            j++;
+        if (j - i > 1) {
+            if (j - i > tcap) {
+                free(t);
+                tcap = j - i;
+                if (!(t = malloc(tcap * sizeof *t)))
+                    return -1;
+            }
+            for (size_t q = i; q < j; q++) {
+                t[q - i].l = v[q];
+                materialise(L, &v[q], yield, &t[q - i].e);
+            }
+            qsort(t, j - i, sizeof *t, tie_cmp); /* equal events are equal in every field */
+            for (size_t q = i; q < j; q++)
+                v[q] = t[q - i].l;
+        }
+        i = j;
+    }
+    free(t);
+    return 0;
+}
+
+/* ---- the sweep (curve.c's sweep_events, a breakpoint at a time) ---- */
+
+static double next_x(const ct_lean *L, const ct_sweep_state *s)
+{
+    const double a = s->ic < L->nruns ? L->con[s->ic].x : INFINITY;
+    const double b = s->iy < L->nruns ? L->yie[s->iy].x : INFINITY;
+    return a < b ? a : b;
+}
+
+/* The breakpoint s stands before: its values into p, s advanced past it. *cm (not NULL): the
+ * smallest contact of the yields swept. */
+static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm)
+{
+    const double x = next_x(L, s);
+    ct_sweep_to(s, x);
+    event ce = {0}, ye = {0};
+    int have_c = 0, have_y = 0;
+    for (;;) { /* the events at x, contacts and yields merged in the total order */
+        if (!have_c && s->ic < L->nruns && L->con[s->ic].x == x) {
+            materialise(L, &L->con[s->ic], 0, &ce);
+            have_c = 1;
+        }
+        if (!have_y && s->iy < L->nruns && L->yie[s->iy].x == x) {
+            materialise(L, &L->yie[s->iy], 1, &ye);
+            have_y = 1;
+        }
+        if (!have_c && !have_y)
+            break;
+        if (have_y && (!have_c || !ct_event_less(&ce, &ye))) {
+            ct_sweep_event(s, &ye);
+            if (cm && ye.c < *cm)
+                *cm = ye.c;
+            s->iy++;
+            have_y = 0;
+        } else {
+            ct_sweep_event(s, &ce);
+            s->ic++;
+            have_c = 0;
+        }
+    }
+    ct_sweep_point(s, x, p);
+}
+
+void ct_lean_free(ct_lean *L)
+{
+    if (!L)
+        return;
+    free(L->con);
+    free(L->yie);
+    free(L->mk);
+    free(L->ms);
+    free(L->cp);
+    free(L->cx);
+    free(L->cW);
+    free(L->ymin);
+    free(L);
+}
+
+double ct_lean_bytes(size_t runs)
+{
+    /* two events per run, the sort's buffer for one of the two, the checkpoints */
+    return (double)runs *
+           (3.0 * sizeof(lev) + 2.0 * (sizeof(ct_sweep_state) + 3 * sizeof(double)) / K);
+}
+
+/* Pass over the rods: the runs' events in rod order and the summed areas of the long runs. */
+static int fill_events(ct_lean *L)
+{
+    const size_t n = L->nrods;
+    size_t runs = 0;
+    for (size_t k = 0; k < n; k++) /* block starts begin runs, as in ct_curve_build */
+        runs += k % CT_BLOCK == 0 || !ct_same_rod(L->top, L->length, L->eps_p, k);
+    L->nruns = runs;
+    L->con = malloc((runs ? runs : 1) * sizeof *L->con);
+    L->yie = malloc((runs ? runs : 1) * sizeof *L->yie);
+    if (!L->con || !L->yie)
+        return -1;
+    size_t r = 0, cap = 0;
+    for (size_t k = 0; k < n;) {
+        const size_t k1 = (k / CT_BLOCK + 1) * CT_BLOCK < n ? (k / CT_BLOCK + 1) * CT_BLOCK : n;
+        size_t l;
+        const double s = ct_run_area(L->top, L->length, L->eps_p, L->area, k, k1, &l);
+        if (l - k > 1) {
+            if (L->nm == cap) {
+                cap = cap ? 2 * cap : 64;
+                uint64_t *a = realloc(L->mk, cap * sizeof *a);
+                if (!a)
+                    return -1;
+                L->mk = a;
+                double *b = realloc(L->ms, cap * sizeof *b);
+                if (!b)
+                    return -1;
+                L->ms = b;
+            }
+            L->mk[L->nm] = k;
+            L->ms[L->nm++] = s;
+        }
+        event c, y;
+        ct_run_events(L->top[k], L->length[k], L->eps_p[k], s, L->E, L->eps_y, &c, &y);
+        L->con[r] = (lev){c.x, k};
+        L->yie[r] = (lev){y.x, k};
+        r++;
+        k = l;
+    }
+    return 0;
+}
+
+/* The sweep over every breakpoint: the checkpoints, the first yield, the count. */
+static int checkpoints(ct_lean *L)
+{
+    ct_sweep_state s = {0};
+    size_t cap = 0;
+    double W_prev = 0.0;
+    L->first_yield = INFINITY;
+    while (s.ic < L->nruns || s.iy < L->nruns) {
+        if (s.j % K == 0) {
+            if (s.j / K == cap) {
+                cap = cap ? 2 * cap : 64;
+                ct_sweep_state *a = realloc(L->cp, cap * sizeof *a);
+                if (!a)
+                    return -1;
+                L->cp = a;
+                double *b = realloc(L->cx, cap * sizeof *b);
+                if (!b)
+                    return -1;
+                L->cx = b;
+                if (!(b = realloc(L->cW, cap * sizeof *b)))
+                    return -1;
+                L->cW = b;
+            }
+            L->cp[s.j / K] = s;
+        }
+        const size_t iy = s.iy;
+        ct_point p;
+        step(L, &s, &p, NULL);
+        if (s.iy > iy && p.x < L->first_yield)
+            L->first_yield = p.x;
+        if ((s.j - 1) % K == 0) {
+            L->cx[(s.j - 1) / K] = p.x;
+            L->cW[(s.j - 1) / K] = p.W;
+        }
+        if (!(p.W >= W_prev)) /* W not monotone (rounding): it cannot be searched */
+            return 1;
+        W_prev = p.W;
+    }
+    L->n = s.j;
+    L->ncp = (s.j + K - 1) / K;
+    L->x0 = L->n ? L->cx[0] : INFINITY;
+    /* the smallest contact of the yields after each checkpoint's block, from the end */
+    if (!(L->ymin = malloc((L->ncp ? L->ncp : 1) * sizeof *L->ymin)))
+        return -1;
+    double m = INFINITY;
+    for (size_t q = L->ncp; q-- > 0;) {
+        L->ymin[q] = m;
+        const size_t from = L->cp[q].iy, to = q + 1 < L->ncp ? L->cp[q + 1].iy : L->nruns;
+        for (size_t i = from; i < to; i++) {
+            event y;
+            materialise(L, &L->yie[i], 1, &y);
+            m = y.c < m ? y.c : m;
+        }
+    }
+    return 0;
+}
+
+int ct_lean_build(ct_lean **out, const ct_bundle *b)
+{
+    *out = NULL;
+    ct_lean *L = calloc(1, sizeof *L);
+    if (!L)
+        return ct_error_set(CT_ENOMEM, "lean curve: out of memory");
+    const ct_layer *lay = ct_bundle_layer(b);
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays((ct_bundle *)b, &top, &length, &area, &eps_p); /* read only */
+    L->top = top;
+    L->length = length;
+    L->area = area;
+    L->eps_p = eps_p;
+    L->nrods = ct_bundle_size(b);
+    L->E = lay->E;
+    L->eps_y = lay->sigma_y / lay->E;
+    int st = fill_events(L);
+    if (!st) {
+        lev *tmp = malloc((L->nruns ? L->nruns : 1) * sizeof *tmp);
+        st = !tmp || sort_lean(L, L->con, tmp, L->nruns, 0) ||
+             sort_lean(L, L->yie, tmp, L->nruns, 1);
+        free(tmp);
+    }
+    if (!st)
+        st = checkpoints(L);
+    if (st) {
+        ct_lean_free(L);
+        if (st > 0)
+            return CT_ESKIPPED;
+        return ct_error_set(CT_ENOMEM, "lean curve of %zu rods: out of memory", ct_bundle_size(b));
+    }
+    *out = L;
+    return CT_OK;
+}
+
+size_t ct_lean_size(const ct_lean *L)
+{
+    return L->n;
+}
+
+double ct_lean_first_contact(const ct_lean *L)
+{
+    return L->x0;
+}
+
+double ct_lean_first_yield(const ct_lean *L)
+{
+    return L->first_yield;
+}
+
+/* The last checkpoint at or before the breakpoint sought: largest q with v[q] <= u. */
+static size_t search(const double *v, size_t n, double u)
+{
+    size_t lo = 0, hi = n;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (v[mid] <= u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin)
+{
+    const size_t q = search(L->cx, L->ncp, u);
+    ct_sweep_state s = L->cp[q];
+    double cm = INFINITY;
+    step(L, &s, p, NULL);
+    while (s.j < L->n && next_x(L, &s) <= u)
+        step(L, &s, p, NULL);
+    if (cmin) { /* the yields after this breakpoint: to the end of the block, then ymin */
+        ct_point t;
+        while (s.j < L->n && s.j < (q + 1) * K)
+            step(L, &s, &t, &cm);
+        *cmin = cm < L->ymin[q] ? cm : L->ymin[q];
+    }
+}
+
+void ct_lean_piece_of_work(const ct_lean *L, double W, ct_point *p, double *x_next)
+{
+    const size_t q = search(L->cW, L->ncp, W);
+    ct_sweep_state s = L->cp[q];
+    step(L, &s, p, NULL);
+    *x_next = INFINITY;
+    while (s.j < L->n) {
+        ct_point t;
+        step(L, &s, &t, NULL);
+        if (!(t.W <= W)) {
+            *x_next = t.x;
+            break;
+        }
+        *p = t;
+    }
+}

@@ -1,0 +1,25 @@
+/* The lean load curve (curve_lean.c): a curve held as its sorted events, for the sweep. */
+#ifndef CT_CURVE_LEAN_H
+#define CT_CURVE_LEAN_H
+
+#include "curve_event.h"
+
+typedef struct ct_lean ct_lean;
+
+/* The lean curve of b's state (b's arrays are read while it is used: they must not change);
+ * CT_ESKIPPED when W rounds to a sequence that is not monotone (take the full curve), else
+ * CT_OK or CT_ENOMEM. */
+int ct_lean_build(ct_lean **out, const ct_bundle *b);
+void ct_lean_free(ct_lean *L);
+/* Bytes of a lean curve of that many runs of rods while it is built. */
+double ct_lean_bytes(size_t runs);
+size_t ct_lean_size(const ct_lean *L);
+double ct_lean_first_contact(const ct_lean *L);
+double ct_lean_first_yield(const ct_lean *L);
+/* The breakpoint with the largest x <= u (u >= the first contact); cmin (not NULL): the
+ * smallest contact of the rods yielding after it (INFINITY: none). */
+void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin);
+/* The breakpoint with the largest W <= W, and the next breakpoint's x (INFINITY: none). */
+void ct_lean_piece_of_work(const ct_lean *L, double W, ct_point *p, double *x_next);
+
+#endif
