@@ -158,16 +158,30 @@ static double share(const ct_profile *p, size_t j)
     return 0.5 * (p->x[j + 1] - p->x[j - 1]);
 }
 
-static double x_of(const ct_profile *p, size_t j)
+/* A sample's x and y along a pass over the samples in order, without a division per sample:
+ * the sample's column i and row r (of a grid) are carried. */
+typedef struct {
+    size_t i, r;
+} cursor;
+
+static double x_at(const ct_profile *p, size_t j, const cursor *c)
 {
     if (p->ny > 1)
-        return (double)(j % p->nx) * p->dx;
+        return (double)c->i * p->dx;
     return p->x ? p->x[j] : (double)j * p->dx;
 }
 
-static double y_of(const ct_profile *p, size_t j)
+static double y_at(const ct_profile *p, const cursor *c)
 {
-    return p->ny > 1 ? (double)(j / p->nx) * p->dy : 0.0;
+    return p->ny > 1 ? (double)c->r * p->dy : 0.0;
+}
+
+static void next(const ct_profile *p, cursor *c)
+{
+    if (++c->i == p->nx) {
+        c->i = 0;
+        c->r++;
+    }
 }
 
 /* Levelling in centred, scaled coordinates s = (x - xm)/xs, r = (y - ym)/ys (about [-1, 1]),
@@ -201,18 +215,21 @@ static void level_frame_of(const ct_profile *p, level_frame *L)
     const size_t total = p->nx * p->ny;
     double xm = 0.0, ym = 0.0, xs = 0.0, ys = 0.0;
     size_t n = 0;
-    for (size_t j = 0; j < total; j++)
+    cursor c = {0, 0};
+    for (size_t j = 0; j < total; j++, next(p, &c))
         if (!isnan(p->z[j])) {
-            xm += x_of(p, j);
-            ym += y_of(p, j);
+            xm += x_at(p, j, &c);
+            ym += y_at(p, &c);
             n++;
         }
     xm /= (double)n;
     ym /= (double)n;
-    for (size_t j = 0; j < total; j++)
+    c = (cursor){0, 0};
+    for (size_t j = 0; j < total; j++, next(p, &c))
         if (!isnan(p->z[j])) {
-            xs = fmax(xs, fabs(x_of(p, j) - xm));
-            ys = fmax(ys, fabs(y_of(p, j) - ym));
+            const double dx = fabs(x_at(p, j, &c) - xm), dy = fabs(y_at(p, &c) - ym);
+            xs = dx > xs ? dx : xs;
+            ys = dy > ys ? dy : ys;
         }
     L->xm = xm;
     L->ym = ym;
@@ -221,9 +238,10 @@ static void level_frame_of(const ct_profile *p, level_frame *L)
 }
 
 /* The terms at sample j: 1 | s, (r) | s^2, (s r, r^2). */
-static void level_terms(const ct_profile *p, const level_frame *L, size_t j, double *f)
+static void level_terms(const ct_profile *p, const level_frame *L, size_t j, const cursor *c,
+                        double *f)
 {
-    const double s = (x_of(p, j) - L->xm) / L->xs, r = (y_of(p, j) - L->ym) / L->ys;
+    const double s = (x_at(p, j, c) - L->xm) / L->xs, r = (y_at(p, c) - L->ym) / L->ys;
     f[0] = 1.0;
     if (L->grid) {
         f[1] = s, f[2] = r, f[3] = s * s, f[4] = s * r, f[5] = r * r;
@@ -264,10 +282,11 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
     const int k = height_scale(p); /* the right-hand side in units of 2^k: exact, no overflow */
     const double m2 = ldexp(1.0, -k);
     double A[36] = {0}, bvec[6] = {0}, f[6];
-    for (size_t j = 0; j < total; j++) {
+    cursor cu = {0, 0};
+    for (size_t j = 0; j < total; j++, next(p, &cu)) {
         if (isnan(p->z[j]))
             continue;
-        level_terms(p, L, j, f);
+        level_terms(p, L, j, &cu, f);
         for (int a = 0; a < m; a++) {
             bvec[a] += f[a] * ct_times_pow2(p->z[j], m2, -k);
             for (int c = 0; c < m; c++)
@@ -329,17 +348,18 @@ int ct_profile_level(ct_profile *p, ct_detrend how)
     const int m = L.m;
     const size_t total = p->nx * p->ny;
     double big = 0.0, lo = INFINITY, hi = -INFINITY;
-    for (size_t j = 0; j < total; j++) {
+    cursor cu = {0, 0};
+    for (size_t j = 0; j < total; j++, next(p, &cu)) {
         if (isnan(p->z[j]))
             continue;
-        big = fmax(big, fabs(p->z[j]));
-        level_terms(p, &L, j, f);
+        big = fabs(p->z[j]) > big ? fabs(p->z[j]) : big;
+        level_terms(p, &L, j, &cu, f);
         double t = 0.0;
         for (int a = 0; a < m; a++)
             t += coef[a] * f[a];
         p->z[j] -= t;
-        lo = fmin(lo, p->z[j]);
-        hi = fmax(hi, p->z[j]);
+        lo = p->z[j] < lo ? p->z[j] : lo;
+        hi = p->z[j] > hi ? p->z[j] : hi;
     }
     /* A flat or exactly tilted profile levels to its rounding residue (1e-23 m from heights of
      * 1e-7 m), which is no roughness: an e computed from it would be noise. Heights left within
