@@ -54,15 +54,20 @@ static inline double ct_run_area(const double *top, const double *length, const 
     return s + sc;
 }
 
+/* The contact event of a run of rods like rod k, of summed area s. */
+static inline event ct_run_contact(double top, double length, double eps_p, double s, double E)
+{
+    return (event){ct_rod_contact(top, length, eps_p), E * s / length, 0.0, 0.0, 0.0, 0.0};
+}
+
 /* The contact and yield events of a run of rods like rod k, of summed area s. */
 static inline void ct_run_events(double top, double length, double eps_p, double s, double E,
                                  double eps_y, event *contact_ev, event *yield_ev)
 {
-    const double contact = ct_rod_contact(top, length, eps_p);
+    *contact_ev = ct_run_contact(top, length, eps_p, s, E);
+    const double contact = contact_ev->x, slope = contact_ev->dk;
     const double yield = ct_rod_yield(top, length, eps_p, eps_y);
-    const double slope = E * s / length;
     const double F = E * s * eps_y;
-    *contact_ev = (event){contact, slope, 0.0, 0.0, 0.0, 0.0};
     *yield_ev = (event){yield, -slope, F, F - slope * (yield - contact), length, contact};
 }
 

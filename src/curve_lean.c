@@ -62,9 +62,12 @@ static double run_area(const ct_lean *L, size_t k)
 static void materialise(const ct_lean *L, const lev *e, int yield, event *out)
 {
     const size_t k = (size_t)e->k;
-    event c, y;
-    ct_run_events(L->top[k], L->length[k], L->eps_p[k], run_area(L, k), L->E, L->eps_y, &c, &y);
-    *out = yield ? y : c;
+    if (!yield) {
+        *out = ct_run_contact(L->top[k], L->length[k], L->eps_p[k], run_area(L, k), L->E);
+        return;
+    }
+    event c;
+    ct_run_events(L->top[k], L->length[k], L->eps_p[k], run_area(L, k), L->E, L->eps_y, &c, out);
 }
 
 /* ---- sorting: LSD radix on x, then each run of equal x in the total order ---- */
@@ -259,39 +262,34 @@ static int fill_events(ct_lean *L)
     return 0;
 }
 
-/* The sweep over every breakpoint: the checkpoints, the first yield, the count. */
+/* The sweep over every breakpoint: the checkpoints, the first yield, the count, and after each
+ * checkpoint's block the smallest contact of the yields still to come. The arrays are sized
+ * for the most breakpoints there can be (two per run): the pages never reached are never
+ * touched. */
 static int checkpoints(ct_lean *L)
 {
     ct_sweep_state s = {0};
-    size_t cap = 0;
-    double W_prev = 0.0;
+    const size_t cap = 2 * L->nruns / K + 2;
+    if (!(L->cp = malloc(cap * sizeof *L->cp)) || !(L->cx = malloc(cap * sizeof *L->cx)) ||
+        !(L->cW = malloc(cap * sizeof *L->cW)) || !(L->ymin = malloc(cap * sizeof *L->ymin)))
+        return -1;
+    double W_prev = 0.0, cm = INFINITY;
     L->first_yield = INFINITY;
     while (s.ic < L->nruns || s.iy < L->nruns) {
+        const size_t q = s.j / K;
         if (s.j % K == 0) {
-            if (s.j / K == cap) {
-                cap = cap ? 2 * cap : 64;
-                ct_sweep_state *a = realloc(L->cp, cap * sizeof *a);
-                if (!a)
-                    return -1;
-                L->cp = a;
-                double *b = realloc(L->cx, cap * sizeof *b);
-                if (!b)
-                    return -1;
-                L->cx = b;
-                if (!(b = realloc(L->cW, cap * sizeof *b)))
-                    return -1;
-                L->cW = b;
-            }
-            L->cp[s.j / K] = s;
+            L->cp[q] = s;
+            cm = INFINITY;
         }
         const size_t iy = s.iy;
         ct_point p;
-        step(L, &s, &p, NULL);
+        step(L, &s, &p, &cm);
+        L->ymin[q] = cm; /* the block's own, so far */
         if (s.iy > iy && p.x < L->first_yield)
             L->first_yield = p.x;
-        if ((s.j - 1) % K == 0) {
-            L->cx[(s.j - 1) / K] = p.x;
-            L->cW[(s.j - 1) / K] = p.W;
+        if (s.j - 1 == q * K) {
+            L->cx[q] = p.x;
+            L->cW[q] = p.W;
         }
         if (!(p.W >= W_prev)) /* W not monotone (rounding): it cannot be searched */
             return 1;
@@ -300,18 +298,11 @@ static int checkpoints(ct_lean *L)
     L->n = s.j;
     L->ncp = (s.j + K - 1) / K;
     L->x0 = L->n ? L->cx[0] : INFINITY;
-    /* the smallest contact of the yields after each checkpoint's block, from the end */
-    if (!(L->ymin = malloc((L->ncp ? L->ncp : 1) * sizeof *L->ymin)))
-        return -1;
-    double m = INFINITY;
+    double m = INFINITY; /* each block's minimum becomes the minimum over the blocks after it */
     for (size_t q = L->ncp; q-- > 0;) {
+        const double own = L->ymin[q];
         L->ymin[q] = m;
-        const size_t from = L->cp[q].iy, to = q + 1 < L->ncp ? L->cp[q + 1].iy : L->nruns;
-        for (size_t i = from; i < to; i++) {
-            event y;
-            materialise(L, &L->yie[i], 1, &y);
-            m = y.c < m ? y.c : m;
-        }
+        m = own < m ? own : m;
     }
     return 0;
 }

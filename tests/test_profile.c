@@ -377,6 +377,9 @@ static void x3p_reader(void **state)
     assert_int_equal(ct_bundle_rod(b, 0, &r), CT_OK);
     assert_rel(r.area, 6e-12, 1e-15);
     assert_int_equal(ct_bundle_omitted(b), 1);
+    /* rod 6 is pixel 7 (the NaN at 6 has no rod): its column's x, 2e-6 (7 % NX) */
+    assert_int_equal(ct_bundle_rod(b, 6, &r), CT_OK);
+    assert_rel(r.x_left, 2e-6 * (7 % NX) - 1e-6, 1e-12);
     ct_bundle_free(b);
     ct_profile_free(p);
     /* int16 heights with the axis' increment, and a mask: bit 0 leaves a point out */

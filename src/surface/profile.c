@@ -434,7 +434,7 @@ int ct_profile_trim(ct_profile *p, double k, size_t *clipped)
 
 typedef struct {
     ct_profile *p; /* a copy of the positions (for rod info) */
-    size_t *index; /* rod k is sample index[k] */
+    size_t *index; /* rod k is sample index[k] (NULL: sample k, every sample valid) */
 } profile_meta;
 
 static void profile_meta_free(void *m)
@@ -447,11 +447,12 @@ static void profile_meta_free(void *m)
     free(pm);
 }
 
-/* The metadata: the profile's positions (no heights) and each rod's sample. */
-static profile_meta *meta_new(const ct_profile *p, const size_t *index)
+/* The metadata: the profile's positions (no heights) and each rod's sample; with_index: an
+ * index (copied from index when not NULL), else rod k is sample k. */
+static profile_meta *meta_new(const ct_profile *p, int with_index, const size_t *index)
 {
     profile_meta *pm = calloc(1, sizeof *pm);
-    if (!pm || !(pm->index = malloc((p->n ? p->n : 1) * sizeof(size_t))) ||
+    if (!pm || (with_index && !(pm->index = malloc((p->n ? p->n : 1) * sizeof(size_t)))) ||
         !(pm->p = calloc(1, sizeof *pm->p))) {
         profile_meta_free(pm);
         return NULL;
@@ -465,7 +466,7 @@ static profile_meta *meta_new(const ct_profile *p, const size_t *index)
     }
     if (p->x)
         memcpy(pm->p->x, p->x, p->nx * sizeof(double));
-    if (index)
+    if (with_index && index)
         memcpy(pm->index, index, p->n * sizeof(size_t));
     return pm;
 }
@@ -473,14 +474,14 @@ static profile_meta *meta_new(const ct_profile *p, const size_t *index)
 static void *profile_meta_clone(const void *m)
 {
     const profile_meta *src = m;
-    return meta_new(src->p, src->index);
+    return meta_new(src->p, src->index != NULL, src->index);
 }
 
 static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
 {
     const profile_meta *pm = m;
     const ct_profile *p = pm->p;
-    const size_t j = pm->index[k];
+    const size_t j = pm->index ? pm->index[k] : k;
     info->stage = -1;
     if (p->ny > 1) { /* a pixel: its x; the extent in x of its column */
         double x = (double)(j % p->nx) * p->dx;
@@ -527,7 +528,7 @@ int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sig
     for (size_t j = 0; j < total; j++)
         if (!isnan(p->z[j]) && p->z[j] > zmax)
             zmax = p->z[j];
-    profile_meta *pm = meta_new(p, NULL);
+    profile_meta *pm = meta_new(p, p->n < total, NULL); /* no index when every sample is valid */
     if (!pm)
         return ct_error_set(CT_ENOMEM, "profile rods: out of memory");
     ct_bundle *b;
@@ -545,7 +546,9 @@ int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sig
         length[k] = Hstar - top[k];
         area[k] = share(p, j);
         eps_p[k] = 0.0;
-        pm->index[k++] = j;
+        if (pm->index)
+            pm->index[k] = j;
+        k++;
     }
     ct_bundle_set_surface(b, &profile_kind, pm, p->invalid);
     *out = b;
