@@ -449,9 +449,11 @@ typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundl
  * the sums every 32 breakpoints, at O(log n + 32) per query (about 48 bytes per rod while
  * built, 36 after); the rod path holds nothing but the bundle and solves all speeds together
  * by Newton's method on the closed forms summed rod by rod (a few tens of passes over the
- * rods). Auto takes the lean curve from CT_LEAN_RODS rods, and the rod path when the curve
- * would not fit in half the available memory, or when it has over 4e6 events for at most 32
- * impacts. Observers, composite rules and the impact in time always take the full curve. */
+ * rods). Auto takes the lean curve from CT_LEAN_RODS rods when there are at most an eighth as
+ * many rows (speeds x impacts) as rods or the full curve would take over a quarter of the
+ * available memory, and the rod path when the curve would not fit in half the available
+ * memory, or when it has over 4e6 events for at most 32 impacts. Observers, composite rules
+ * and the impact in time always take the full curve. */
 typedef enum {
     CT_PATH_AUTO = 0,
     CT_PATH_CURVE = 1,

@@ -424,11 +424,20 @@ static int queries_only(const ct_sweep_spec *s)
            (s->opts.rule == CT_QUAD_BREAKPOINTS || s->opts.rule == CT_QUAD_CLOSED);
 }
 
-/* Whether the sweep's curve is lean (ct_sweep_path). */
+/* Whether the sweep's curve is lean (ct_sweep_path). Auto: from CT_LEAN_RODS rods, when the
+ * rows are few beside the rods (a lean query sweeps up to 32 breakpoints: about 25 times a
+ * full one's cost, while its build costs two thirds of the full build) or when the full curve
+ * would take over a quarter of the memory available. */
 static int use_lean(const ct_bundle *b, const ct_sweep_spec *s)
 {
-    return queries_only(s) && (s->path == CT_PATH_LEAN ||
-                               (s->path == CT_PATH_AUTO && ct_bundle_size(b) >= CT_LEAN_RODS));
+    if (!queries_only(s))
+        return 0;
+    if (s->path != CT_PATH_AUTO)
+        return s->path == CT_PATH_LEAN;
+    const size_t rods = ct_bundle_size(b), rows = s->nvel * (size_t)s->impacts;
+    return rods >= CT_LEAN_RODS &&
+           (rows <= rods / 8 ||
+            ct_curve_bytes(ct_curve_events(b)) > 0.25 * (double)ct_available_memory());
 }
 
 /* Whether the rod path serves this sweep better than a curve (ct_sweep_path). */
