@@ -146,8 +146,18 @@ def test_failed_rows_when_asked():
     r = cantact.restitution(s, V_star=[1e-3, 1.0], impacts=2, errors="rows")
     assert (r.status[0] == 0).all()
     assert r.status[1, 0] == cantact.lib.CT_ERANGE and r.status[1, 1] == cantact.lib.CT_ESKIPPED
-    assert "crushed" in r.message[1, 0] and "not run" in r.message[1, 1]
+    assert "crushed" in r.message[1, 0]
+    assert r.message[1, 1] == "not run: impact 1 of V* = 1 failed"
     assert np.isnan(r.e[1]).all() and not r.elastic[1].any()
+    # a row's message shares its bytes with the results: a row that succeeded says "", a failed
+    # one its message alone (the CLI's error column), on either path and with the time columns
+    for path, time in (("curve", False), ("curve", True), ("rods", False)):
+        r = cantact.restitution(s, V_star=[1e-3, 1.0, 2e-3], impacts=2, errors="rows", path=path,
+                                time=time)
+        assert (r.message[[0, 2]] == "").all()
+        assert r.message[1, 0] == ("impact energy 500 reaches u_max >= H* = 10 (the layer would be "
+                                   "crushed, strains >= 1): outside the model; lower V* or raise H")
+        assert r.message[1, 1] == "not run: impact 1 of V* = 1 failed"
 
 
 # One linear rod in time (MODEL.md §11): k = E / L = 100, and the sweep's mass is E l0 / h0 =
