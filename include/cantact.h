@@ -424,17 +424,37 @@ typedef struct {
  * first yield of the virgin surface), and builds the bundle without the rods beyond both. */
 int ct_cantor_plan_build(const ct_cantor_plan *plan, ct_bundle **out, ct_plan_info *info);
 
-/* One row of a sweep: one impact of one speed. */
+/* One row of a sweep: one impact of one speed. A row holds its results or, when it failed or
+ * was not run, its message, never both: message shares its bytes with r and dyn (a union), so
+ * no row carries a message buffer beside its results. The message is the row's own: held
+ * nowhere else and never freed, it lives as long as the row's memory, is copied with the row
+ * (assignment, memcpy) and is overwritten when a sweep reuses the rows. A row that succeeded
+ * has message "" (message_head, the bytes before r, starts with a NUL); a failed row's message
+ * is at most 239 characters and its NUL (the bytes after that are unspecified). 272 bytes on
+ * x86-64 (472 in earlier builds of 0.1.0, with the message beside r and dyn: code compiled
+ * against that cantact.h must be rebuilt). */
 typedef struct {
     size_t speed;  /* index of the speed in the input */
     long impact;   /* 1 for the first impact on the virgin surface */
     double V_star; /* dimensionless */
     int status;    /* CT_OK, or why this impact failed (the speed's later impacts are not run) */
-    char message[240];  /* the error's message when status != CT_OK */
-    ct_impact_result r; /* valid when status == CT_OK */
-    ct_dynamics dyn;    /* with ct_sweep_spec.dynamics: the impact in time, in units where the
-                           mass is E l0 / h0, so that times are t / tau, tau = sqrt(m h0 /
-                           (E l0)) of any mass, and speeds in h0 / tau (v1 = sqrt(2) V* h0) */
+    /* an anonymous struct in an anonymous union: C11; __extension__ keeps C99 and C++ quiet */
+    /* clang-format off */
+#ifdef __GNUC__
+    __extension__
+#endif
+    union {
+        /* clang-format on */
+        char message[240]; /* why, when status != CT_OK (r and dyn are gone); "" when CT_OK */
+        struct {
+            char message_head[8]; /* message[0..7]: message[0] = '\0' when status == CT_OK */
+            ct_impact_result r;   /* valid when status == CT_OK */
+            ct_dynamics dyn;      /* with ct_sweep_spec.dynamics and status == CT_OK: the impact in
+                                     time, in units where the mass is E l0 / h0, so that times are
+                                     t / tau, tau = sqrt(m h0 / (E l0)) of any mass, and speeds in
+                                     h0 / tau (v1 = sqrt(2) V* h0) */
+        };
+    };
 } ct_sweep_row;
 
 typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);

@@ -476,9 +476,10 @@ static void blocks_equal_the_whole_sweep(void **state)
                 assert_int_equal(c.calls, (NV + blocks[q] - 1) / blocks[q]);
                 for (size_t k = 0; k < NV * IMP; k++) {
                     const ct_sweep_row *a = &whole[k], *g = &got[k];
+                    const int ok = a->status == CT_OK; /* results, or a message: never both */
                     if (a->speed != g->speed || a->impact != g->impact || a->status != g->status ||
-                        memcmp(&a->r, &g->r, sizeof a->r) ||
-                        (dyn && memcmp(&a->dyn, &g->dyn, sizeof a->dyn)) ||
+                        (ok && memcmp(&a->r, &g->r, sizeof a->r)) ||
+                        (ok && dyn && memcmp(&a->dyn, &g->dyn, sizeof a->dyn)) ||
                         strcmp(a->message, g->message))
                         fail_msg("path %d, dynamics %d, block %zu: row %zu differs", path, dyn,
                                  blocks[q], k);
@@ -503,6 +504,63 @@ static void blocks_equal_the_whole_sweep(void **state)
     assert_int_equal(ct_sweep_blocks(b, &bad, 0, collect, NULL), CT_EINVAL);
     bad.observe = no_op_observer;
     assert_int_equal(ct_sweep_blocks(b, &bad, 8, collect, NULL), CT_EINVAL);
+    ct_bundle_free(b);
+}
+
+/* A row holds its results or its message in the same bytes (cantact.h): no room for the
+ * results beside a full message; a row that succeeded says "", a failed one its message, and
+ * a row not run the impact that stopped it, on both paths, with the impacts in time, whatever
+ * the rows held before and by ct_sweep_blocks alike; a row copied keeps its message. */
+static void row_holds_results_or_its_message(void **state)
+{
+    (void)state;
+    assert_true(sizeof(ct_sweep_row) <
+                offsetof(ct_sweep_row, message) + 240 + sizeof(ct_impact_result));
+    assert_int_equal(offsetof(ct_sweep_row, message) + 8, offsetof(ct_sweep_row, r));
+    assert_true(offsetof(ct_sweep_row, dyn) + sizeof(ct_dynamics) <=
+                offsetof(ct_sweep_row, message) + 240);
+    ct_params p = base();
+    const double V[3] = {1e-3, 50.0, 2e-3};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 30, INFINITY), CT_OK);
+    for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++)
+        for (int dyn = 0; dyn <= (path == CT_PATH_CURVE); dyn++) {
+            ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 2, .path = path};
+            ct_impact_opts_default(&spec.opts);
+            spec.dynamics = dyn;
+            ct_sweep_row rows[6], got[6];
+            memset(rows, 'x', sizeof rows); /* what the rows held before: no NUL anywhere */
+            assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+            collected c = {got, 0, 0};
+            memset(got, 'x', sizeof got);
+            assert_int_equal(ct_sweep_blocks(b, &spec, 1, collect, &c), CT_OK);
+            for (int k = 0; k < 6; k++) {
+                const ct_sweep_row *row = &rows[k], *g = &got[k];
+                assert_int_equal(row->status,
+                                 (k / 2 == 1) ? (k == 2 ? CT_ERANGE : CT_ESKIPPED) : CT_OK);
+                assert_non_null(memchr(row->message, '\0', sizeof row->message));
+                assert_string_equal(row->message, g->message);
+                if (row->status == CT_OK) {
+                    assert_string_equal(row->message, "");
+                    assert_true(row->r.e > 0.0 && row->r.e < 1.0 && !row->r.elastic);
+                    assert_true(!dyn || (row->dyn.e_kinematic > 0.0 && row->dyn.t_contact > 0.0));
+                }
+            }
+            assert_string_equal(
+                rows[2].message,
+                "impact energy 1.25e+06 reaches u_max >= H* = 10 (the layer would be "
+                "crushed, strains >= 1): outside the model; lower V* or raise H");
+            assert_string_equal(rows[3].message, "not run: impact 1 of V* = 50 failed");
+            ct_sweep_row copy = rows[3];
+            memset(&rows[3], 'x', sizeof rows[3]);
+            assert_string_equal(copy.message, "not run: impact 1 of V* = 50 failed");
+            /* rows that held failures, reused by a sweep whose impacts all succeed */
+            const double slow[3] = {1e-3, 3e-3, 2e-3};
+            spec.V_star = slow;
+            assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+            for (int k = 0; k < 6; k++)
+                assert_true(rows[k].status == CT_OK && rows[k].message[0] == '\0');
+        }
     ct_bundle_free(b);
 }
 
@@ -752,6 +810,7 @@ int main(void)
         cmocka_unit_test(two_rods_five_impacts_on_paper),
         cmocka_unit_test(tiny_speed_is_elastic_not_an_error),
         cmocka_unit_test(blocks_equal_the_whole_sweep),
+        cmocka_unit_test(row_holds_results_or_its_message),
         cmocka_unit_test(tiny_energies_down_to_the_smallest_double),
         cmocka_unit_test(tiny_speed_on_offset_rods_is_elastic),
         cmocka_unit_test(stiff_rod_at_contact_states_its_rounding),

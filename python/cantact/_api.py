@@ -185,8 +185,8 @@ class Restitution:
         self._u_max = field("r.u_max", np.float64)  # library units: a profile's refit
         self._u_max[failed] = np.nan
         self.elastic = (field("r.elastic", np.intc) != 0) & ~failed
-        # a message is a C string: it ends at its first NUL, and the bytes after it are not the
-        # message's (a row that succeeded has message[0] = NUL, then what the row held before)
+        # a message is a C string sharing its bytes with the row's results (cantact.h): it ends
+        # at its first NUL ("" where the row succeeded: the results follow message[0])
         size = dict(ffi.typeof("ct_sweep_row").fields)["message"].type.length
         msg = _row_view(rows, n, ffi.offsetof("ct_sweep_row", "message"), f"S{size}")
         self.message = np.array([m.partition(b"\0")[0].decode(errors="replace") for m in msg],

@@ -182,9 +182,14 @@ typedef struct {
     long impact;
     double V_star;
     int status;
-    char message[240];
-    ct_impact_result r;
-    ct_dynamics dyn;
+    union {
+        char message[240];
+        struct {
+            char message_head[8];
+            ct_impact_result r;
+            ct_dynamics dyn;
+        };
+    };
 } ct_sweep_row;
 typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);
 typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundle *b,

@@ -123,6 +123,7 @@ int main(void)
     FIELD(ct_sweep_row, V_star);
     FIELD(ct_sweep_row, status);
     FIELD(ct_sweep_row, message);
+    FIELD(ct_sweep_row, message_head);
     FIELD(ct_sweep_row, r);
     FIELD(ct_sweep_row, dyn);
     SIZE(ct_dynamics);
