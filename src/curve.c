@@ -537,9 +537,9 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
                       W);
 }
 
-double ct_curve_lean_bytes(const ct_bundle *b)
+double ct_curve_lean_bytes(size_t events)
 {
-    return ct_lean_bytes(ct_curve_events(b) / 2);
+    return ct_lean_bytes(events / 2);
 }
 
 int ct_curve_build_lean(ct_curve *c, const ct_bundle *b)

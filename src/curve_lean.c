@@ -42,7 +42,7 @@ struct ct_lean {
 };
 
 /* The summed area of the run that starts at rod k. */
-static double run_area(const ct_lean *L, size_t k)
+static inline double run_area(const ct_lean *L, size_t k)
 {
     const size_t k1 = (k / CT_BLOCK + 1) * CT_BLOCK;
     if (!(k + 1 < L->nrods && k + 1 < k1 && ct_same_rod(L->top, L->length, L->eps_p, k + 1)))
@@ -168,16 +168,36 @@ static double next_x(const ct_lean *L, const ct_sweep_state *s)
  * smallest contact of the yields swept. */
 static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm)
 {
-    const double x = next_x(L, s);
-    ct_sweep_to(s, x);
+    const size_t n = L->nruns;
+    const double cx = s->ic < n ? L->con[s->ic].x : INFINITY;
+    const double yx = s->iy < n ? L->yie[s->iy].x : INFINITY;
+    const double x = cx < yx ? cx : yx;
     event ce = {0}, ye = {0};
+    ct_sweep_to(s, x);
+    if (cx != yx) { /* one kind of event at x (most breakpoints): in its own order */
+        if (cx == x) {
+            do {
+                materialise(L, &L->con[s->ic++], 0, &ce);
+                ct_sweep_event(s, &ce);
+            } while (s->ic < n && L->con[s->ic].x == x);
+        } else {
+            do {
+                materialise(L, &L->yie[s->iy++], 1, &ye);
+                ct_sweep_event(s, &ye);
+                if (cm && ye.c < *cm)
+                    *cm = ye.c;
+            } while (s->iy < n && L->yie[s->iy].x == x);
+        }
+        ct_sweep_point(s, x, p);
+        return;
+    }
     int have_c = 0, have_y = 0;
-    for (;;) { /* the events at x, contacts and yields merged in the total order */
-        if (!have_c && s->ic < L->nruns && L->con[s->ic].x == x) {
+    for (;;) { /* contacts and yields at x, merged in the total order */
+        if (!have_c && s->ic < n && L->con[s->ic].x == x) {
             materialise(L, &L->con[s->ic], 0, &ce);
             have_c = 1;
         }
-        if (!have_y && s->iy < L->nruns && L->yie[s->iy].x == x) {
+        if (!have_y && s->iy < n && L->yie[s->iy].x == x) {
             materialise(L, &L->yie[s->iy], 1, &ye);
             have_y = 1;
         }

@@ -97,8 +97,8 @@ int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t r
  * points, view or unloading curve). b must not change while c is used. CT_ESKIPPED: this
  * bundle needs the full curve (its W rounds to a sequence that is not monotone). */
 int ct_curve_build_lean(ct_curve *c, const ct_bundle *b);
-/* Bytes a lean curve of b needs while it is built. */
-double ct_curve_lean_bytes(const ct_bundle *b);
+/* Bytes a lean curve of that many events (ct_curve_events) needs while it is built. */
+double ct_curve_lean_bytes(size_t events);
 
 /* The breakpoints of a curve as arrays (x sorted; P, cumulative W and the slope on
  * [x_j, x_{j+1}) at each), for the dynamics. */

@@ -5,6 +5,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -427,17 +428,22 @@ static int queries_only(const ct_sweep_spec *s)
 /* Whether the sweep's curve is lean (ct_sweep_path). Auto: from CT_LEAN_RODS rods, when the
  * rows are few beside the rods (a lean query sweeps up to 32 breakpoints: about 25 times a
  * full one's cost, while its build costs two thirds of the full build) or when the full curve
- * would take over a quarter of the memory available. */
-static int use_lean(const ct_bundle *b, const ct_sweep_spec *s)
+ * would take over a quarter of the memory available. *events: the curve's events, counted
+ * here when needed (SIZE_MAX: not yet). */
+static int use_lean(const ct_bundle *b, const ct_sweep_spec *s, size_t *events)
 {
     if (!queries_only(s))
         return 0;
     if (s->path != CT_PATH_AUTO)
         return s->path == CT_PATH_LEAN;
     const size_t rods = ct_bundle_size(b), rows = s->nvel * (size_t)s->impacts;
-    return rods >= CT_LEAN_RODS &&
-           (rows <= rods / 8 ||
-            ct_curve_bytes(ct_curve_events(b)) > 0.25 * (double)ct_available_memory());
+    if (rods < CT_LEAN_RODS)
+        return 0;
+    if (rows <= rods / 8)
+        return 1;
+    if (*events == SIZE_MAX)
+        *events = ct_curve_events(b);
+    return ct_curve_bytes(*events) > 0.25 * (double)ct_available_memory();
 }
 
 /* Whether the rod path serves this sweep better than a curve (ct_sweep_path). */
@@ -448,7 +454,7 @@ static int use_rods(const ct_bundle *b, const ct_sweep_spec *s)
     if (s->path != CT_PATH_AUTO)
         return s->path == CT_PATH_RODS;
     size_t events = ct_curve_events(b);
-    double need = use_lean(b, s) ? ct_curve_lean_bytes(b) : ct_curve_bytes(events),
+    double need = use_lean(b, s, &events) ? ct_curve_lean_bytes(events) : ct_curve_bytes(events),
            avail = (double)ct_available_memory();
     return need > 0.5 * avail || (events > 4000000 && s->nvel * (size_t)s->impacts <= 32);
 }
@@ -732,7 +738,8 @@ static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w
     const ct_layer *L = ct_bundle_layer(b);
     if (s->dynamics && (st = ct_dyn_work_alloc(&w->dw)))
         return st;
-    const int lean = use_lean(b, s);
+    size_t events = SIZE_MAX;
+    const int lean = use_lean(b, s, &events);
     if (s->curve && !lean) /* the caller's workspace: its arrays are reused */
         w->first = s->curve;
     else if ((st = ct_curve_alloc(&w->first)))
