@@ -248,6 +248,10 @@ static int fill_events(ct_lean *L)
     for (size_t k = 0; k < n; k++) /* block starts begin runs, as in ct_curve_build */
         runs += k % CT_BLOCK == 0 || !ct_same_rod(L->top, L->length, L->eps_p, k);
     L->nruns = runs;
+    /* the memory check reads /proc/meminfo: only for curves where it can matter */
+    const double need = ct_lean_bytes(runs);
+    if (need >= 64e6 && need > 0.9 * (double)ct_available_memory())
+        return -2;
     L->con = malloc((runs ? runs : 1) * sizeof *L->con);
     L->yie = malloc((runs ? runs : 1) * sizeof *L->yie);
     if (!L->con || !L->yie)
@@ -346,16 +350,25 @@ int ct_lean_build(ct_lean **out, const ct_bundle *b)
     int st = fill_events(L);
     if (!st) {
         lev *tmp = malloc((L->nruns ? L->nruns : 1) * sizeof *tmp);
-        st = !tmp || sort_lean(L, L->con, tmp, L->nruns, 0) ||
-             sort_lean(L, L->yie, tmp, L->nruns, 1);
+        st =
+            !tmp || sort_lean(L, L->con, tmp, L->nruns, 0) || sort_lean(L, L->yie, tmp, L->nruns, 1)
+                ? -1
+                : 0;
         free(tmp);
     }
     if (!st)
         st = checkpoints(L);
     if (st) {
+        const size_t runs = L->nruns;
         ct_lean_free(L);
         if (st > 0)
             return CT_ESKIPPED;
+        if (st == -2)
+            return ct_error_set(CT_ENOMEM,
+                                "lean curve of %zu rods: needs %.3g GiB, more than the %.3g GiB "
+                                "of memory available",
+                                ct_bundle_size(b), ct_lean_bytes(runs) / 1073741824.0,
+                                (double)ct_available_memory() / 1073741824.0);
         return ct_error_set(CT_ENOMEM, "lean curve of %zu rods: out of memory", ct_bundle_size(b));
     }
     *out = L;
