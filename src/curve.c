@@ -576,9 +576,11 @@ void ct_curve_view_of(const ct_curve *c, ct_curve_view *v)
  * state's sorted events below u_max: each contact adds its slope at its contact, and each
  * yield takes that slope back at the rod's contact and adds it again at its release. Those
  * three sequences of events, swept like a loading curve without yields, give the curve; its
- * last breakpoint is u_max. unload_sweep below is the one piece of code that builds one:
- * ct_curve_unload hands it the three sequences sorted into one, ct_unload_split (the sweep's
- * fast path) the sequences themselves when each is already in order. */
+ * last breakpoint is u_max. unload_sweep below builds one: ct_curve_unload hands it the three
+ * sequences sorted into one, ct_unload_split (the sweep's fast path) the sequences themselves
+ * when each is already in order. unload_sweep_nested is that sweep for the nested case (every
+ * virgin layer: two sequences of increments >= +0, plain sums), the one the sweep's time
+ * columns and a single history run per impact. */
 
 /* The release point of a yielded rod of contact c and eps_y L = eL (never below c). */
 static double release_point(double u_max, double eL, double c)
@@ -595,30 +597,14 @@ typedef struct {
     size_t n;
 } run;
 
-/* s (+ c) += x: compensated, or a plain sum (plain: every term is >= 0, none cancels) */
-static void sum_add(double *s, double *c, double x, int plain)
-{
-    if (plain)
-        *s += x;
-    else
-        ct_add_comp(s, c, x);
-}
-
-/* The value of the sum s (+ c): s alone when plain (c stays 0, and adding it would lengthen
- * the chain of dependent additions) */
-static double sum_of(double s, double c, int plain)
-{
-    return plain ? s : s + c;
-}
-
 /* The slope (ks + kc) and the count of rods in contact after run r's events at x, from
  * its next event at[0] (at x: head); returns the run's next x (inf: none left). */
 static double take(const run *r, size_t *at, double head, double x, double *ks, double *kc,
-                   ptrdiff_t *touching, int plain)
+                   ptrdiff_t *touching)
 {
     while (head == x) {
         const double dk = r->sign * r->k[*at];
-        sum_add(ks, kc, dk, plain);
+        ct_add_comp(ks, kc, dk);
         *touching += signbit(dk) ? -1 : 1;
         head = ++*at < r->n ? r->x[*at] : INFINITY;
     }
@@ -630,7 +616,7 @@ static double take(const run *r, size_t *at, double head, double x, double *ks, 
  * out (a rod of underflowed area: -0). Writes x, P, W and the slope on [x_j, x_j+1) at every
  * distinct x from the first where a rod touches (the first release), then at u_max, the top
  * of the branch; returns how many (at most the distinct x + 1; 0: no rod in contact). */
-static size_t unload_sweep(const run r[3], double u_max, int plain, double *x, double *P, double *W,
+static size_t unload_sweep(const run r[3], double u_max, double *x, double *P, double *W,
                            double *slope)
 {
     size_t a0 = 0, a1 = 0, a2 = 0, j = 0;
@@ -645,32 +631,77 @@ static size_t unload_sweep(const run r[3], double u_max, int plain, double *x, d
             break;
         if (j > 0) {
             const double dx = xj - x_prev;
-            sum_add(&Ps, &Pc, k_prev * dx, plain);
-            const double Pj = sum_of(Ps, Pc, plain);
-            sum_add(&Ws, &Wc, 0.5 * (P_prev + Pj) * dx, plain);
+            ct_add_comp(&Ps, &Pc, k_prev * dx);
+            const double Pj = Ps + Pc;
+            ct_add_comp(&Ws, &Wc, 0.5 * (P_prev + Pj) * dx);
             P_prev = Pj;
         }
-        h0 = take(&r[0], &a0, h0, xj, &ks, &kc, &touching, plain);
-        h1 = take(&r[1], &a1, h1, xj, &ks, &kc, &touching, plain);
-        h2 = take(&r[2], &a2, h2, xj, &ks, &kc, &touching, plain);
+        h0 = take(&r[0], &a0, h0, xj, &ks, &kc, &touching);
+        h1 = take(&r[1], &a1, h1, xj, &ks, &kc, &touching);
+        h2 = take(&r[2], &a2, h2, xj, &ks, &kc, &touching);
         if (touching == 0) /* no rod touches: slope 0, not a rounding residue */
             ks = kc = 0.0;
-        k_prev = sum_of(ks, kc, plain) > 0.0 ? sum_of(ks, kc, plain) : 0.0;
+        k_prev = ks + kc > 0.0 ? ks + kc : 0.0;
         if (j == 0 && touching == 0)
             continue; /* before the first release: no contact, no point */
         x[j] = x_prev = xj;
         P[j] = P_prev;
-        W[j] = sum_of(Ws, Wc, plain);
+        W[j] = Ws + Wc;
         slope[j] = k_prev;
         j++;
     }
     if (j > 0 && x_prev < u_max) { /* the top of the unloading branch */
         const double dx = u_max - x_prev;
-        sum_add(&Ps, &Pc, k_prev * dx, plain);
-        sum_add(&Ws, &Wc, 0.5 * (P_prev + Ps + Pc) * dx, plain);
+        ct_add_comp(&Ps, &Pc, k_prev * dx);
+        ct_add_comp(&Ws, &Wc, 0.5 * (P_prev + Ps + Pc) * dx);
         x[j] = u_max;
-        P[j] = sum_of(Ps, Pc, plain);
-        W[j] = sum_of(Ws, Wc, plain);
+        P[j] = Ps + Pc;
+        W[j] = Ws + Wc;
+        slope[j] = k_prev;
+        j++;
+    }
+    return j;
+}
+
+/* unload_sweep of two runs of sign 1 whose slope changes are all >= +0 (the nested case),
+ * with plain sums: a rod touches from the first event on, so the count of rods in contact
+ * and the compensations are left out; the runs are swept in the same order. */
+static size_t unload_sweep_nested(const run r[2], double u_max, double *x, double *P, double *W,
+                                  double *slope)
+{
+    const double *x0 = r[0].x, *k0 = r[0].k, *x1 = r[1].x, *k1 = r[1].k;
+    const size_t n0 = r[0].n, n1 = r[1].n;
+    size_t a0 = 0, a1 = 0, j = 0;
+    double h0 = n0 ? x0[0] : INFINITY, h1 = n1 ? x1[0] : INFINITY;
+    double ks = 0.0, Ps = 0.0, Ws = 0.0, k_prev = 0.0, P_prev = 0.0, x_prev = 0.0;
+    for (;;) {
+        const double xj = h0 < h1 ? h0 : h1;
+        if (xj == INFINITY)
+            break;
+        if (j > 0) {
+            const double dx = xj - x_prev;
+            Ps += k_prev * dx;
+            Ws += 0.5 * (P_prev + Ps) * dx;
+            P_prev = Ps;
+        }
+        for (; h0 == xj; h0 = ++a0 < n0 ? x0[a0] : INFINITY)
+            ks += k0[a0];
+        for (; h1 == xj; h1 = ++a1 < n1 ? x1[a1] : INFINITY)
+            ks += k1[a1];
+        k_prev = ks > 0.0 ? ks : 0.0;
+        x[j] = x_prev = xj;
+        P[j] = P_prev;
+        W[j] = Ws;
+        slope[j] = k_prev;
+        j++;
+    }
+    if (j > 0 && x_prev < u_max) { /* the top of the unloading branch */
+        const double dx = u_max - x_prev;
+        Ps += k_prev * dx;
+        Ws += 0.5 * (P_prev + Ps + 0.0) * dx;
+        x[j] = u_max;
+        P[j] = Ps;
+        W[j] = Ws;
         slope[j] = k_prev;
         j++;
     }
@@ -729,7 +760,7 @@ int ct_curve_unload(const ct_curve *c, double u_max, ct_curve *out)
         out->ux[m + i] = out->ev[i].dk;
     }
     const run sorted[3] = {{.x = out->ux, .k = out->ux + m, .sign = 1.0, .n = m}};
-    const size_t n = unload_sweep(sorted, u_max, 0, out->x, out->P, out->W, out->slope);
+    const size_t n = unload_sweep(sorted, u_max, out->x, out->P, out->W, out->slope);
     for (size_t k = 0; k < n; k++) {
         out->D[k] = out->A[k] = out->Lmax[k] = 0.0;
         out->cmin[k] = INFINITY;
@@ -819,10 +850,10 @@ size_t ct_unload_split(const ct_unload_events *e, double u_max, double *x, doubl
          * yielded rods' releases. All increments are positive: plain sums. */
         r[0] = (run){.x = e->cx + ny, .k = e->ck + ny, .sign = 1.0, .n = nc - ny};
         r[1] = (run){.x = rel, .k = e->yk, .sign = 1.0, .n = ny};
-        return unload_sweep(r, u_max, 1, x, P, W, slope);
+        return unload_sweep_nested(r, u_max, x, P, W, slope);
     }
     r[0] = (run){.x = e->cx, .k = e->ck, .sign = 1.0, .n = nc};
     r[1] = (run){.x = e->yc, .k = e->yk, .sign = -1.0, .n = ny};
     r[2] = (run){.x = rel, .k = e->yk, .sign = 1.0, .n = ny};
-    return unload_sweep(r, u_max, 0, x, P, W, slope);
+    return unload_sweep(r, u_max, x, P, W, slope);
 }
