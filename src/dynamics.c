@@ -49,6 +49,9 @@ struct ct_dyn_work {
     pcurve first_pc, pprev, pcur;
     ct_unload_events ue; /* the first curve's events, for its unloading curves */
     int one_shot;        /* ct_impact_history: one impact, prepared (no state to carry) */
+    double *f_d2, *f_wd; /* the first curve's pieces' 2 du and omega du at mass f_m */
+    double f_m;
+    size_t f_cap;
 };
 
 static int unload_split(ct_dyn_work *w, double u_max, pcurve *out);
@@ -139,19 +142,61 @@ static double atanc(double x)
     return atan(x) / x;
 }
 
+/* The harmonic frequency of a piece of slope k: sqrt(k / m). */
+static double omega(double k, double m)
+{
+    return sqrt(k / m);
+}
+
+/* The speed where the work done is W: sqrt(2 (W_kin - W) / m). */
+static double speed_at(double W_kin, double W, double m)
+{
+    return sqrt(2.0 * (W_kin - W) / m);
+}
+
+/* km and k, the stiffer (for the shortest period). */
+static double stiffer(double km, double k)
+{
+    return k > km ? k : km;
+}
+
 /* Time across a piece of width du, slope k, entered and left at speeds va, vb. */
 static double piece_time(double du, double k, double m, double va, double vb)
 {
     double s = va + vb;
     if (!(s > 0.0))
         return 0.0;
-    return 2.0 * du / s * atanc(sqrt(k / m) * du / s);
+    return 2.0 * du / s * atanc(omega(k, m) * du / s);
+}
+
+/* The time across pieces i .. J-1 of a path through (x, W, k), entered at speed
+ * speed_at(W_kin, W[i]), added to t piece by piece in order; *v_J gets the speed at x[J].
+ * d2 and wd (not NULL) hold each piece's 2 du and omega du, computed once for a curve walked
+ * at many speeds (the same products, so the same bits). times (not NULL) gets the time at
+ * every point i + 1 .. J. */
+static double pieces_time(const double *x, const double *W, const double *k, const double *d2,
+                          const double *wd, size_t i, size_t J, double t, double W_kin, double m,
+                          double *v_J, double *times)
+{
+    double v = speed_at(W_kin, W[i], m);
+    for (size_t q = i; q < J; q++) {
+        const double vn = speed_at(W_kin, W[q + 1], m), s = v + vn;
+        if (!d2)
+            t += piece_time(x[q + 1] - x[q], k[q], m, v, vn);
+        else /* piece_time with its products 2 du and omega du kept */
+            t += s > 0.0 ? d2[q] / s * atanc(wd[q] / s) : 0.0;
+        v = vn;
+        if (times)
+            times[q + 1] = t;
+    }
+    *v_J = v;
+    return t;
 }
 
 /* Time from where the force is P (slope k), at speed v, to the turning point. */
 static double turn_time(double P, double k, double m, double v)
 {
-    double w = sqrt(k / m);
+    double w = omega(k, m);
     if (w == 0.0)
         return P > 0.0 ? m * v / P : INFINITY;
     double x = m * w * v;
@@ -171,16 +216,10 @@ static double time_to_turn(const path *p, double W_kin, double m, double *t, siz
     if (!t) /* the first pieces, while the speed is v0 to double precision */
         while (i0 < J && p->W[i0 + 1] <= 0x1p-60 * W_kin)
             i0++;
-    double time = (p->x[i0] - p->x[0]) / v0, v = sqrt(2.0 * (W_kin - p->W[i0]) / m);
+    double v, time = (p->x[i0] - p->x[0]) / v0;
     if (t)
         t[0] = 0.0;
-    for (size_t i = i0; i < J; i++) {
-        double vn = sqrt(2.0 * (W_kin - p->W[i + 1]) / m);
-        time += piece_time(p->x[i + 1] - p->x[i], p->k[i], m, v, vn);
-        v = vn;
-        if (t)
-            t[i + 1] = time;
-    }
+    time = pieces_time(p->x, p->W, p->k, NULL, NULL, i0, J, time, W_kin, m, &v, t);
     *last = J;
     return time + turn_time(p->P[J], p->k[J], m, v);
 }
@@ -228,21 +267,42 @@ static int pcurve_reserve(pcurve *c, size_t n)
     return CT_OK;
 }
 
-/* M1, M2 at every point: on a piece W = a + b t + (k/2) t^2, all terms >= 0. */
+/* On x86-64 a loop of divisions over a curve's pieces also gets an AVX2 clone, picked at load
+ * time (as in bundle.c: no FMA, contraction being off under -std=c11, so the bits are the same). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                             \
+    !defined(__SANITIZE_ADDRESS__)
+#define CT_DYN_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define CT_DYN_CLONES
+#endif
+
+/* The moments' terms of pieces 0 .. n-2: int W du and int W^2 du across each; on a piece
+ * W = a + b t + (k/2) t^2, all terms >= 0. */
+CT_DYN_CLONES
+static void moment_terms(const double *restrict x, const double *restrict P,
+                         const double *restrict W, const double *restrict slope, size_t n,
+                         double *restrict T1, double *restrict T2)
+{
+    for (size_t i = 0; i + 1 < n; i++) {
+        const double d = x[i + 1] - x[i], a = W[i], b = P[i], k = slope[i];
+        T1[i] = d * (a + d * (0.5 * b + d * k / 6.0));
+        T2[i] =
+            d * (a * a +
+                 d * (a * b + d * ((b * b + a * k) / 3.0 + d * (0.25 * b * k + d * k * k / 20.0))));
+    }
+}
+
+/* M1, M2 at every point: the terms summed in order. */
 static void pcurve_moments(pcurve *c)
 {
     double m1 = 0.0, m2 = 0.0;
     if (!c->n)
         return;
     c->M1[0] = c->M2[0] = 0.0;
-    for (size_t i = 0; i + 1 < c->n; i++) {
-        const double d = c->x[i + 1] - c->x[i], a = c->W[i], b = c->P[i], k = c->k[i];
-        m1 += d * (a + d * (0.5 * b + d * k / 6.0));
-        m2 +=
-            d * (a * a +
-                 d * (a * b + d * ((b * b + a * k) / 3.0 + d * (0.25 * b * k + d * k * k / 20.0))));
-        c->M1[i + 1] = m1;
-        c->M2[i + 1] = m2;
+    moment_terms(c->x, c->P, c->W, c->k, c->n, c->M1 + 1, c->M2 + 1);
+    for (size_t i = 1; i < c->n; i++) {
+        c->M1[i] = m1 += c->M1[i];
+        c->M2[i] = m2 += c->M2[i];
     }
 }
 
@@ -276,6 +336,8 @@ void ct_dyn_work_free(ct_dyn_work *w)
     ct_curve_free(w->cur);
     free(w->t_load);
     free(w->t_unload);
+    free(w->f_d2);
+    free(w->f_wd);
     free(w);
 }
 
@@ -609,6 +671,7 @@ int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c)
 {
     int st;
     w->first = c;
+    w->f_m = 0.0; /* the pieces' products: for the next mass */
     if (!w->one_shot && (st = pcurve_from_curve(&w->first_pc, c))) /* for the sweep's walks */
         return st;
     return ct_unload_events_of(c, &w->ue);
@@ -628,8 +691,7 @@ static int unload_split(ct_dyn_work *w, double u_max, pcurve *out)
 }
 
 /* The unloading curve from u_max of the first curve's state (ct_curve_unload) with its
- * moments: from the split events without a sort when they are monotone, and (nested) with
- * the moments left to walk, which computes them where it needs them. */
+ * moments: from the split events without a sort when they are monotone. */
 static int unload_fast(ct_dyn_work *w, double u_max, pcurve *out)
 {
     int st;
@@ -640,10 +702,7 @@ static int unload_fast(ct_dyn_work *w, double u_max, pcurve *out)
     }
     if ((st = unload_split(w, u_max, out)))
         return st;
-    if (w->ue.nested)
-        out->M1[0] = -1.0; /* moments: computed by walk where it needs them */
-    else
-        pcurve_moments(out);
+    pcurve_moments(out);
     return CT_OK;
 }
 
@@ -670,9 +729,9 @@ static size_t pc_piece(const pcurve *c, double u)
  * on). While the work is below 1e-5 W_kin the speed is v0 (1 - W / W_kin)^(-1/2), whose
  * series to second order integrates to (dx + M1 / (2 W_kin) + 3 M2 / (8 W_kin^2)) / v0
  * (error below 5/16 (1e-5)^3 relative); then piece by piece. *kmax (not NULL) gets the
- * stiffest piece passed. */
+ * stiffest piece passed. d2, wd (B NULL): A's pieces' 2 du and omega du, or NULL. */
 static double walk(const pcurve *A, double endA, const pcurve *B, double dW, double W_kin, double m,
-                   double *kmax)
+                   double *kmax, const double *d2, const double *wd)
 {
     const double v0 = sqrt(2.0 * W_kin / m), delta = 1e-5 * W_kin;
     size_t lo = 0, hi = A->n;
@@ -685,9 +744,9 @@ static double walk(const pcurve *A, double endA, const pcurve *B, double dW, dou
     }
     size_t i = lo;
     double t;
-    if (A->M1[0] < 0.0 || W_kin < CT_TINY_ENERGY) {
-        /* moments not kept, or an energy so small that W^2 underflows (M2 / W_kin^2 = 0 / 0
-         * at V* ~ 1e-85): the prefix's own pieces, in units of W_kin when it is tiny */
+    if (W_kin < CT_TINY_ENERGY) {
+        /* an energy so small that W^2 underflows (M2 / W_kin^2 = 0 / 0 at V* ~ 1e-85): the
+         * prefix's own pieces, in units of W_kin */
         const double s = W_kin < CT_TINY_ENERGY ? 1.0 / W_kin : 1.0;
         double M1 = 0.0, M2 = 0.0;
         for (size_t q = 0; q < i; q++) {
@@ -704,22 +763,34 @@ static double walk(const pcurve *A, double endA, const pcurve *B, double dW, dou
              3.0 * A->M2[i] / (8.0 * W_kin * W_kin)) /
             v0;
     }
+    if (!B) { /* A alone: the turning piece J, then the pieces up to it in order */
+        size_t J = i;
+        while (J + 1 < A->n && A->x[J + 1] < INFINITY && A->W[J + 1] < W_kin)
+            J++;
+        double km = 0.0, v;
+        for (size_t q = i; q <= J; q++)
+            km = stiffer(km, A->k[q]);
+        t = pieces_time(A->x, A->W, A->k, d2, wd, i, J, t, W_kin, m, &v, NULL);
+        if (kmax)
+            *kmax = km;
+        return t + turn_time(A->P[J], A->k[J], m, v);
+    }
     const pcurve *C = A;
-    double end = B ? endA : INFINITY, off = 0.0, km = 0.0;
+    double end = endA, off = 0.0, km = 0.0;
     double x = A->x[i], P = A->P[i], k = A->k[i], W = A->W[i];
-    double v = sqrt(2.0 * (W_kin - W) / m);
+    double v = speed_at(W_kin, W, m);
     for (;;) {
         int on_point = i + 1 < C->n && C->x[i + 1] < end;
         double xn = on_point ? C->x[i + 1] : end;
         double d = xn - x;
         double Wn =
             on_point ? C->W[i + 1] + off : (isinf(xn) ? INFINITY : W + d * (P + 0.5 * k * d));
-        km = k > km ? k : km;
+        km = stiffer(km, k);
         if (!(Wn < W_kin)) {
             t += turn_time(P, k, m, v);
             break;
         }
-        double vn = sqrt(2.0 * (W_kin - Wn) / m);
+        double vn = speed_at(W_kin, Wn, m);
         t += piece_time(d, k, m, v, vn);
         v = vn;
         if (on_point) {
@@ -759,21 +830,47 @@ static double pc_work(const pcurve *c, double u)
     return c->W[j] + s * (c->P[j] + 0.5 * c->k[j] * s);
 }
 
+/* The first curve's pieces' 2 du and omega du for mass m: every speed's loading walks them. */
+static int first_products(ct_dyn_work *w, double m)
+{
+    const pcurve *F = &w->first_pc;
+    if (F->n > w->f_cap) {
+        double *a = realloc(w->f_d2, F->n * sizeof(double));
+        if (a)
+            w->f_d2 = a;
+        double *b = a ? realloc(w->f_wd, F->n * sizeof(double)) : NULL;
+        if (b)
+            w->f_wd = b;
+        if (!b)
+            return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
+        w->f_cap = F->n;
+    }
+    for (size_t q = 0; q + 1 < F->n; q++) {
+        const double du = F->x[q + 1] - F->x[q];
+        w->f_d2[q] = 2.0 * du;
+        w->f_wd[q] = omega(F->k[q], m) * du;
+    }
+    w->f_m = m;
+    return CT_OK;
+}
+
 int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn)
 {
     int st;
     const double W_kin = res->kinetic_energy, u_max = res->u_max;
     double t_load, kmax;
     const pcurve *F = &w->first_pc;
+    if (m != w->f_m && (st = first_products(w, m)))
+        return st;
     if (!w->have_prev) {
-        t_load = walk(F, INFINITY, NULL, 0.0, W_kin, m, &kmax);
+        t_load = walk(F, INFINITY, NULL, 0.0, W_kin, m, &kmax, w->f_d2, w->f_wd);
         dyn->P_peak = pc_force(F, u_max);
     } else if (u_max <= w->U) {
-        t_load = walk(&w->pprev, INFINITY, NULL, 0.0, W_kin, m, &kmax);
+        t_load = walk(&w->pprev, INFINITY, NULL, 0.0, W_kin, m, &kmax, NULL, NULL);
         dyn->P_peak = pc_force(&w->pprev, u_max);
     } else {
         const pcurve *A = &w->pprev;
-        t_load = walk(A, w->U, F, A->W[A->n - 1] - pc_work(F, w->U), W_kin, m, &kmax);
+        t_load = walk(A, w->U, F, A->W[A->n - 1] - pc_work(F, w->U), W_kin, m, &kmax, NULL, NULL);
         dyn->P_peak = pc_force(F, u_max);
     }
     double W_back = W_kin, t_unload = t_load;
@@ -781,7 +878,7 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
         if ((st = unload_fast(w, u_max, &w->pcur)))
             return st;
         W_back = w->pcur.W[w->pcur.n - 1];
-        t_unload = walk(&w->pcur, INFINITY, NULL, 0.0, W_back, m, &kmax);
+        t_unload = walk(&w->pcur, INFINITY, NULL, 0.0, W_back, m, &kmax, NULL, NULL);
         pcurve t = w->pprev;
         w->pprev = w->pcur;
         w->pcur = t;
