@@ -674,16 +674,10 @@ static size_t unload_sweep_nested(const run r[2], double u_max, double *x, doubl
     size_t a0 = 0, a1 = 0, j = 0;
     double h0 = n0 ? x0[0] : INFINITY, h1 = n1 ? x1[0] : INFINITY;
     double ks = 0.0, Ps = 0.0, Ws = 0.0, k_prev = 0.0, P_prev = 0.0, x_prev = 0.0;
+    double xj = h0 < h1 ? h0 : h1;
+    if (xj == INFINITY)
+        return 0;
     for (;;) {
-        const double xj = h0 < h1 ? h0 : h1;
-        if (xj == INFINITY)
-            break;
-        if (j > 0) {
-            const double dx = xj - x_prev;
-            Ps += k_prev * dx;
-            Ws += 0.5 * (P_prev + Ps) * dx;
-            P_prev = Ps;
-        }
         for (; h0 == xj; h0 = ++a0 < n0 ? x0[a0] : INFINITY)
             ks += k0[a0];
         for (; h1 == xj; h1 = ++a1 < n1 ? x1[a1] : INFINITY)
@@ -694,8 +688,15 @@ static size_t unload_sweep_nested(const run r[2], double u_max, double *x, doubl
         W[j] = Ws;
         slope[j] = k_prev;
         j++;
+        xj = h0 < h1 ? h0 : h1;
+        if (xj == INFINITY)
+            break;
+        const double dx = xj - x_prev;
+        Ps += k_prev * dx;
+        Ws += 0.5 * (P_prev + Ps) * dx;
+        P_prev = Ps;
     }
-    if (j > 0 && x_prev < u_max) { /* the top of the unloading branch */
+    if (x_prev < u_max) { /* the top of the unloading branch */
         const double dx = u_max - x_prev;
         Ps += k_prev * dx;
         Ws += 0.5 * (P_prev + Ps + 0.0) * dx;

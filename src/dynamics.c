@@ -22,6 +22,18 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+/* On x86-64 a loop of divisions over a curve's pieces also gets an AVX2 clone, picked at load
+ * time (as in bundle.c: no FMA, contraction being off under -std=c11, so the bits are the same). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                             \
+    !defined(__SANITIZE_ADDRESS__)
+#define CT_DYN_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define CT_DYN_CLONES
+#endif
 
 /* A path through the breakpoints: u, P, the slope on [x_i, x_{i+1}) and the work from the
  * path's start. */
@@ -51,6 +63,7 @@ struct ct_dyn_work {
     int one_shot;        /* ct_impact_history: one impact, prepared (no state to carry) */
     double *f_d2, *f_wd; /* the first curve's pieces' 2 du and omega du at mass f_m */
     double f_m;
+    int f_sorted; /* its x finite and its W nondecreasing */
     size_t f_cap;
 };
 
@@ -58,39 +71,42 @@ static int unload_split(ct_dyn_work *w, double u_max, pcurve *out);
 
 static void path_free(path *p)
 {
-    free(p->x);
-    free(p->P);
-    free(p->k);
-    free(p->W);
+    free(p->x); /* one block: x, P, k, W */
     memset(p, 0, sizeof *p);
 }
 
-static int path_push(path *p, double x, double P, double k, double W)
+/* Room for n points in all, the points kept. */
+static int path_reserve(path *p, size_t n)
 {
-    if (p->n == p->cap) {
-        size_t cap = p->cap ? 2 * p->cap : 256;
-        double *a = realloc(p->x, cap * sizeof(double)),
-               *b = a ? realloc(p->P, cap * sizeof(double)) : NULL;
-        if (a)
-            p->x = a;
-        if (b)
-            p->P = b;
-        double *c = b ? realloc(p->k, cap * sizeof(double)) : NULL;
-        if (c)
-            p->k = c;
-        double *d = c ? realloc(p->W, cap * sizeof(double)) : NULL;
-        if (d)
-            p->W = d;
-        if (!d)
-            return ct_error_set(CT_ENOMEM, "impact history: out of memory");
-        p->cap = cap;
+    if (n <= p->cap)
+        return CT_OK;
+    const size_t cap = n > 2 * p->cap ? n : 2 * p->cap;
+    double *b = malloc(4 * cap * sizeof(double));
+    if (!b)
+        return ct_error_set(CT_ENOMEM, "impact history: out of memory");
+    if (p->n) {
+        memcpy(b, p->x, p->n * sizeof(double));
+        memcpy(b + cap, p->P, p->n * sizeof(double));
+        memcpy(b + 2 * cap, p->k, p->n * sizeof(double));
+        memcpy(b + 3 * cap, p->W, p->n * sizeof(double));
     }
+    free(p->x);
+    p->x = b;
+    p->P = b + cap;
+    p->k = b + 2 * cap;
+    p->W = b + 3 * cap;
+    p->cap = cap;
+    return CT_OK;
+}
+
+/* Appends a point (room reserved). */
+static void path_put(path *p, double x, double P, double k, double W)
+{
     p->x[p->n] = x;
     p->P[p->n] = P;
     p->k[p->n] = k;
     p->W[p->n] = W;
     p->n++;
-    return CT_OK;
 }
 
 /* Largest j with v.x[j] <= u (u >= v.x[0]). */
@@ -116,29 +132,41 @@ static int path_append(path *p, const ct_curve *c, double a, double b, double dW
     if (!v.n || !(b >= a))
         return CT_OK;
     int st;
-    size_t j = piece_of(&v, a);
+    const size_t j = piece_of(&v, a), e = piece_of(&v, b);
+    if ((st = path_reserve(p, p->n + (e - j) + 2))) /* a, the points inside, b */
+        return st;
     double t = a - v.x[j];
-    if (!p->n && (st = path_push(p, a, v.P[j] + v.slope[j] * t, v.slope[j],
-                                 v.W[j] + t * (v.P[j] + 0.5 * v.slope[j] * t) + dW)))
-        return st;
-    if (p->n)
-        p->k[p->n - 1] = v.slope[j]; /* the path goes on along this curve's piece */
+    if (!p->n)
+        path_put(p, a, v.P[j] + v.slope[j] * t, v.slope[j],
+                 v.W[j] + t * (v.P[j] + 0.5 * v.slope[j] * t) + dW);
+    p->k[p->n - 1] = v.slope[j]; /* the path goes on along this curve's piece */
     for (size_t i = j + 1; i < v.n && v.x[i] < b; i++)
-        if (v.x[i] > a && (st = path_push(p, v.x[i], v.P[i], v.slope[i], v.W[i] + dW)))
-            return st;
-    size_t e = piece_of(&v, b);
+        if (v.x[i] > a)
+            path_put(p, v.x[i], v.P[i], v.slope[i], v.W[i] + dW);
     t = b - v.x[e];
-    if (b > p->x[p->n - 1] && (st = path_push(p, b, v.P[e] + v.slope[e] * t, v.slope[e],
-                                              v.W[e] + t * (v.P[e] + 0.5 * v.slope[e] * t) + dW)))
-        return st;
+    if (b > p->x[p->n - 1])
+        path_put(p, b, v.P[e] + v.slope[e] * t, v.slope[e],
+                 v.W[e] + t * (v.P[e] + 0.5 * v.slope[e] * t) + dW);
     return CT_OK;
+}
+
+/* atan(x) / x for x^2 < 1e-8 (atanc_small), from x^2: the series, whose next term, x^6 / 7,
+ * is below 2e-25. */
+static int atanc_small(double x2)
+{
+    return x2 < 1e-8;
+}
+
+static double atanc_series(double x2)
+{
+    return 1.0 - x2 * (1.0 / 3.0 - x2 * 0.2);
 }
 
 static double atanc(double x)
 {
     double x2 = x * x;
-    if (x2 < 1e-8) /* the series: the next term, x^6 / 7, is below 2e-25 */
-        return 1.0 - x2 * (1.0 / 3.0 - x2 * 0.2);
+    if (atanc_small(x2))
+        return atanc_series(x2);
     return atan(x) / x;
 }
 
@@ -148,10 +176,16 @@ static double omega(double k, double m)
     return sqrt(k / m);
 }
 
-/* The speed where the work done is W: sqrt(2 (W_kin - W) / m). */
+/* The speed squared where the work done is W: 2 (W_kin - W) / m. */
+static double speed2_at(double W_kin, double W, double m)
+{
+    return 2.0 * (W_kin - W) / m;
+}
+
+/* The speed where the work done is W. */
 static double speed_at(double W_kin, double W, double m)
 {
-    return sqrt(2.0 * (W_kin - W) / m);
+    return sqrt(speed2_at(W_kin, W, m));
 }
 
 /* km and k, the stiffer (for the shortest period). */
@@ -169,27 +203,80 @@ static double piece_time(double du, double k, double m, double va, double vb)
     return 2.0 * du / s * atanc(omega(k, m) * du / s);
 }
 
+/* Pieces are timed in chunks of this many, their speeds and quotients computed in vector loops
+ * before the times are added in order. */
+enum { CT_PIECE_CHUNK = 64 };
+
+/* V2[0..n) the speeds squared where the works are W[0..n). */
+CT_DYN_CLONES
+static void speeds2(const double *restrict W, size_t n, double W_kin, double m, double *restrict V2)
+{
+    for (size_t j = 0; j < n; j++)
+        V2[j] = speed2_at(W_kin, W[j], m);
+}
+
+/* v[0..n) = sqrt(v): by pairs on x86-64 (a loop calling sqrt does not vectorise: it may set
+ * errno); sqrt is exact, so the bits are the same. */
+static void sqrt_all(double *v, size_t n)
+{
+    size_t j = 0;
+#if defined(__SSE2__)
+    for (; j + 2 <= n; j += 2)
+        _mm_storeu_pd(v + j, _mm_sqrt_pd(_mm_loadu_pd(v + j)));
+#endif
+    for (; j < n; j++)
+        v[j] = sqrt(v[j]);
+}
+
+/* For pieces 0 .. n-1 of widths and slopes given as d2 = 2 du and wd = omega du, between the
+ * speeds V[0..n]: A = 2 du / (va + vb), X = omega du / (va + vb) (both 0 where va + vb is not
+ * > 0: the piece takes no time) and T = A atanc(X) where the series holds (atanc_small(X^2)). */
+CT_DYN_CLONES
+static void piece_quotients(const double *restrict d2, const double *restrict wd,
+                            const double *restrict V, size_t n, double *restrict A,
+                            double *restrict X, double *restrict T)
+{
+    for (size_t j = 0; j < n; j++) {
+        const double s = V[j] + V[j + 1], a = s > 0.0 ? d2[j] / s : 0.0,
+                     x = s > 0.0 ? wd[j] / s : 0.0;
+        A[j] = a;
+        X[j] = x;
+        T[j] = a * atanc_series(x * x);
+    }
+}
+
 /* The time across pieces i .. J-1 of a path through (x, W, k), entered at speed
  * speed_at(W_kin, W[i]), added to t piece by piece in order; *v_J gets the speed at x[J].
  * d2 and wd (not NULL) hold each piece's 2 du and omega du, computed once for a curve walked
  * at many speeds (the same products, so the same bits). times (not NULL) gets the time at
- * every point i + 1 .. J. */
+ * every point i + 1 .. J. A piece of width du, slope k, entered and left at speeds va, vb
+ * takes 2 du / (va + vb) atanc(omega du / (va + vb)) (0 when va + vb is not > 0). */
 static double pieces_time(const double *x, const double *W, const double *k, const double *d2,
                           const double *wd, size_t i, size_t J, double t, double W_kin, double m,
                           double *v_J, double *times)
 {
-    double v = speed_at(W_kin, W[i], m);
-    for (size_t q = i; q < J; q++) {
-        const double vn = speed_at(W_kin, W[q + 1], m), s = v + vn;
+    double V[CT_PIECE_CHUNK + 1], A[CT_PIECE_CHUNK], X[CT_PIECE_CHUNK], T[CT_PIECE_CHUNK],
+        D2[CT_PIECE_CHUNK], WD[CT_PIECE_CHUNK];
+    V[0] = speed_at(W_kin, W[i], m);
+    for (size_t q0 = i; q0 < J; q0 += CT_PIECE_CHUNK) {
+        const size_t n = J - q0 < CT_PIECE_CHUNK ? J - q0 : CT_PIECE_CHUNK;
+        speeds2(W + q0 + 1, n, W_kin, m, V + 1);
+        sqrt_all(V + 1, n);
         if (!d2)
-            t += piece_time(x[q + 1] - x[q], k[q], m, v, vn);
-        else /* piece_time with its products 2 du and omega du kept */
-            t += s > 0.0 ? d2[q] / s * atanc(wd[q] / s) : 0.0;
-        v = vn;
-        if (times)
-            times[q + 1] = t;
+            for (size_t j = 0; j < n; j++) {
+                const double du = x[q0 + j + 1] - x[q0 + j];
+                D2[j] = 2.0 * du;
+                WD[j] = omega(k[q0 + j], m) * du;
+            }
+        piece_quotients(d2 ? d2 + q0 : D2, d2 ? wd + q0 : WD, V, n, A, X, T);
+        for (size_t j = 0; j < n; j++) { /* A atanc(X), in order */
+            t += atanc_small(X[j] * X[j]) ? T[j] : A[j] * (atan(X[j]) / X[j]);
+            if (times)
+                times[q0 + j + 1] = t;
+        }
+        V[0] = V[n];
     }
-    *v_J = v;
+    *v_J = V[0];
     return t;
 }
 
@@ -266,15 +353,6 @@ static int pcurve_reserve(pcurve *c, size_t n)
     c->cap = n;
     return CT_OK;
 }
-
-/* On x86-64 a loop of divisions over a curve's pieces also gets an AVX2 clone, picked at load
- * time (as in bundle.c: no FMA, contraction being off under -std=c11, so the bits are the same). */
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                             \
-    !defined(__SANITIZE_ADDRESS__)
-#define CT_DYN_CLONES __attribute__((target_clones("avx2", "default")))
-#else
-#define CT_DYN_CLONES
-#endif
 
 /* The moments' terms of pieces 0 .. n-2: int W du and int W^2 du across each; on a piece
  * W = a + b t + (k/2) t^2, all terms >= 0. */
@@ -480,12 +558,10 @@ static int unload_path(ct_dyn_work *w, const ct_curve *c, double u_max)
     int st;
     if (w->one_shot && w->first == c && w->ue.nested) {
         /* one impact from a virgin layer (ct_impact_history): the two-run unloading */
-        if ((st = unload_split(w, u_max, &w->pcur)))
+        if ((st = path_reserve(&w->unload, ct_unload_split_room(&w->ue, u_max))))
             return st;
-        for (size_t i = 0; i < w->pcur.n; i++)
-            if ((st =
-                     path_push(&w->unload, w->pcur.x[i], w->pcur.P[i], w->pcur.k[i], w->pcur.W[i])))
-                return st;
+        w->unload.n =
+            ct_unload_split(&w->ue, u_max, w->unload.x, w->unload.P, w->unload.W, w->unload.k);
     } else if ((st = ct_curve_unload(c, u_max, w->cur)) ||
                (st = path_append(&w->unload, w->cur, ct_curve_first_contact(w->cur), u_max, 0.0))) {
         return st;
@@ -729,9 +805,10 @@ static size_t pc_piece(const pcurve *c, double u)
  * on). While the work is below 1e-5 W_kin the speed is v0 (1 - W / W_kin)^(-1/2), whose
  * series to second order integrates to (dx + M1 / (2 W_kin) + 3 M2 / (8 W_kin^2)) / v0
  * (error below 5/16 (1e-5)^3 relative); then piece by piece. *kmax (not NULL) gets the
- * stiffest piece passed. d2, wd (B NULL): A's pieces' 2 du and omega du, or NULL. */
+ * stiffest piece passed. d2, wd (B NULL): A's pieces' 2 du and omega du, or NULL; sorted: A's
+ * x all finite and its W nondecreasing (the turning piece by bisection). */
 static double walk(const pcurve *A, double endA, const pcurve *B, double dW, double W_kin, double m,
-                   double *kmax, const double *d2, const double *wd)
+                   double *kmax, const double *d2, const double *wd, int sorted)
 {
     const double v0 = sqrt(2.0 * W_kin / m), delta = 1e-5 * W_kin;
     size_t lo = 0, hi = A->n;
@@ -765,10 +842,21 @@ static double walk(const pcurve *A, double endA, const pcurve *B, double dW, dou
     }
     if (!B) { /* A alone: the turning piece J, then the pieces up to it in order */
         size_t J = i;
-        while (J + 1 < A->n && A->x[J + 1] < INFINITY && A->W[J + 1] < W_kin)
-            J++;
+        if (sorted) { /* the last point below W_kin, by bisection */
+            size_t hi = A->n;
+            while (hi - J > 1) {
+                const size_t mid = J + (hi - J) / 2;
+                if (A->W[mid] < W_kin)
+                    J = mid;
+                else
+                    hi = mid;
+            }
+        } else {
+            while (J + 1 < A->n && A->x[J + 1] < INFINITY && A->W[J + 1] < W_kin)
+                J++;
+        }
         double km = 0.0, v;
-        for (size_t q = i; q <= J; q++)
+        for (size_t q = i; kmax && q <= J; q++)
             km = stiffer(km, A->k[q]);
         t = pieces_time(A->x, A->W, A->k, d2, wd, i, J, t, W_kin, m, &v, NULL);
         if (kmax)
@@ -845,10 +933,12 @@ static int first_products(ct_dyn_work *w, double m)
             return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
         w->f_cap = F->n;
     }
+    w->f_sorted = 1;
     for (size_t q = 0; q + 1 < F->n; q++) {
         const double du = F->x[q + 1] - F->x[q];
         w->f_d2[q] = 2.0 * du;
         w->f_wd[q] = omega(F->k[q], m) * du;
+        w->f_sorted &= F->x[q + 1] < INFINITY && F->W[q + 1] >= F->W[q];
     }
     w->f_m = m;
     return CT_OK;
@@ -862,15 +952,17 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
     const pcurve *F = &w->first_pc;
     if (m != w->f_m && (st = first_products(w, m)))
         return st;
+    double *k_load = res->elastic ? &kmax : NULL; /* else the unloading's stiffest piece */
     if (!w->have_prev) {
-        t_load = walk(F, INFINITY, NULL, 0.0, W_kin, m, &kmax, w->f_d2, w->f_wd);
+        t_load = walk(F, INFINITY, NULL, 0.0, W_kin, m, k_load, w->f_d2, w->f_wd, w->f_sorted);
         dyn->P_peak = pc_force(F, u_max);
     } else if (u_max <= w->U) {
-        t_load = walk(&w->pprev, INFINITY, NULL, 0.0, W_kin, m, &kmax, NULL, NULL);
+        t_load = walk(&w->pprev, INFINITY, NULL, 0.0, W_kin, m, k_load, NULL, NULL, 0);
         dyn->P_peak = pc_force(&w->pprev, u_max);
     } else {
         const pcurve *A = &w->pprev;
-        t_load = walk(A, w->U, F, A->W[A->n - 1] - pc_work(F, w->U), W_kin, m, &kmax, NULL, NULL);
+        t_load =
+            walk(A, w->U, F, A->W[A->n - 1] - pc_work(F, w->U), W_kin, m, &kmax, NULL, NULL, 0);
         dyn->P_peak = pc_force(F, u_max);
     }
     double W_back = W_kin, t_unload = t_load;
@@ -878,7 +970,7 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
         if ((st = unload_fast(w, u_max, &w->pcur)))
             return st;
         W_back = w->pcur.W[w->pcur.n - 1];
-        t_unload = walk(&w->pcur, INFINITY, NULL, 0.0, W_back, m, &kmax, NULL, NULL);
+        t_unload = walk(&w->pcur, INFINITY, NULL, 0.0, W_back, m, &kmax, NULL, NULL, 0);
         pcurve t = w->pprev;
         w->pprev = w->pcur;
         w->pcur = t;
