@@ -663,6 +663,15 @@ static size_t unload_sweep(const run r[3], double u_max, double *x, double *P, d
     return j;
 }
 
+/* The nested sweep's P and W from its last point across dx at slope k: plain sums (every
+ * term >= +0, so P and W never decrease). */
+static void nested_step(double dx, double k, double *P, double *W)
+{
+    const double P_prev = *P;
+    *P += k * dx;
+    *W += 0.5 * (P_prev + *P) * dx;
+}
+
 /* unload_sweep of two runs of sign 1 whose slope changes are all >= +0 (the nested case),
  * with plain sums: a rod touches from the first event on, so the count of rods in contact
  * and the compensations are left out; the runs are swept in the same order. */
@@ -672,34 +681,43 @@ static size_t unload_sweep_nested(const run r[2], double u_max, double *x, doubl
     const double *x0 = r[0].x, *k0 = r[0].k, *x1 = r[1].x, *k1 = r[1].k;
     const size_t n0 = r[0].n, n1 = r[1].n;
     size_t a0 = 0, a1 = 0, j = 0;
-    double h0 = n0 ? x0[0] : INFINITY, h1 = n1 ? x1[0] : INFINITY;
-    double ks = 0.0, Ps = 0.0, Ws = 0.0, k_prev = 0.0, P_prev = 0.0, x_prev = 0.0;
-    double xj = h0 < h1 ? h0 : h1;
-    if (xj == INFINITY)
-        return 0;
+    double ks = 0.0, Ps = 0.0, Ws = 0.0, k_prev = 0.0, x_prev = 0.0;
     for (;;) {
-        for (; h0 == xj; h0 = ++a0 < n0 ? x0[a0] : INFINITY)
+        const double h0 = a0 < n0 ? x0[a0] : INFINITY;
+        /* the points of run 1 alone, below run 0's next event (most of them: run 0 holds the
+         * contacts of the few rods still elastic) */
+        while (a1 < n1 && x1[a1] < h0) {
+            const double xj = x1[a1];
+            if (j > 0)
+                nested_step(xj - x_prev, k_prev, &Ps, &Ws);
+            do
+                ks += k1[a1];
+            while (++a1 < n1 && x1[a1] == xj);
+            k_prev = ks > 0.0 ? ks : 0.0;
+            x[j] = x_prev = xj;
+            P[j] = Ps;
+            W[j] = Ws;
+            slope[j] = k_prev;
+            j++;
+        }
+        if (h0 == INFINITY)
+            break;
+        /* a point at run 0's event: its events there, then run 1's */
+        if (j > 0)
+            nested_step(h0 - x_prev, k_prev, &Ps, &Ws);
+        for (; a0 < n0 && x0[a0] == h0; a0++)
             ks += k0[a0];
-        for (; h1 == xj; h1 = ++a1 < n1 ? x1[a1] : INFINITY)
+        for (; a1 < n1 && x1[a1] == h0; a1++)
             ks += k1[a1];
         k_prev = ks > 0.0 ? ks : 0.0;
-        x[j] = x_prev = xj;
-        P[j] = P_prev;
+        x[j] = x_prev = h0;
+        P[j] = Ps;
         W[j] = Ws;
         slope[j] = k_prev;
         j++;
-        xj = h0 < h1 ? h0 : h1;
-        if (xj == INFINITY)
-            break;
-        const double dx = xj - x_prev;
-        Ps += k_prev * dx;
-        Ws += 0.5 * (P_prev + Ps) * dx;
-        P_prev = Ps;
     }
-    if (x_prev < u_max) { /* the top of the unloading branch */
-        const double dx = u_max - x_prev;
-        Ps += k_prev * dx;
-        Ws += 0.5 * (P_prev + Ps + 0.0) * dx;
+    if (j > 0 && x_prev < u_max) { /* the top of the unloading branch */
+        nested_step(u_max - x_prev, k_prev, &Ps, &Ws);
         x[j] = u_max;
         P[j] = Ps;
         W[j] = Ws;
