@@ -681,15 +681,18 @@ static size_t unload_sweep_nested(const run r[2], double u_max, double *x, doubl
     const double *x0 = r[0].x, *k0 = r[0].k, *x1 = r[1].x, *k1 = r[1].k;
     const size_t n0 = r[0].n, n1 = r[1].n;
     size_t a0 = 0, a1 = 0, j = 0;
-    double ks = 0.0, Ps = 0.0, Ws = 0.0, k_prev = 0.0, x_prev = 0.0;
+    double ks = 0.0, Ps = 0.0, Ws = 0.0, k_prev = 0.0;
+    /* from the first event: the step to the first point adds +0 to P and W, which stay +0 */
+    double x_prev = n0 && (!n1 || x0[0] < x1[0]) ? x0[0] : n1 ? x1[0] : INFINITY;
+    if (x_prev == INFINITY)
+        return 0;
     for (;;) {
         const double h0 = a0 < n0 ? x0[a0] : INFINITY;
         /* the points of run 1 alone, below run 0's next event (most of them: run 0 holds the
          * contacts of the few rods still elastic) */
         while (a1 < n1 && x1[a1] < h0) {
             const double xj = x1[a1];
-            if (j > 0)
-                nested_step(xj - x_prev, k_prev, &Ps, &Ws);
+            nested_step(xj - x_prev, k_prev, &Ps, &Ws);
             do
                 ks += k1[a1];
             while (++a1 < n1 && x1[a1] == xj);
@@ -703,8 +706,7 @@ static size_t unload_sweep_nested(const run r[2], double u_max, double *x, doubl
         if (h0 == INFINITY)
             break;
         /* a point at run 0's event: its events there, then run 1's */
-        if (j > 0)
-            nested_step(h0 - x_prev, k_prev, &Ps, &Ws);
+        nested_step(h0 - x_prev, k_prev, &Ps, &Ws);
         for (; a0 < n0 && x0[a0] == h0; a0++)
             ks += k0[a0];
         for (; a1 < n1 && x1[a1] == h0; a1++)
@@ -716,7 +718,7 @@ static size_t unload_sweep_nested(const run r[2], double u_max, double *x, doubl
         slope[j] = k_prev;
         j++;
     }
-    if (j > 0 && x_prev < u_max) { /* the top of the unloading branch */
+    if (x_prev < u_max) { /* the top of the unloading branch */
         nested_step(u_max - x_prev, k_prev, &Ps, &Ws);
         x[j] = u_max;
         P[j] = Ps;
