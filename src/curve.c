@@ -561,7 +561,7 @@ int ct_curve_build_lean(ct_curve *c, const ct_bundle *b)
 
 void ct_curve_view_of(const ct_curve *c, ct_curve_view *v)
 {
-    v->n = c->n;
+    v->n = c->lean ? 0 : c->n; /* a lean curve has no arrays to view (the sweep never asks) */
     v->x = c->x;
     v->P = c->P;
     v->W = c->W;
