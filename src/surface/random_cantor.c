@@ -284,15 +284,13 @@ typedef struct {
     double Hstar;
 } finish_ctx;
 
-/* rods in sorted order from the pieces in tree order */
+/* areas in sorted order from the pieces in tree order (the tops come sorted) */
 static void gather_chunk(void *ctx, size_t c, size_t i0, size_t i1)
 {
     finish_ctx *f = ctx;
     (void)c;
-    for (size_t k = i0; k < i1; k++) {
-        f->top[k] = f->tree_top[f->piece[k]];
+    for (size_t k = i0; k < i1; k++)
         f->area[k] = f->tree_area[f->piece[k]];
-    }
 }
 
 static void finish_chunk(void *ctx, size_t c, size_t i0, size_t i1)
@@ -308,54 +306,91 @@ static void finish_chunk(void *ctx, size_t c, size_t i0, size_t i1)
 /* Rods sorted by top, shallowest first (ties in piece order): the load curve's events are
  * then two monotone runs, merged in O(n) (src/curve.c), where pieces in tree order would
  * cost a full merge sort per realisation. LSD radix sort, stable, on the tops' bit patterns
- * (positive doubles order as their bits); digits that all keys share are skipped. */
-static int sort_by_top(random_meta *m, const double *top, int keep)
+ * (positive doubles order as their bits) less the smallest: only the bits where the keys can
+ * differ are sorted, in as few digits of at most RADIX_BITS bits as they need (five for
+ * depth 16), each pass from one buffer to the other; digits that all keys share are skipped.
+ * The permutation goes to m->piece, the sorted tops to `sorted`. */
+#define RADIX_BITS 11
+
+static int sort_by_top(random_meta *m, const double *top, double *sorted, int keep)
 {
     const size_t n = m->n;
-    uint32_t *perm = m->piece;
     uint64_t *key = m->key ? m->key : malloc(2 * (n ? n : 1) * sizeof *key);
     uint32_t *tmp = m->tmp ? m->tmp : malloc((n ? n : 1) * sizeof *tmp);
-    size_t(*count)[256] = calloc(8, sizeof *count);
+    uint32_t(*count)[1 << RADIX_BITS] = NULL;
     m->key = key;
     m->tmp = tmp;
-    if (!key || !tmp || !count) {
+    uint64_t low = UINT64_MAX, high = 0;
+    for (size_t k = 0; k < n; k++) {
+        uint64_t bits;
+        memcpy(&bits, &top[k], sizeof bits);
+        low = bits < low ? bits : low;
+        high = bits > high ? bits : high;
+    }
+    int span = 0; /* bits of the largest key less the smallest */
+    while (span < 64 && ((high - low) >> span))
+        span++;
+    const int digits = (span + RADIX_BITS - 1) / RADIX_BITS;
+    const int width = digits ? (span + digits - 1) / digits : 0;
+    const uint64_t mask = ((uint64_t)1 << width) - 1;
+    if (key && tmp && digits)
+        count = calloc((size_t)digits, sizeof *count);
+    if (!key || !tmp || (digits && !count)) {
         free(count);
         return ct_error_set(CT_ENOMEM, "random cantor surface: sorting %zu rods: out of memory", n);
     }
-    uint64_t *key2 = key + n;
+    uint64_t *src = key, *dst = key + n;
+    uint32_t *perm = NULL, *perm_dst = m->piece; /* NULL: the identity */
     for (size_t k = 0; k < n; k++) {
-        memcpy(&key[k], &top[k], sizeof key[k]);
-        perm[k] = (uint32_t)k;
-        for (int d = 0; d < 8; d++)
-            count[d][(key[k] >> (8 * d)) & 0xff]++;
+        uint64_t bits;
+        memcpy(&bits, &top[k], sizeof bits);
+        src[k] = bits - low;
+        for (int d = 0; d < digits; d++)
+            count[d][(src[k] >> (width * d)) & mask]++;
     }
-    for (int d = 0; d < 8; d++) {
-        size_t sum = 0;
+    for (int d = 0; d < digits; d++) {
+        uint32_t sum = 0;
         int shared = 0;
-        for (int v = 0; v < 256; v++)
+        for (size_t v = 0; v <= mask; v++)
             shared |= count[d][v] == n;
         if (shared)
             continue;
-        for (int v = 0; v < 256; v++) {
-            size_t c = count[d][v];
+        for (size_t v = 0; v <= mask; v++) {
+            uint32_t c = count[d][v];
             count[d][v] = sum;
             sum += c;
         }
+        uint32_t *at = count[d];
+        const int shift = width * d;
         for (size_t k = 0; k < n; k++) {
-            size_t at = count[d][(key[k] >> (8 * d)) & 0xff]++;
-            key2[at] = key[k];
-            tmp[at] = perm[k];
+            const uint32_t q = at[(src[k] >> shift) & mask]++;
+            dst[q] = src[k];
+            perm_dst[q] = perm ? perm[k] : (uint32_t)k;
         }
-        memcpy(key, key2, n * sizeof *key);
-        memcpy(perm, tmp, n * sizeof *perm);
+        uint64_t *t = src;
+        src = dst;
+        dst = t;
+        perm = perm_dst;
+        perm_dst = perm == m->piece ? tmp : m->piece;
+    }
+    free(count);
+    if (!perm) /* already in order */
+        for (size_t k = 0; k < n; k++)
+            m->piece[k] = (uint32_t)k;
+    else if (perm != m->piece) { /* the last pass wrote the scratch: it becomes the pieces */
+        m->tmp = m->piece;
+        m->piece = perm;
+    }
+    for (size_t k = 0; k < n; k++) {
+        const uint64_t bits = src[k] + low;
+        memcpy(&sorted[k], &bits, sizeof bits);
     }
     if (!keep) {
-        free(key);
-        free(tmp);
+        free(m->key);
+        free(m->tmp);
         m->key = NULL;
         m->tmp = NULL;
     }
-    free(count);
     return CT_OK;
 }
 
@@ -408,7 +443,7 @@ static int fill(ct_bundle *b, random_meta *meta, uint64_t realisation, int keep_
         }
     }
     free(clipped);
-    int st = sort_by_top(meta, tree_top, keep_scratch);
+    int st = sort_by_top(meta, tree_top, top, keep_scratch);
     if (st)
         return st;
     finish_ctx f = {top, area, tree_top, tree_area, meta->piece, p->Hstar};
