@@ -616,6 +616,39 @@ typedef struct {
     const double *adv, *u0, *u1;
 } closed_args;
 
+/* The three terms of a rod: W_load from the work densities at u1 (db) and at u0 (w0), the
+ * recoverable energy and the force at u1. */
+static inline void closed_terms(double db, double w0, double EsL, double half, double Es,
+                                double eps_y, double x[3])
+{
+    x[0] = EsL * (ct_rod_work_density(db, eps_y) - w0);
+    x[1] = ct_rod_energy_of(db, half, eps_y);
+    x[2] = ct_rod_force_of(db, Es, eps_y);
+}
+
+/* Whether the impacts of a chunk start from the virgin state at or before every rod's top
+ * (a sweep's first impacts: adv = -inf, u0 the first contact): then no rod advances (the
+ * plastic strain stays eps_p) and none is strained at u0 (its work density there is 0), so
+ * both are left out, bitwise: (u0 - top) / L <= 0 and eps_p >= 0 give an elastic strain <= 0.
+ * Needs every rod's 1/L finite and positive and eps_p >= 0 (no NaN). */
+static int closed_from_virgin(const ct_bundle *b, const closed_args *a, size_t m, size_t k0,
+                              size_t k1)
+{
+    double u0_max = -INFINITY;
+    for (size_t i = 0; i < m; i++) {
+        if (!(a->adv[i] == -INFINITY) || isnan(a->u0[i]))
+            return 0;
+        u0_max = a->u0[i] > u0_max ? a->u0[i] : u0_max;
+    }
+    int tame = 1;
+    for (size_t k = k0; k < k1; k++) {
+        const double rl = 1.0 / b->length[k];
+        tame &=
+            (rl > 0.0) & (rl < INFINITY) & (b->plastic_strain[k] >= 0.0) & (u0_max <= b->top[k]);
+    }
+    return tame;
+}
+
 CT_CLONES
 static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_t m, size_t k0,
                           size_t k1, double *restrict out)
@@ -624,6 +657,8 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
     const double *restrict adv = a->adv + i0, *restrict u0 = a->u0 + i0, *restrict u1 = a->u1 + i0;
     const double *top = b->top, *length = b->length, *area = b->area, *eps_p = b->plastic_strain;
     const double E = b->E, eps_y = b->eps_y;
+    const closed_args chunk = {adv, u0, u1};
+    const int virgin = closed_from_virgin(b, &chunk, m, k0, k1);
     double s[3][CT_NODE_CHUNK], c[3][CT_NODE_CHUNK];
     for (size_t i = 0; i < m; i++)
         for (int o = 0; o < 3; o++)
@@ -632,12 +667,20 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
         const double tk = top[k], pk = eps_p[k], rl = 1.0 / length[k];
         const double Es = E * area[k], EsL = E * area[k] * length[k],
                      half = 0.5 * E * area[k] * length[k];
+        if (virgin) {
+            for (size_t i = 0; i < m; i++) {
+                double x[3];
+                closed_terms(ct_rod_strain(u1[i], tk, rl, pk), 0.0, EsL, half, Es, eps_y, x);
+                for (int o = 0; o < 3; o++)
+                    ct_add_comp(&s[o][i], &c[o][i], x[o]);
+            }
+            continue;
+        }
         for (size_t i = 0; i < m; i++) {
             const double p = ct_rod_advanced(ct_rod_total_strain(adv[i], tk, rl), pk, eps_y);
             const double da = ct_rod_strain(u0[i], tk, rl, p), db = ct_rod_strain(u1[i], tk, rl, p);
-            const double x[3] = {
-                EsL * (ct_rod_work_density(db, eps_y) - ct_rod_work_density(da, eps_y)),
-                ct_rod_energy_of(db, half, eps_y), ct_rod_force_of(db, Es, eps_y)};
+            double x[3];
+            closed_terms(db, ct_rod_work_density(da, eps_y), EsL, half, Es, eps_y, x);
             for (int o = 0; o < 3; o++)
                 ct_add_comp(&s[o][i], &c[o][i], x[o]);
         }
