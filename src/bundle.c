@@ -462,13 +462,14 @@ static double blocked_total(const ct_bundle *b, enum sum_kind kind, double ua, d
  * block sums meet in the same pairwise tree; the terms are rod.h's block form, bitwise its
  * scalar form, so every value is bitwise what the single-node call gives. The node loop is
  * innermost and branch-free (rod.h and ct_add_comp are selects), so it vectorises; on x86-64 an
- * AVX2 clone is picked at load time when the CPU has it (no FMA: contraction is off under
- * -std=c11, and a fused multiply-add would change the rounding). */
+ * AVX-512 or AVX2 clone is picked at load time when the CPU has it (the same IEEE operations
+ * lane by lane, so the same bits; no FMA: contraction is off under -std=c11, and a fused
+ * multiply-add would change the rounding). */
 #define CT_NODE_CHUNK 64
 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                             \
     !defined(__SANITIZE_ADDRESS__)
-#define CT_CLONES __attribute__((target_clones("avx2", "default")))
+#define CT_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define CT_CLONES
 #endif
