@@ -307,10 +307,12 @@ static void finish_chunk(void *ctx, size_t c, size_t i0, size_t i1)
  * then two monotone runs, merged in O(n) (src/curve.c), where pieces in tree order would
  * cost a full merge sort per realisation. LSD radix sort, stable, on the tops' bit patterns
  * (positive doubles order as their bits) less the smallest: only the bits where the keys can
- * differ are sorted, in as few digits of at most RADIX_BITS bits as they need (five for
+ * differ are sorted, in as few digits of at most RADIX_BITS bits as they need (seven for
  * depth 16), each pass from one buffer to the other; digits that all keys share are skipped.
- * The permutation goes to m->piece, the sorted tops to `sorted`. */
-#define RADIX_BITS 11
+ * Bytes, not wider digits: a pass then scatters to 256 places per array, which the L1 cache
+ * holds (11-bit digits, five passes, took a quarter longer: docs/benchmarks.md). The
+ * permutation goes to m->piece, the sorted tops to `sorted`. */
+#define RADIX_BITS 8
 
 static int sort_by_top(random_meta *m, const double *top, double *sorted, int keep)
 {
