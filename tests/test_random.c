@@ -82,6 +82,46 @@ static void generator_and_keying(void **state)
     assert_int_equal(ct_random_cantor_ratios(&rc, 0, 127, &fx, &fz, NULL), CT_EINVAL);
 }
 
+/* The build draws its ratios a batch at a time (eight lanes at once where the CPU has
+ * AVX-512) and sorts the rods by a radix sort of their tops: every rod's top must be bitwise
+ * the piece's depth computed here in double from ct_random_cantor_ratios (one ratio at a
+ * time, by the very division of the builder), and the rods sorted by top with ties in piece
+ * order, spread 0 (every piece of a stage at one depth) included. */
+static void rods_bitwise_and_sorted(void **state)
+{
+    (void)state;
+    const ct_ratio_dist dists[2] = {CT_RATIO_UNIFORM, CT_RATIO_LOGNORMAL};
+    const double spreads[3] = {0.0, 0.05, 0.5};
+    for (int d = 0; d < 2; d++)
+        for (int q = 0; q < 3; q++) {
+            ct_random_cantor rc = surface(dists[d], spreads[q], spreads[q] / 2, 11);
+            const size_t n = ((size_t)2 << rc.depth) - 1;
+            double *h = malloc(n * sizeof *h);
+            h[0] = rc.params.h0;
+            for (size_t g = 1; g < n; g++) {
+                double fx, fz;
+                assert_int_equal(ct_random_cantor_ratios(&rc, 3, g, &fx, &fz, NULL), CT_OK);
+                h[g] = h[(g - 1) / 2] / fz;
+            }
+            ct_bundle *b;
+            assert_int_equal(ct_random_cantor_bundle(&b, &rc, 3, 1), CT_OK);
+            double prev_top = -INFINITY;
+            uint64_t prev_g = 0;
+            for (size_t k = 0; k < n; k++) {
+                uint64_t g;
+                ct_rod_info info;
+                assert_int_equal(ct_random_cantor_piece(b, k, &g), CT_OK);
+                assert_int_equal(ct_bundle_rod(b, k, &info), CT_OK);
+                assert_memory_equal(&info.top, &h[g], sizeof info.top);
+                assert_true(info.top > prev_top || (info.top == prev_top && g > prev_g));
+                prev_top = info.top;
+                prev_g = g;
+            }
+            free(h);
+            ct_bundle_free(b);
+        }
+}
+
 /* Every rod of a realisation against its piece recomputed from the drawn ratios: piece g's
  * width is l0 times the product of 1/(2 fx_k) down its path, its depth h0 divided by the
  * product of the fz_k; a middle keeps the width less its two children's, a tip all of it. */
@@ -404,6 +444,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(generator_and_keying),
         cmocka_unit_test(rods_against_the_ratios),
+        cmocka_unit_test(rods_bitwise_and_sorted),
         cmocka_unit_test(ratio_distributions),
         cmocka_unit_test(clipping_is_counted),
         cmocka_unit_test(ratios_beyond_doubles),

@@ -38,13 +38,95 @@ static double unit_open(uint64_t r)
 #define RATIO_LOW (1.0 + DBL_EPSILON)
 #define FZ_HIGH (2.0 - DBL_EPSILON)
 
-static int draw(const ct_random_cantor *rc, uint64_t realisation, uint64_t g, double *fx_k,
-                double *fz_k)
+/* The generator's key for a realisation. */
+static philox4x64_key_t key_of(const ct_random_cantor *rc, uint64_t realisation)
+{
+    const philox4x64_key_t key = {{rc->seed, realisation}};
+    return key;
+}
+
+/* The two words of piece g's block that the ratios use (the other two are not needed). */
+static void words_of(philox4x64_key_t key, uint64_t g, uint64_t *w0, uint64_t *w1)
 {
     const philox4x64_ctr_t ctr = {{g, 0, 0, 0}};
-    const philox4x64_key_t key = {{rc->seed, realisation}};
     const philox4x64_ctr_t r = philox4x64(ctr, key);
-    const double u0 = unit_open(r.v[0]), u1 = unit_open(r.v[1]);
+    *w0 = r.v[0];
+    *w1 = r.v[1];
+}
+
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__SANITIZE_ADDRESS__)
+#include <immintrin.h>
+#define CT_PHILOX_X8 1
+
+/* The high word of a x m (64 x 64 bits) in every lane, from 32-bit products: m's halves
+ * broadcast in m_lo and m_hi. */
+__attribute__((target("avx512f,avx512dq"))) static inline __m512i mulhi_x8(__m512i a, __m512i m_lo,
+                                                                           __m512i m_hi)
+{
+    const __m512i low32 = _mm512_set1_epi64(0xffffffffLL), a_hi = _mm512_srli_epi64(a, 32);
+    const __m512i p00 = _mm512_mul_epu32(a, m_lo), p01 = _mm512_mul_epu32(a, m_hi),
+                  p10 = _mm512_mul_epu32(a_hi, m_lo), p11 = _mm512_mul_epu32(a_hi, m_hi);
+    const __m512i mid =
+        _mm512_add_epi64(_mm512_add_epi64(_mm512_srli_epi64(p00, 32), _mm512_and_si512(p01, low32)),
+                         _mm512_and_si512(p10, low32));
+    return _mm512_add_epi64(
+        _mm512_add_epi64(p11, _mm512_srli_epi64(p01, 32)),
+        _mm512_add_epi64(_mm512_srli_epi64(p10, 32), _mm512_srli_epi64(mid, 32)));
+}
+
+/* words_of for pieces g0 .. g0 + 8 n - 1, eight at a time: Random123's Philox4x64-10 round
+ * for round (the same integer operations, so the same words). */
+__attribute__((target("avx512f,avx512dq"))) static void
+words_x8(philox4x64_key_t key, uint64_t g0, size_t n, uint64_t *w0, uint64_t *w1)
+{
+    const __m512i m0 = _mm512_set1_epi64((long long)PHILOX_M4x64_0),
+                  m1 = _mm512_set1_epi64((long long)PHILOX_M4x64_1),
+                  m0_lo = _mm512_set1_epi64((long long)(PHILOX_M4x64_0 & 0xffffffffu)),
+                  m0_hi = _mm512_set1_epi64((long long)(PHILOX_M4x64_0 >> 32)),
+                  m1_lo = _mm512_set1_epi64((long long)(PHILOX_M4x64_1 & 0xffffffffu)),
+                  m1_hi = _mm512_set1_epi64((long long)(PHILOX_M4x64_1 >> 32)),
+                  lane = _mm512_set_epi64(7, 6, 5, 4, 3, 2, 1, 0), zero = _mm512_setzero_si512();
+    for (size_t b = 0; b < n; b++) {
+        __m512i v0 = _mm512_add_epi64(_mm512_set1_epi64((long long)(g0 + 8 * b)), lane), v1 = zero,
+                v2 = zero, v3 = zero;
+        uint64_t k0 = key.v[0], k1 = key.v[1];
+        for (int round = 0; round < 10; round++) {
+            if (round) { /* bumpkey */
+                k0 += PHILOX_W64_0;
+                k1 += PHILOX_W64_1;
+            }
+            const __m512i lo0 = _mm512_mullo_epi64(v0, m0), hi0 = mulhi_x8(v0, m0_lo, m0_hi);
+            const __m512i lo1 = _mm512_mullo_epi64(v2, m1), hi1 = mulhi_x8(v2, m1_lo, m1_hi);
+            v0 = _mm512_xor_si512(_mm512_xor_si512(hi1, v1), _mm512_set1_epi64((long long)k0));
+            v1 = lo1;
+            v2 = _mm512_xor_si512(_mm512_xor_si512(hi0, v3), _mm512_set1_epi64((long long)k1));
+            v3 = lo0;
+        }
+        _mm512_storeu_si512(w0 + 8 * b, v0);
+        _mm512_storeu_si512(w1 + 8 * b, v1);
+    }
+}
+#endif
+
+/* words_of for pieces g0 .. g0 + n - 1, eight lanes at a time where the CPU has AVX-512. */
+static void words_many(philox4x64_key_t key, uint64_t g0, size_t n, uint64_t *w0, uint64_t *w1)
+{
+    size_t done = 0;
+#ifdef CT_PHILOX_X8
+    if (n >= 8 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
+        words_x8(key, g0, n / 8, w0, w1);
+        done = n / 8 * 8;
+    }
+#endif
+    for (size_t i = done; i < n; i++)
+        words_of(key, g0 + i, &w0[i], &w1[i]);
+}
+
+/* The ratios of a piece from its two words; returns which were clipped (1: fx, 2: fz). */
+static int ratios_of(const ct_random_cantor *rc, uint64_t w0, uint64_t w1, double *fx_k,
+                     double *fz_k)
+{
+    const double u0 = unit_open(w0), u1 = unit_open(w1);
     double x, z;
     if (rc->dist == CT_RATIO_UNIFORM) {
         /* spread 0: 1 + 0 (2u - 1) is exactly 1, so the centre itself */
@@ -75,6 +157,14 @@ static int draw(const ct_random_cantor *rc, uint64_t realisation, uint64_t g, do
     *fx_k = x;
     *fz_k = z;
     return clipped;
+}
+
+static int draw(const ct_random_cantor *rc, uint64_t realisation, uint64_t g, double *fx_k,
+                double *fz_k)
+{
+    uint64_t w0, w1;
+    words_of(key_of(rc, realisation), g, &w0, &w1);
+    return ratios_of(rc, w0, w1, fx_k, fz_k);
 }
 
 int ct_random_cantor_validate(const ct_random_cantor *rc)
@@ -247,30 +337,39 @@ typedef struct {
                            below the smallest normal double in [3c + 2] */
 } split_ctx;
 
+#define SPLIT_BATCH 256 /* pieces whose children's words are drawn together */
+
 /* Splits pieces [i0, i1) of a stage: the children's widths and depths, then the middle's
- * area. Everything written for piece g depends on g alone. */
+ * area. Everything written for piece g depends on g alone. The children of consecutive
+ * pieces are consecutive pieces, so their words are drawn a batch at a time. */
 static void split_chunk(void *ctx, size_t c, size_t i0, size_t i1)
 {
     split_ctx *s = ctx;
     uint64_t nx = 0, nz = 0, nw = 0;
-    for (size_t j = i0; j < i1; j++) {
-        const size_t g = s->stage_first + j, gl = 2 * g + 1, gr = 2 * g + 2;
-        const double w = s->area[g], h = s->top[g];
-        double fl, zl, fr, zr, wl, wr, ll, lr;
-        int cl = draw(s->rc, s->realisation, gl, &fl, &zl);
-        int cr = draw(s->rc, s->realisation, gr, &fr, &zr);
-        nx += (uint64_t)(cl & 1) + (uint64_t)(cr & 1);
-        nz += (uint64_t)(cl >> 1) + (uint64_t)(cr >> 1);
-        child_extent(w, 0.0, fl, 0, &wl, &ll);
-        child_extent(w, 0.0, fr, 1, &wr, &lr);
-        s->area[gl] = wl;
-        s->area[gr] = wr;
-        s->top[gl] = h / zl;
-        s->top[gr] = h / zr;
-        /* the middle: w (1 - 1/(2 f_l) - 1/(2 f_r)) as w ((f_l - 1)/f_l + (f_r - 1)/f_r) / 2,
-         * which does not cancel as the ratios approach 1 (f - 1 is exact for f in [1, 2]) */
-        s->area[g] = w * (0.5 * ((fl - 1.0) / fl + (fr - 1.0) / fr));
-        nw += !(wl >= DBL_MIN) + !(wr >= DBL_MIN) + !(s->area[g] >= DBL_MIN);
+    const philox4x64_key_t key = key_of(s->rc, s->realisation);
+    uint64_t w0[2 * SPLIT_BATCH], w1[2 * SPLIT_BATCH];
+    for (size_t b0 = i0; b0 < i1; b0 += SPLIT_BATCH) {
+        const size_t b1 = b0 + SPLIT_BATCH < i1 ? b0 + SPLIT_BATCH : i1;
+        words_many(key, 2 * (s->stage_first + b0) + 1, 2 * (b1 - b0), w0, w1);
+        for (size_t j = b0; j < b1; j++) {
+            const size_t g = s->stage_first + j, gl = 2 * g + 1, gr = 2 * g + 2, q = 2 * (j - b0);
+            const double w = s->area[g], h = s->top[g];
+            double fl, zl, fr, zr, wl, wr, ll, lr;
+            int cl = ratios_of(s->rc, w0[q], w1[q], &fl, &zl);
+            int cr = ratios_of(s->rc, w0[q + 1], w1[q + 1], &fr, &zr);
+            nx += (uint64_t)(cl & 1) + (uint64_t)(cr & 1);
+            nz += (uint64_t)(cl >> 1) + (uint64_t)(cr >> 1);
+            child_extent(w, 0.0, fl, 0, &wl, &ll);
+            child_extent(w, 0.0, fr, 1, &wr, &lr);
+            s->area[gl] = wl;
+            s->area[gr] = wr;
+            s->top[gl] = h / zl;
+            s->top[gr] = h / zr;
+            /* the middle: w (1 - 1/(2 f_l) - 1/(2 f_r)) as w ((f_l - 1)/f_l + (f_r - 1)/f_r) / 2,
+             * which does not cancel as the ratios approach 1 (f - 1 is exact for f in [1, 2]) */
+            s->area[g] = w * (0.5 * ((fl - 1.0) / fl + (fr - 1.0) / fr));
+            nw += !(wl >= DBL_MIN) + !(wr >= DBL_MIN) + !(s->area[g] >= DBL_MIN);
+        }
     }
     s->clipped[3 * c] = nx;
     s->clipped[3 * c + 1] = nz;
