@@ -232,28 +232,81 @@ static void count_runs(ct_curve *c, const rods_in *r, size_t j)
     c->block_runs[j + 1] = runs;
 }
 
+/* The events of the run of identical rods that starts at rod k (and ends before k1, the end
+ * of its block): its contact and its yield. Returns the rod after the run. */
+static inline size_t run_events(const rods_in *r, size_t k, size_t k1, event *contact_ev,
+                                event *yield_ev)
+{
+    size_t l;
+    const double s = ct_run_area(r->top, r->length, r->eps_p, r->area, k, k1, &l);
+    ct_run_events(r->top[k], r->length[k], r->eps_p[k], s, r->E, r->eps_y, contact_ev, yield_ev);
+    return l;
+}
+
 /* Pass 2 for block j: a contact and a yield event per run, contacts first. */
 static void block_events(ct_curve *c, const rods_in *r, size_t j)
 {
-    const double *top = r->top, *length = r->length, *area = r->area, *eps_p = r->eps_p;
-    const double E = r->E, eps_y = r->eps_y;
     size_t k0 = j * CT_BLOCK, k1 = k0 + CT_BLOCK < r->n ? k0 + CT_BLOCK : r->n;
     size_t out = c->block_runs[j];
     event *ev = c->ev;
-    for (size_t k = k0; k < k1;) {
-        size_t l;
-        const double s = ct_run_area(top, length, eps_p, area, k, k1, &l);
-        ct_run_events(top[k], length[k], eps_p[k], s, E, eps_y, &ev[out], &ev[r->nruns + out]);
-        out++;
-        k = l;
+    for (size_t k = k0; k < k1; out++)
+        k = run_events(r, k, k1, &ev[out], &ev[r->nruns + out]);
+}
+
+/* The next run's contact (yields = 0) or yield event, from rod *k; *end is the end of its
+ * block (a block's start begins a run). */
+static inline void next_event(const rods_in *r, int yields, size_t *k, size_t *end, event *e)
+{
+    event unused;
+    if (*k == *end)
+        *end = *k + CT_BLOCK < r->n ? *k + CT_BLOCK : r->n;
+    *k = yields ? run_events(r, *k, *end, &unused, e) : run_events(r, *k, *end, e, &unused);
+}
+
+/* Pass 2 in one, when the contacts in rod order have strictly increasing x, so do the yields,
+ * and no contact shares its x with a yield (a virgin bundle sorted by top, such as a random
+ * Cantor realisation): the two are merged as they are made, into the only order `less` then
+ * allows, which sort_events finds as one run; without laying them out and merging them
+ * after. Returns 0 at the first x out of order, shared or NaN, leaving ev to the general
+ * pass. */
+static int merged_events(ct_curve *c, const rods_in *r)
+{
+    const size_t nruns = r->nruns;
+    event *ev = c->ev, ce, ye;
+    size_t kc = 0, endc = 0, ky = 0, endy = 0, nc = 0, ny = 0, out = 0;
+    double last_c = -INFINITY, last_y = -INFINITY;
+    next_event(r, 0, &kc, &endc, &ce);
+    next_event(r, 1, &ky, &endy, &ye);
+    while (ny < nruns) {
+        if (nc < nruns && ce.x < ye.x) {
+            if (!(ce.x > last_c))
+                return 0;
+            last_c = ce.x;
+            ev[out++] = ce;
+            if (++nc < nruns)
+                next_event(r, 0, &kc, &endc, &ce);
+        } else if (nc == nruns || ye.x < ce.x) {
+            if (!(ye.x > last_y))
+                return 0;
+            last_y = ye.x;
+            ev[out++] = ye;
+            if (++ny < nruns)
+                next_event(r, 1, &ky, &endy, &ye);
+        } else {
+            return 0;
+        }
     }
+    return nc == nruns;
 }
 
 /* Runs a pass (count_runs or block_events) over the nb blocks, by the thread team when there
- * is one (it pays only on large bundles: entering one costs more than a small curve). */
+ * is one (it pays only on large bundles: entering one costs more than a small curve). Pass 2
+ * without a team first tries the events merged as they are made. */
 static void block_pass(ct_curve *c, const rods_in *r, size_t nb, int team,
                        void (*pass)(ct_curve *c, const rods_in *r, size_t j))
 {
+    if (pass == block_events && team <= 1 && merged_events(c, r))
+        return;
     if (team > 1) {
 #pragma omp parallel for schedule(static) num_threads(team)
         for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++)
