@@ -301,12 +301,13 @@ static int merged_events(ct_curve *c, const rods_in *r)
 
 /* Runs a pass (count_runs or block_events) over the nb blocks, by the thread team when there
  * is one (it pays only on large bundles: entering one costs more than a small curve). Pass 2
- * without a team first tries the events merged as they are made. */
-static void block_pass(ct_curve *c, const rods_in *r, size_t nb, int team,
-                       void (*pass)(ct_curve *c, const rods_in *r, size_t j))
+ * without a team first tries the events merged as they are made; returns 1 when they were
+ * (sorted already: every x distinct). */
+static int block_pass(ct_curve *c, const rods_in *r, size_t nb, int team,
+                      void (*pass)(ct_curve *c, const rods_in *r, size_t j))
 {
     if (pass == block_events && team <= 1 && merged_events(c, r))
-        return;
+        return 1;
     if (team > 1) {
 #pragma omp parallel for schedule(static) num_threads(team)
         for (ptrdiff_t j = 0; j < (ptrdiff_t)nb; j++)
@@ -315,6 +316,7 @@ static void block_pass(ct_curve *c, const rods_in *r, size_t nb, int team,
         for (size_t j = 0; j < nb; j++)
             pass(c, r, j);
     }
+    return 0;
 }
 
 size_t ct_curve_events(const ct_bundle *b)
@@ -373,23 +375,33 @@ static int room_for_events(ct_curve *c, size_t n, size_t ne)
 }
 
 /* The sweep over the sorted events c->ev[0..ne): the breakpoints and their P, W, D, slope,
- * yielded force and longest yielded rod (-1: out of memory). */
-static int sweep_events(ct_curve *c, size_t ne)
+ * yielded force and longest yielded rod; into cmin, the smallest contact of the rods that yield
+ * at each breakpoint, for contacts_below (-1: out of memory). distinct: every x differs (the
+ * merged events), so that there are ne breakpoints. */
+static int sweep_events(ct_curve *c, size_t ne, int distinct)
 {
     const event *ev = c->ev;
-    size_t nx = 1;
-    for (size_t i = 1; i < ne; i++)
-        nx += ev[i].x != ev[i - 1].x;
+    size_t nx = ne;
+    if (!distinct) {
+        nx = 1;
+        for (size_t i = 1; i < ne; i++)
+            nx += ev[i].x != ev[i - 1].x;
+    }
     if (reserve_points(c, nx))
         return -1;
     ct_sweep_state st = {0};
     size_t i = 0;
     while (i < ne) {
         const double x = ev[i].x;
+        double yc = INFINITY; /* of equal contacts the last, as contacts_below's scan takes */
         ct_sweep_to(&st, x);
-        for (; i < ne && ev[i].x == x; i++)
-            if (ct_sweep_event(&st, &ev[i]) && x < c->first_yield)
+        for (; i < ne && ev[i].x == x; i++) {
+            const int yield = ct_sweep_event(&st, &ev[i]);
+            if (yield && x < c->first_yield)
                 c->first_yield = x;
+            if (yield && ev[i].c <= yc)
+                yc = ev[i].c;
+        }
         const size_t j = st.j;
         ct_point p;
         ct_sweep_point(&st, x, &p);
@@ -400,25 +412,24 @@ static int sweep_events(ct_curve *c, size_t ne)
         c->slope[j] = p.slope;
         c->A[j] = p.A;
         c->Lmax[j] = p.Lmax;
+        c->cmin[j] = yc;
     }
     c->n = st.j;
     return 0;
 }
 
 /* At every breakpoint, the smallest contact of the rods still below their yield point: a
- * suffix minimum over the yields. */
-static void contacts_below(ct_curve *c, size_t ne)
+ * suffix minimum over the yields after it, from the sweep's smallest contact yielding at each
+ * breakpoint (in place: of equal contacts the one yielding last, as a scan back over the
+ * events would take). */
+static void contacts_below(ct_curve *c)
 {
-    const event *ev = c->ev;
     double cm = INFINITY;
-    size_t e = ne;
     for (size_t q = c->n; q-- > 0;) {
+        const double yc = c->cmin[q];
         c->cmin[q] = cm;
-        while (e > 0 && ev[e - 1].x >= c->x[q]) {
-            e--;
-            if (signbit(ev[e].dk) && ev[e].c < cm)
-                cm = ev[e].c;
-        }
+        if (yc < cm)
+            cm = yc;
     }
 }
 
@@ -446,7 +457,7 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
     if (grow((void **)&c->block_runs, &c->bcap, nb + 1, sizeof(size_t)))
         goto oom;
     rods_in rods = {top, length, area, eps_p, n, L->E, eps_y, 0};
-    block_pass(c, &rods, nb, team, count_runs); /* pass 1: rod runs per block */
+    (void)block_pass(c, &rods, nb, team, count_runs); /* pass 1: rod runs per block */
     c->block_runs[0] = 0;
     for (size_t j = 0; j < nb; j++)
         c->block_runs[j + 1] += c->block_runs[j];
@@ -458,12 +469,14 @@ int ct_curve_build(ct_curve *c, const ct_bundle *b)
         return st;
     if (st)
         goto oom;
-    block_pass(c, &rods, nb, team, block_events); /* pass 2: contacts in rod order, then yields */
-    sort_events(c, ne, team);
+    /* pass 2: contacts in rod order, then yields; sorted unless merged as they were made */
+    const int merged = block_pass(c, &rods, nb, team, block_events);
+    if (!merged)
+        sort_events(c, ne, team);
     c->ne = ne;
-    if (sweep_events(c, ne))
+    if (sweep_events(c, ne, merged))
         goto oom;
-    contacts_below(c, ne);
+    contacts_below(c);
     return CT_OK;
 oom:
     c->n = 0;
