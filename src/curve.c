@@ -258,6 +258,15 @@ static void block_events(ct_curve *c, const rods_in *r, size_t j)
 static inline void next_event(const rods_in *r, int yields, size_t *k, size_t *end, event *e)
 {
     event unused;
+    /* every run one rod (a random Cantor realisation): ct_run_area's sum of one area, without
+     * looking for a next rod like it nor for the block's end */
+    if (r->nruns == r->n) {
+        const size_t l = (*k)++;
+        const double s = r->area[l] + 0.0;
+        ct_run_events(r->top[l], r->length[l], r->eps_p[l], s, r->E, r->eps_y, yields ? &unused : e,
+                      yields ? e : &unused);
+        return;
+    }
     if (*k == *end)
         *end = *k + CT_BLOCK < r->n ? *k + CT_BLOCK : r->n;
     *k = yields ? run_events(r, *k, *end, &unused, e) : run_events(r, *k, *end, e, &unused);
