@@ -259,7 +259,8 @@ static inline void next_event(const rods_in *r, int yields, size_t *k, size_t *e
 {
     event unused;
     /* every run one rod (a random Cantor realisation): ct_run_area's sum of one area, without
-     * looking for a next rod like it nor for the block's end */
+     * looking for a next rod like it nor for the block's end (with longer runs, rod by rod
+     * would give the merge equal x and send it to the general passes) */
     if (r->nruns == r->n) {
         const size_t l = (*k)++;
         const double s = r->area[l] + 0.0;
@@ -383,10 +384,40 @@ static int room_for_events(ct_curve *c, size_t n, size_t ne)
     return CT_OK;
 }
 
+/* The sweep's breakpoint at x = ev[i].x: the events there (from i on, before end), then its
+ * values and, into cmin, the smallest contact of the rods that yield there, for
+ * contacts_below. Returns the event after them. */
+static inline size_t sweep_breakpoint(ct_curve *c, ct_sweep_state *st, const event *ev, size_t i,
+                                      size_t end)
+{
+    const double x = ev[i].x;
+    double yc = INFINITY; /* of equal contacts the last, as contacts_below's scan takes */
+    ct_sweep_to(st, x);
+    for (; i < end && ev[i].x == x; i++) {
+        const int yield = ct_sweep_event(st, &ev[i]);
+        if (yield && x < c->first_yield)
+            c->first_yield = x;
+        if (yield && ev[i].c <= yc)
+            yc = ev[i].c;
+    }
+    const size_t j = st->j;
+    ct_point p;
+    ct_sweep_point(st, x, &p);
+    c->x[j] = p.x;
+    c->P[j] = p.P;
+    c->W[j] = p.W;
+    c->D[j] = p.D;
+    c->slope[j] = p.slope;
+    c->A[j] = p.A;
+    c->Lmax[j] = p.Lmax;
+    c->cmin[j] = yc;
+    return i;
+}
+
 /* The sweep over the sorted events c->ev[0..ne): the breakpoints and their P, W, D, slope,
  * yielded force and longest yielded rod; into cmin, the smallest contact of the rods that yield
  * at each breakpoint, for contacts_below (-1: out of memory). distinct: every x differs (the
- * merged events), so that there are ne breakpoints. */
+ * merged events), so that there are ne breakpoints of one event each. */
 static int sweep_events(ct_curve *c, size_t ne, int distinct)
 {
     const event *ev = c->ev;
@@ -399,29 +430,12 @@ static int sweep_events(ct_curve *c, size_t ne, int distinct)
     if (reserve_points(c, nx))
         return -1;
     ct_sweep_state st = {0};
-    size_t i = 0;
-    while (i < ne) {
-        const double x = ev[i].x;
-        double yc = INFINITY; /* of equal contacts the last, as contacts_below's scan takes */
-        ct_sweep_to(&st, x);
-        for (; i < ne && ev[i].x == x; i++) {
-            const int yield = ct_sweep_event(&st, &ev[i]);
-            if (yield && x < c->first_yield)
-                c->first_yield = x;
-            if (yield && ev[i].c <= yc)
-                yc = ev[i].c;
-        }
-        const size_t j = st.j;
-        ct_point p;
-        ct_sweep_point(&st, x, &p);
-        c->x[j] = p.x;
-        c->P[j] = p.P;
-        c->W[j] = p.W;
-        c->D[j] = p.D;
-        c->slope[j] = p.slope;
-        c->A[j] = p.A;
-        c->Lmax[j] = p.Lmax;
-        c->cmin[j] = yc;
+    if (distinct) {
+        for (size_t i = 0; i < ne; i++)
+            sweep_breakpoint(c, &st, ev, i, i + 1);
+    } else {
+        for (size_t i = 0; i < ne;)
+            i = sweep_breakpoint(c, &st, ev, i, ne);
     }
     c->n = st.j;
     return 0;
