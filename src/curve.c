@@ -509,15 +509,7 @@ oom:
 /* Largest j with x_j <= u (u >= x_0). */
 static size_t piece(const ct_curve *c, double u)
 {
-    size_t lo = 0, hi = c->n; /* x[lo] <= u < x[hi] (x[n] = +inf) */
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (c->x[mid] <= u)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return lo;
+    return ct_last_at_most(c->x, c->n, u);
 }
 
 /* The lean curve's breakpoint at u (u > its first contact). */
@@ -614,14 +606,7 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
         ct_lean_piece_of_work(c->lean, W, &p, &x_next);
         return inverse_on(p.x, p.W, p.P, p.slope, x_next, W);
     }
-    size_t lo = 0, hi = c->n; /* W[lo] <= W < W[hi] (W[n] = +inf) */
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (c->W[mid] <= W)
-            lo = mid;
-        else
-            hi = mid;
-    }
+    const size_t lo = ct_last_at_most(c->W, c->n, W), hi = lo + 1; /* W[lo] <= W < W[hi] */
     return inverse_on(c->x[lo], c->W[lo], c->P[lo], c->slope[lo], hi < c->n ? c->x[hi] : INFINITY,
                       W);
 }

@@ -71,6 +71,21 @@ static inline void ct_run_events(double top, double length, double eps_p, double
     *yield_ev = (event){yield, -slope, F, F - slope * (yield - contact), length, contact};
 }
 
+/* The largest j with v[j] <= u among v[0..n) sorted ascending (0 when none is): where a
+ * breakpoint's x or W is sought, in either build (n >= 1). */
+static inline size_t ct_last_at_most(const double *v, size_t n, double u)
+{
+    size_t lo = 0, hi = n; /* v[lo] <= u < v[hi] (v[n] = +inf) */
+    while (hi - lo > 1) {
+        const size_t mid = lo + (hi - lo) / 2;
+        if (v[mid] <= u)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
 /* The sweep over the sorted events, one statement for both builds: its state before a
  * breakpoint, and what a breakpoint holds. At each x: ct_sweep_to(x), ct_sweep_event for every
  * event at x in the events' order, ct_sweep_point. Every increment of P, W and D is >= 0 and

@@ -390,23 +390,9 @@ double ct_lean_first_yield(const ct_lean *L)
     return L->first_yield;
 }
 
-/* The last checkpoint at or before the breakpoint sought: largest q with v[q] <= u. */
-static size_t search(const double *v, size_t n, double u)
-{
-    size_t lo = 0, hi = n;
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (v[mid] <= u)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return lo;
-}
-
 void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin)
 {
-    const size_t q = search(L->cx, L->ncp, u);
+    const size_t q = ct_last_at_most(L->cx, L->ncp, u);
     ct_sweep_state s = L->cp[q];
     double cm = INFINITY;
     step(L, &s, p, NULL);
@@ -422,7 +408,7 @@ void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin)
 
 void ct_lean_piece_of_work(const ct_lean *L, double W, ct_point *p, double *x_next)
 {
-    const size_t q = search(L->cW, L->ncp, W);
+    const size_t q = ct_last_at_most(L->cW, L->ncp, W);
     ct_sweep_state s = L->cp[q];
     step(L, &s, p, NULL);
     *x_next = INFINITY;

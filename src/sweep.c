@@ -564,23 +564,6 @@ typedef struct {
     ct_dyn_work *dw;                 /* the impacts in time */
 } sweep_ws;
 
-static void sweep_ws_free(sweep_ws *w, const ct_sweep_spec *s)
-{
-    ct_dyn_work_free(w->dw);
-    if (w->first != s->curve)
-        ct_curve_free(w->first);
-    ct_curve_free(w->later);
-    ct_bundle_free(w->work);
-    free(w->adv);
-    free(w->u0);
-    free(w->u1);
-    free(w->Wl);
-    free(w->Wu);
-    free(w->slot);
-    free(w->by_state);
-    free(w->check);
-}
-
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
  * maximum U sees the first curve shifted (ct_impact_on_curve), and impacts of equal energy
  * always do, so every impact costs O(log n). A speed with an impact that stays below U is
@@ -782,6 +765,14 @@ static void sweep_ws_end_block(sweep_ws *w)
     w->by_state = w->check = NULL;
     w->later = NULL;
     w->work = NULL;
+}
+
+static void sweep_ws_free(sweep_ws *w, const ct_sweep_spec *s)
+{
+    ct_dyn_work_free(w->dw);
+    if (w->first != s->curve)
+        ct_curve_free(w->first);
+    sweep_ws_end_block(w);
 }
 
 /* The rows of s's speeds (a block of a sweep, or all of it) on the prepared curve, the check

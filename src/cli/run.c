@@ -204,6 +204,23 @@ static void show_progress(size_t done, size_t total, void *ctx)
         ct_progress_step(prog);
 }
 
+/* The scene's sweep (speeds, impacts, rule, path, the time columns), progress into prog: the
+ * whole sweep and the streamed one start from it. */
+static ct_sweep_spec spec_of(const ct_scene *sc, ct_progress *prog)
+{
+    return (ct_sweep_spec){
+        .V_star = sc->V_star,
+        .nvel = sc->nvel,
+        .impacts = sc->impacts,
+        .opts = sc->opts,
+        .stop_on_error = !sc->skip_failed,
+        .progress = show_progress,
+        .progress_ctx = prog,
+        .path = sc->path,
+        .dynamics = !!(sc->what & CT_OUT_TIME),
+    };
+}
+
 /* ---- the e table ---- */
 
 static void field(FILE *f, double x, int digits)
@@ -431,19 +448,9 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, 
     }
     ct_progress prog;
     ct_progress_start(&prog, sc->nvel);
-    ct_sweep_spec spec = {
-        .V_star = sc->V_star,
-        .nvel = sc->nvel,
-        .impacts = sc->impacts,
-        .opts = sc->opts,
-        .stop_on_error = !sc->skip_failed,
-        .progress = show_progress,
-        .progress_ctx = &prog,
-        .observe = (obs.curve || obs.profile || obs.history) ? observe : NULL,
-        .observe_ctx = &obs,
-        .path = sc->path,
-        .dynamics = !!(sc->what & CT_OUT_TIME),
-    };
+    ct_sweep_spec spec = spec_of(sc, &prog);
+    spec.observe = (obs.curve || obs.profile || obs.history) ? observe : NULL;
+    spec.observe_ctx = &obs;
     st = ct_sweep(b, &spec, rows);
     ct_progress_end(&prog);
     ct_curve_free(obs.post);
@@ -516,17 +523,7 @@ static int sweep_streamed(ct_scene *sc, output_list *outs, const ct_bundle *b, i
 {
     ct_progress prog;
     ct_progress_start(&prog, sc->nvel);
-    ct_sweep_spec spec = {
-        .V_star = sc->V_star,
-        .nvel = sc->nvel,
-        .impacts = sc->impacts,
-        .opts = sc->opts,
-        .stop_on_error = !sc->skip_failed,
-        .progress = show_progress,
-        .progress_ctx = &prog,
-        .path = sc->path,
-        .dynamics = !!(sc->what & CT_OUT_TIME),
-    };
+    const ct_sweep_spec spec = spec_of(sc, &prog);
     stream_ctx c = {output_file(outs, CT_OUT_E), sc, {0}, EXIT_DONE};
     int st = ct_sweep_blocks(b, &spec, block_speeds(sc), emit_rows, &c);
     ct_progress_end(&prog);
