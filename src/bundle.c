@@ -156,22 +156,26 @@ void ct_bundle_free(ct_bundle *b)
     free(b);
 }
 
-/* A rod array. Large ones are 2 MiB aligned and asked for transparent huge pages: on a
- * depth-26 bundle (4.3 GB) the kernel's page faults and page clearing otherwise cost more
- * than the whole computation. */
-static double *rod_array(size_t n)
+void *ct_huge_alloc(size_t bytes)
 {
-    const size_t huge = (size_t)2 << 20, bytes = n * sizeof(double);
+    const size_t huge = (size_t)2 << 20;
     if (bytes < huge)
-        return malloc(bytes);
+        return malloc(bytes ? bytes : 1);
     void *p = NULL;
     size_t rounded = (bytes + huge - 1) / huge * huge;
-    if (posix_memalign(&p, huge, rounded))
+    if (rounded < bytes || posix_memalign(&p, huge, rounded))
         return NULL;
 #ifdef MADV_HUGEPAGE
     madvise(p, rounded, MADV_HUGEPAGE); /* advice only: failure changes nothing */
 #endif
     return p;
+}
+
+/* A rod array (see ct_huge_alloc: on a depth-26 bundle, 4.3 GB, the kernel's page faults and
+ * page clearing otherwise cost more than the whole computation). */
+static double *rod_array(size_t n)
+{
+    return ct_huge_alloc(n * sizeof(double));
 }
 
 int ct_bundle_create(ct_bundle **out, const ct_layer *layer, size_t n, const char *what)
