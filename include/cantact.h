@@ -465,7 +465,7 @@ typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundl
 
 /* How a sweep evaluates impacts. The curve answers each speed in O(log n) after a build that
  * costs about 170 bytes per rod event; the lean curve gives the same answers, bit for bit,
- * from its sorted events (16 bytes each, the rods read from the bundle) and a checkpoint of
+ * from its sorted events (16 bytes each, a yield's rod read from the bundle) and a checkpoint of
  * the sums every 32 breakpoints, at O(log n + 32) per query (about 48 bytes per rod while
  * built, 36 after); the rod path holds nothing but the bundle and solves all speeds together
  * by Newton's method on the closed forms summed rod by rod (a few tens of passes over the

@@ -1,13 +1,15 @@
 /* The lean load curve (CT_PATH_LEAN): the same piecewise-linear P(u) as ct_curve_build, held as
  * the sorted events themselves instead of the breakpoints' arrays.
  *
- * An event is 16 bytes: where it is and the first rod of its run; everything else (the run's
- * summed area, slope, plateau force, ...) is recomputed from the bundle's rods by the same code
- * the full build uses (curve_event.h). Contacts and yields are sorted apart (a radix sort on
- * x, then the ties in the events' total order) and merged as they are swept, which is the
- * full build's order. Every K-th breakpoint keeps the sweep's state (its compensated sums);
- * a query finds its breakpoint among those and sweeps on from there, so it gets the very
- * doubles the full curve holds, in O(log n + K).
+ * An event is 16 bytes: where it is and, for a contact, its slope change (a contact has no
+ * other field); for a yield, the first rod of its run, everything else (the run's summed area,
+ * slope, plateau force, ...) recomputed from the bundle's rods by the same code the full build
+ * uses (curve_event.h). So the sweep reads the bundle, in scattered order, for the yields
+ * alone: with the contacts read too, those reads were half of a 4096² map's run. Contacts and
+ * yields are sorted apart (a radix sort on x, then the ties in the events' total order) and merged
+ * as they are swept, which is the full build's order. Every K-th breakpoint keeps the sweep's state
+ * (its compensated sums); a query finds its breakpoint among those and sweeps on from there, so it
+ * gets the very doubles the full curve holds, in O(log n + K).
  *
  * Memory: 32 bytes per run of rods (two events) plus a checkpoint per K breakpoints, and 16
  * more per run while sorting, against about 300 for the full curve. The bundle's arrays are
