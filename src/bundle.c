@@ -156,26 +156,22 @@ void ct_bundle_free(ct_bundle *b)
     free(b);
 }
 
-void *ct_huge_alloc(size_t bytes)
+/* A rod array. Large ones are 2 MiB aligned and asked for transparent huge pages: on a
+ * depth-26 bundle (4.3 GB) the kernel's page faults and page clearing otherwise cost more
+ * than the whole computation. */
+static double *rod_array(size_t n)
 {
-    const size_t huge = (size_t)2 << 20;
+    const size_t huge = (size_t)2 << 20, bytes = n * sizeof(double);
     if (bytes < huge)
-        return malloc(bytes ? bytes : 1);
+        return malloc(bytes);
     void *p = NULL;
     size_t rounded = (bytes + huge - 1) / huge * huge;
-    if (rounded < bytes || posix_memalign(&p, huge, rounded))
+    if (posix_memalign(&p, huge, rounded))
         return NULL;
 #ifdef MADV_HUGEPAGE
     madvise(p, rounded, MADV_HUGEPAGE); /* advice only: failure changes nothing */
 #endif
     return p;
-}
-
-/* A rod array (see ct_huge_alloc: on a depth-26 bundle, 4.3 GB, the kernel's page faults and
- * page clearing otherwise cost more than the whole computation). */
-static double *rod_array(size_t n)
-{
-    return ct_huge_alloc(n * sizeof(double));
 }
 
 int ct_bundle_create(ct_bundle **out, const ct_layer *layer, size_t n, const char *what)

@@ -274,8 +274,8 @@ static int fill_events(ct_lean *L)
     const double need = ct_lean_bytes(runs);
     if (need >= 64e6 && need > 0.9 * (double)ct_available_memory())
         return -2;
-    L->con = ct_huge_alloc(runs * sizeof *L->con);
-    L->yie = ct_huge_alloc(runs * sizeof *L->yie);
+    L->con = malloc((runs ? runs : 1) * sizeof *L->con);
+    L->yie = malloc((runs ? runs : 1) * sizeof *L->yie);
     if (!L->con || !L->yie)
         return -1;
     size_t r = 0, cap = 0;
@@ -371,7 +371,7 @@ int ct_lean_build(ct_lean **out, const ct_bundle *b)
     L->eps_y = lay->sigma_y / lay->E;
     int st = fill_events(L);
     if (!st) {
-        lev *tmp = ct_huge_alloc(L->nruns * sizeof *tmp);
+        lev *tmp = malloc((L->nruns ? L->nruns : 1) * sizeof *tmp);
         st =
             !tmp || sort_lean(L, L->con, tmp, L->nruns, 0) || sort_lean(L, L->yie, tmp, L->nruns, 1)
                 ? -1

@@ -180,10 +180,6 @@ int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result 
 /* CT_OK for an impact energy the solver can use: finite and a normal double (a subnormal W
  * has lost its digits, and 1/W overflows); CT_EINVAL naming V* otherwise. */
 int ct_energy_check(double W, double V_star);
-/* Memory for a large array (free() releases it): from 2 MiB on, 2 MiB aligned and asked for
- * transparent huge pages, which cut the kernel's page faults and, for arrays written in
- * scattered order (a radix sort's buckets), the TLB misses. */
-void *ct_huge_alloc(size_t bytes);
 /* k with 2^(k-1) <= max |z| < 2^k over the heights that are not NaN (0 when none is finite and
  * non-zero): heights far from 1 are summed in units of 2^k, an exact scaling (profile.c, fit.c). */
 int ct_heights_exponent(const double *z, size_t n);
