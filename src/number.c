@@ -235,3 +235,34 @@ void ct_put_long(FILE *f, long v)
         *--o = '-';
     put(f, o, (size_t)(d + sizeof d - o));
 }
+
+void ct_line_flush(ct_line *l)
+{
+    put(l->f, l->b, l->n);
+    l->n = 0;
+}
+
+void ct_line_long(ct_line *l, long v)
+{
+    char d[24], *o = d + sizeof d;
+    unsigned long a = v < 0 ? 0ul - (unsigned long)v : (unsigned long)v;
+    do
+        *--o = (char)('0' + a % 10);
+    while (a /= 10);
+    if (v < 0)
+        *--o = '-';
+    const size_t n = (size_t)(d + sizeof d - o);
+    memcpy(ct_line_room(l, n), o, n);
+    l->n += n;
+}
+
+void ct_line_str(ct_line *l, const char *s)
+{
+    for (size_t n = strlen(s); n > 0;) {
+        const size_t k = n < sizeof l->b ? n : sizeof l->b;
+        memcpy(ct_line_room(l, k), s, k);
+        l->n += k;
+        s += k;
+        n -= k;
+    }
+}

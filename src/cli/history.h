@@ -3,6 +3,7 @@
 #define CT_CLI_HISTORY_H
 
 #include "cantact.h"
+#include "number.h"
 #include "scene.h"
 
 #include <stdio.h>
@@ -11,7 +12,7 @@
  * names, after the others; with a mass also their twins in the scene's units. */
 void ct_cli_time_header(FILE *f, const ct_scene *sc);
 /* A row's time fields (empty for a failed row); layer: the units the rows were computed in. */
-void ct_cli_time_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row);
+void ct_cli_time_row(ct_line *l, const ct_scene *sc, const ct_sweep_row *row);
 /* The check of every run with time: e_kinematic equals the energy e to 1e-12 (beyond the
  * stated rounding); -1 with a message otherwise. */
 int ct_cli_time_check(const ct_sweep_row *row, char *err, size_t errlen);

@@ -223,15 +223,34 @@ static ct_sweep_spec spec_of(const ct_scene *sc, ct_progress *prog)
 
 /* ---- the e table ---- */
 
-static void field(FILE *f, double x, int digits)
+static void field(ct_line *l, double x, int digits)
 {
-    fputc(',', f);
+    ct_line_char(l, ',');
     if (isfinite(x)) {
         if (digits == 3)
-            ct_put_g3(f, x);
+            ct_line_g3(l, x);
         else
-            ct_put_double(f, x);
+            ct_line_double(l, x);
     }
+}
+
+/* The e table's columns after impact and V*: their places in ct_sweep_columns (chosen once:
+ * the table of columns is constant). */
+static size_t e_value_columns(const ct_column **cols, const size_t **at)
+{
+    static size_t idx[64], m = SIZE_MAX;
+    static const ct_column *c;
+    if (m == SIZE_MAX) {
+        const size_t n = ct_sweep_columns(&c);
+        m = 0;
+        for (size_t k = 0; k < n && m < sizeof idx / sizeof idx[0]; k++)
+            if (!strcmp(c[k].group, "e") && strcmp(c[k].name, "impact") &&
+                strcmp(c[k].name, "V_star"))
+                idx[m++] = k;
+    }
+    *cols = c;
+    *at = idx;
+    return m;
 }
 
 static void write_e_header(FILE *f, const ct_scene *sc)
@@ -260,37 +279,37 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, co
                         size_t ncmp)
 {
     const ct_column *cols;
-    const size_t n = ct_sweep_columns(&cols);
+    const size_t *at, n = e_value_columns(&cols, &at);
     const ct_layer *L = &sc->scales.layer;
-    ct_put_long(f, row->impact);
-    fputc(',', f);
-    ct_put_double(f, row->V_star);
-    for (size_t k = 0; k < n; k++) {
-        if (strcmp(cols[k].group, "e") || !strcmp(cols[k].name, "impact") ||
-            !strcmp(cols[k].name, "V_star"))
-            continue;
-        const double v = row->status ? NAN : ct_column_value(&cols[k], row, L);
-        if (cols[k].type != 'd' && !row->status) {
-            fputc(',', f);
-            ct_put_long(f, (long)v);
+    ct_line line = {.f = f}, *l = &line;
+    ct_line_long(l, row->impact);
+    ct_line_char(l, ',');
+    ct_line_double(l, row->V_star);
+    for (size_t q = 0; q < n; q++) {
+        const ct_column *c = &cols[at[q]];
+        const double v = row->status ? NAN : ct_column_value(c, row, L);
+        if (c->type != 'd' && !row->status) {
+            ct_line_char(l, ',');
+            ct_line_long(l, (long)v);
         } else {
-            field(f, v, cols[k].digits);
+            field(l, v, c->digits);
         }
     }
     for (size_t q = 0; q < ncmp; q++)
-        field(f, row->status ? NAN : cmp[q], 17);
+        field(l, row->status ? NAN : cmp[q], 17);
     if (sc->what & CT_OUT_TIME)
-        ct_cli_time_row(f, sc, row);
+        ct_cli_time_row(l, sc, row);
     if (row->status) {
-        fputs(",\"", f);
+        ct_line_str(l, ",\"");
         for (const char *m = row->message; *m; m++)
-            fputc(*m == '"' ? '\'' : *m, f);
-        fputs("\"\n", f);
-        return;
+            ct_line_char(l, *m == '"' ? '\'' : *m);
+        ct_line_str(l, "\"\n");
+    } else {
+        if (sc->skip_failed)
+            ct_line_char(l, ',');
+        ct_line_char(l, '\n');
     }
-    if (sc->skip_failed)
-        fputc(',', f);
-    fputc('\n', f);
+    ct_line_flush(l);
 }
 
 /* What the rows written so far held: failures (the first one kept) and the closed-form
