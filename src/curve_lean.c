@@ -5,7 +5,7 @@
  * other field); for a yield, the first rod of its run, everything else (the run's summed area,
  * slope, plateau force, ...) recomputed from the bundle's rods by the same code the full build
  * uses (curve_event.h). So the sweep reads the bundle, in scattered order, for the yields
- * alone: with the contacts read too, those reads were half of a 4096² map's run. Contacts and
+ * alone (on a large map those reads are what the sweep waits on). Contacts and
  * yields are sorted apart (a radix sort on x, then the ties in the events' total order) and merged
  * as they are swept, which is the full build's order. Every K-th breakpoint keeps the sweep's state
  * (its compensated sums); a query finds its breakpoint among those and sweeps on from there, so it
@@ -169,13 +169,14 @@ static double next_x(const ct_lean *L, const ct_sweep_state *s)
     return a < b ? a : b;
 }
 
-#define AHEAD 24 /* events prefetched ahead of the sweep */
+#define AHEAD 24 /* yields prefetched ahead of the sweep */
 
 /* The rod behind yield i of v (of n) asked into the cache: in x's order the rods are
- * scattered over the bundle, and waiting for each one's four arrays was half of a large map's
- * run (with the contacts, which now hold their fields). Only a hint: it changes no value. */
+ * scattered over the bundle, and a large map's sweep would otherwise wait on each one's four
+ * arrays (docs/benchmarks.md). Only a hint: it changes no value. */
 static inline void prefetch_rod(const ct_lean *L, const lev *v, size_t i, size_t n)
 {
+#if defined(__GNUC__)
     if (i < n) {
         const size_t k = (size_t)v[i].k;
         __builtin_prefetch(L->top + k);
@@ -183,6 +184,9 @@ static inline void prefetch_rod(const ct_lean *L, const lev *v, size_t i, size_t
         __builtin_prefetch(L->eps_p + k);
         __builtin_prefetch(L->area + k);
     }
+#else
+    (void)L, (void)v, (void)i, (void)n;
+#endif
 }
 
 /* The breakpoint s stands before: its values into p, s advanced past it. *cm (not NULL): the

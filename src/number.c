@@ -224,15 +224,23 @@ void ct_put_g3(FILE *f, double x)
     put(f, buf, ct_format_g3(buf, x));
 }
 
-void ct_put_long(FILE *f, long v)
+/* v as "%ld" writes it, at the end of d[24]: returns where it starts. */
+static const char *format_long(char d[24], long v)
 {
-    char d[24], *o = d + sizeof d;
+    char *o = d + 24;
     unsigned long a = v < 0 ? 0ul - (unsigned long)v : (unsigned long)v;
     do
         *--o = (char)('0' + a % 10);
     while (a /= 10);
     if (v < 0)
         *--o = '-';
+    return o;
+}
+
+void ct_put_long(FILE *f, long v)
+{
+    char d[24];
+    const char *o = format_long(d, v);
     put(f, o, (size_t)(d + sizeof d - o));
 }
 
@@ -244,13 +252,8 @@ void ct_line_flush(ct_line *l)
 
 void ct_line_long(ct_line *l, long v)
 {
-    char d[24], *o = d + sizeof d;
-    unsigned long a = v < 0 ? 0ul - (unsigned long)v : (unsigned long)v;
-    do
-        *--o = (char)('0' + a % 10);
-    while (a /= 10);
-    if (v < 0)
-        *--o = '-';
+    char d[24];
+    const char *o = format_long(d, v);
     const size_t n = (size_t)(d + sizeof d - o);
     memcpy(ct_line_room(l, n), o, n);
     l->n += n;

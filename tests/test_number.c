@@ -124,12 +124,63 @@ static void longs_agree_with_printf(void **state)
     assert_string_equal(got, ref);
 }
 
+/* A ct_line against the same fields through printf into a string: numbers, longs, characters
+ * and strings, longer than the line's buffer so that it fills and flushes mid-line (a number
+ * landing on every position of the buffer's end), and a string longer than the buffer. */
+static void lines_agree_with_printf(void **state)
+{
+    (void)state;
+    enum { REF = 1 << 17 };
+    static char ref[REF], got[REF];
+    size_t r = 0;
+    FILE *f = tmpfile();
+    assert_non_null(f);
+    ct_line line, *l = &line;
+    ct_line_start(l, f);
+    const long lv[] = {0, -1, 7, -120, LONG_MAX, LONG_MIN, LONG_MIN + 1};
+    const double dv[] = {0.1, -2.5e-7, 1.0 / 3.0, -0.0, 6.02214076e23, 4.9e-324, 123456789.0};
+    uint64_t s = 42;
+    for (int i = 0; i < 1500; i++) { /* about 60 kB: the 2048-byte buffer fills ~30 times */
+        s = s * 6364136223846793005u + 1442695040888963407u;
+        double x;
+        memcpy(&x, &s, sizeof x);
+        if (!isfinite(x))
+            x = dv[i % 7];
+        const long v = lv[i % 7];
+        ct_line_double(l, x);
+        ct_line_char(l, ',');
+        ct_line_long(l, v);
+        ct_line_char(l, ';');
+        ct_line_g3(l, dv[i % 7]);
+        r += (size_t)snprintf(ref + r, REF - r, "%.17g,%ld;%.3g", x, v, dv[i % 7]);
+        if (i % 500 == 499) { /* a string longer than the buffer */
+            char big[5000];
+            for (size_t k = 0; k < sizeof big - 1; k++)
+                big[k] = (char)('a' + (k + (size_t)i) % 26);
+            big[sizeof big - 1] = '\0';
+            ct_line_str(l, big);
+            r += (size_t)snprintf(ref + r, REF - r, "%s", big);
+        }
+        ct_line_str(l, "\n");
+        r += (size_t)snprintf(ref + r, REF - r, "\n");
+        assert_true(r < REF);
+    }
+    ct_line_flush(l);
+    rewind(f);
+    const size_t n = fread(got, 1, REF - 1, f);
+    got[n] = '\0';
+    fclose(f);
+    assert_int_equal(n, r);
+    assert_string_equal(got, ref);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(agrees_with_printf),
         cmocka_unit_test(edges),
         cmocka_unit_test(longs_agree_with_printf),
+        cmocka_unit_test(lines_agree_with_printf),
     };
     return cmocka_run_group_tests_name("number", tests, NULL, NULL);
 }

@@ -45,44 +45,35 @@ void ct_cli_time_header(FILE *f, const ct_scene *sc)
             fprintf(f, ",%s", cols[k].physical);
 }
 
-/* The time columns' places in ct_sweep_columns, and of those with a physical form (chosen
- * once: the table of columns is constant). */
-static size_t time_columns(const ct_column **cols, const size_t **at, const size_t **phys,
-                           size_t *nphys)
+int ct_cli_columns_of(ct_cli_columns *c, const char *group)
 {
-    static size_t idx[64], pidx[64], m = SIZE_MAX, mp;
-    static const ct_column *c;
-    if (m == SIZE_MAX) {
-        const size_t n = ct_sweep_columns(&c);
-        m = mp = 0;
-        for (size_t k = 0; k < n && m < sizeof idx / sizeof idx[0]; k++)
-            if (is_time(&c[k])) {
-                idx[m++] = k;
-                if (c[k].physical)
-                    pidx[mp++] = k;
-            }
+    const size_t n = ct_sweep_columns(&c->cols);
+    c->n = c->nphys = 0;
+    for (size_t k = 0; k < n; k++) {
+        const ct_column *col = &c->cols[k];
+        if (strcmp(col->group, group) || !strcmp(col->name, "impact") ||
+            !strcmp(col->name, "V_star"))
+            continue;
+        if (c->n == CT_CLI_COLUMNS)
+            return -1;
+        c->at[c->n++] = k;
+        if (col->physical)
+            c->phys[c->nphys++] = k;
     }
-    *cols = c;
-    *at = idx;
-    *phys = pidx;
-    *nphys = mp;
-    return m;
+    return 0;
 }
 
-void ct_cli_time_row(ct_line *l, const ct_scene *sc, const ct_sweep_row *row)
+void ct_cli_time_row(ct_line *l, const ct_scene *sc, const ct_cli_columns *tc,
+                     const ct_sweep_row *row)
 {
-    const ct_column *cols;
-    const size_t *at, *phys;
-    size_t np;
-    const size_t n = time_columns(&cols, &at, &phys, &np);
     const ct_layer *L = &sc->scales.layer;
     const double tau = sc->mass > 0.0 ? ct_time_scale(&sc->scales, sc->mass) : NAN;
-    for (size_t q = 0; q < n; q++)
-        line_field(l, row->status ? NAN : ct_column_value(&cols[at[q]], row, L));
-    for (size_t q = 0; q < np && sc->mass > 0.0; q++)
-        line_field(l, row->status
-                          ? NAN
-                          : ct_column_physical(&cols[phys[q]], row, L, &sc->scales.physical, tau));
+    for (size_t q = 0; q < tc->n; q++)
+        line_field(l, row->status ? NAN : ct_column_value(&tc->cols[tc->at[q]], row, L));
+    for (size_t q = 0; q < tc->nphys && sc->mass > 0.0; q++)
+        line_field(l, row->status ? NAN
+                                  : ct_column_physical(&tc->cols[tc->phys[q]], row, L,
+                                                       &sc->scales.physical, tau));
 }
 
 int ct_cli_time_check(const ct_sweep_row *row, char *err, size_t errlen)

@@ -234,25 +234,6 @@ static void field(ct_line *l, double x, int digits)
     }
 }
 
-/* The e table's columns after impact and V*: their places in ct_sweep_columns (chosen once:
- * the table of columns is constant). */
-static size_t e_value_columns(const ct_column **cols, const size_t **at)
-{
-    static size_t idx[64], m = SIZE_MAX;
-    static const ct_column *c;
-    if (m == SIZE_MAX) {
-        const size_t n = ct_sweep_columns(&c);
-        m = 0;
-        for (size_t k = 0; k < n && m < sizeof idx / sizeof idx[0]; k++)
-            if (!strcmp(c[k].group, "e") && strcmp(c[k].name, "impact") &&
-                strcmp(c[k].name, "V_star"))
-                idx[m++] = k;
-    }
-    *cols = c;
-    *at = idx;
-    return m;
-}
-
 static void write_e_header(FILE *f, const ct_scene *sc)
 {
     const ct_column *cols;
@@ -275,13 +256,15 @@ static void write_e_header(FILE *f, const ct_scene *sc)
 /* One row: the e columns, the kind's comparison columns, the time columns, and (with
  * solver.on_error = skip) the error; a failed impact has its impact and V* and empty fields
  * up to its reason. */
-static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, const double *cmp,
+static void write_e_row(FILE *f, const ct_scene *sc, const ct_cli_columns *ec,
+                        const ct_cli_columns *tc, const ct_sweep_row *row, const double *cmp,
                         size_t ncmp)
 {
-    const ct_column *cols;
-    const size_t *at, n = e_value_columns(&cols, &at);
+    const ct_column *cols = ec->cols;
+    const size_t *at = ec->at, n = ec->n;
     const ct_layer *L = &sc->scales.layer;
-    ct_line line = {.f = f}, *l = &line;
+    ct_line line, *l = &line;
+    ct_line_start(l, f);
     ct_line_long(l, row->impact);
     ct_line_char(l, ',');
     ct_line_double(l, row->V_star);
@@ -298,7 +281,7 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_sweep_row *row, co
     for (size_t q = 0; q < ncmp; q++)
         field(l, row->status ? NAN : cmp[q], 17);
     if (sc->what & CT_OUT_TIME)
-        ct_cli_time_row(l, sc, row);
+        ct_cli_time_row(l, sc, tc, row);
     if (row->status) {
         ct_line_str(l, ",\"");
         for (const char *m = row->message; *m; m++)
@@ -324,6 +307,11 @@ static int write_e_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, s
                         const double *cmp, size_t ncmp, row_tally *t)
 {
     char err[512];
+    ct_cli_columns ec, tc;
+    if (f && (ct_cli_columns_of(&ec, "e") || ct_cli_columns_of(&tc, "time"))) {
+        ct_cli_fail("the e table has more than %d columns of a group", CT_CLI_COLUMNS);
+        return EXIT_FAILED;
+    }
     for (size_t k = 0; k < nrows; k++) {
         const ct_sweep_row *row = &rows[k];
         if (row->status == CT_OK && !(isfinite(row->r.e) && isfinite(row->r.u_max))) {
@@ -341,7 +329,7 @@ static int write_e_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, s
         t->checked += row->status == CT_OK && !isnan(row->r.e_closed);
         t->checked_speeds += row->impact == 1 && row->status == CT_OK && !isnan(row->r.e_closed);
         if (f)
-            write_e_row(f, sc, row, cmp ? cmp + ncmp * k : NULL, ncmp);
+            write_e_row(f, sc, &ec, &tc, row, cmp ? cmp + ncmp * k : NULL, ncmp);
     }
     return EXIT_DONE;
 }
