@@ -77,18 +77,35 @@ static uint64_t scaled(uint64_t m, int e, int k, uint64_t *trunc)
     return (uint64_t)n;
 }
 
-/* the P decimal digits of N < 10^P (P <= 17), two at a time */
+static const char pairs[201] = "00010203040506070809101112131415161718192021222324252627282930"
+                               "31323334353637383940414243444546474849505152535455565758596061"
+                               "62636465666768697071727374757677787980818283848586878889909192"
+                               "93949596979899";
+
+/* the 8 decimal digits of y < 10^8: 32-bit quotients by constants, independent halves */
+static void digits8(char *d, uint32_t y)
+{
+    const uint32_t a = y / 10000u, b = y % 10000u;
+    memcpy(d, pairs + 2 * (a / 100u), 2);
+    memcpy(d + 2, pairs + 2 * (a % 100u), 2);
+    memcpy(d + 4, pairs + 2 * (b / 100u), 2);
+    memcpy(d + 6, pairs + 2 * (b % 100u), 2);
+}
+
+/* the P decimal digits of N < 10^P (P = 3 or 17) */
 static void digits(char *d, uint64_t N, int P)
 {
-    static const char pairs[201] = "00010203040506070809101112131415161718192021222324252627282930"
-                                   "31323334353637383940414243444546474849505152535455565758596061"
-                                   "62636465666768697071727374757677787980818283848586878889909192"
-                                   "93949596979899";
-    int i = P;
-    for (; i >= 2; i -= 2, N /= 100)
-        memcpy(d + i - 2, pairs + 2 * (N % 100), 2);
-    if (i)
-        d[0] = (char)('0' + N);
+    if (P == 17) { /* one 64-bit quotient, then 32-bit work: 1 + 8 + 8 digits */
+        const uint64_t hi = N / 100000000u;
+        const uint32_t top = (uint32_t)hi;
+        d[0] = (char)('0' + top / 100000000u);
+        digits8(d + 1, top % 100000000u);
+        digits8(d + 9, (uint32_t)(N - hi * 100000000u));
+        return;
+    }
+    const uint32_t v = (uint32_t)N; /* P = 3 */
+    d[0] = (char)('0' + v / 100u);
+    memcpy(d + 1, pairs + 2 * (v % 100u), 2);
 }
 
 /* x as "%.<P>g" writes it (P = 3 or 17) when 1e-22 <= |x| < 10^P; 0 when it is not written
@@ -103,9 +120,19 @@ static size_t fast_g(char *buf, double x, int P)
     const int be = (int)(bits >> 52);
     const uint64_t m = (bits & ((UINT64_C(1) << 52) - 1)) | (UINT64_C(1) << 52);
     const int e = be - 1075;
-    /* the decimal exponent from the binary one (log10 2 = 0.30103); off by at most one,
-     * which the loop below corrects on the exact digits */
-    int E = (int)floor((double)(be - 1023) * 0.30102999566398120);
+    /* the decimal exponent: floor((be - 1023) log10 2) by integers (78913 / 2^18 is log10 2
+     * closely enough for |be - 1023| <= 1100), one more when x reaches the next power of
+     * ten. The powers below 1 are rounded, so next to one E may still be off by one: the loop
+     * below corrects it on the exact digits. */
+    static const double p10[] = {1e-22, 1e-21, 1e-20, 1e-19, 1e-18, 1e-17, 1e-16, 1e-15,
+                                 1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9,  1e-8,  1e-7,
+                                 1e-6,  1e-5,  1e-4,  1e-3,  1e-2,  1e-1,  1e0,   1e1,
+                                 1e2,   1e3,   1e4,   1e5,   1e6,   1e7,   1e8,   1e9,
+                                 1e10,  1e11,  1e12,  1e13,  1e14,  1e15,  1e16,  1e17};
+    const int t = (be - 1023) * 78913;
+    int E = t >= 0 ? t >> 18 : -((-t + (1 << 18) - 1) >> 18);
+    if (E + 1 >= -22 && E + 1 <= 17 && ax >= p10[E + 1 + 22])
+        E++;
     const uint64_t lo = P == 3 ? 100u : UINT64_C(10000000000000000), hi = lo * 10u;
     uint64_t N = 0, T = 0;
     for (int tries = 0; tries < 4; tries++) {
@@ -129,6 +156,8 @@ static size_t fast_g(char *buf, double x, int P)
         return 0;
     char d[17];
     digits(d, N, P);
+    /* below: the digits copied 16 or 17 at a time, fixed sizes, where buf's CT_NUMBER_MAX
+     * bytes hold them (the text ends at o, what lies past it is never read) */
     int nd = P; /* significant digits left after dropping trailing zeros */
     while (nd > 1 && d[nd - 1] == '0')
         nd--;
@@ -139,7 +168,7 @@ static size_t fast_g(char *buf, double x, int P)
         *o++ = d[0];
         if (nd > 1) {
             *o++ = '.';
-            memcpy(o, d + 1, (size_t)nd - 1);
+            memcpy(o, d + 1, 16); /* up to buf + 19 */
             o += nd - 1;
         }
         const int ae = E < 0 ? -E : E;
@@ -156,11 +185,9 @@ static size_t fast_g(char *buf, double x, int P)
             o += nd - E - 1;
         }
     } else {
-        *o++ = '0';
-        *o++ = '.';
-        for (int i = 0; i < -E - 1; i++)
-            *o++ = '0';
-        memcpy(o, d, (size_t)nd);
+        memcpy(o, "0.000", 5); /* -4 <= E <= -1: "0." and -E - 1 zeros */
+        o += 2 + (-E - 1);
+        memcpy(o, d, 17); /* up to buf + 23 */
         o += nd;
     }
     *o = '\0';
