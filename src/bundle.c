@@ -94,6 +94,16 @@ int ct_default_threads(void)
 #endif
 }
 
+int ct_bundle_threads(const ct_bundle *b)
+{
+#ifdef _OPENMP
+    return b->threads ? b->threads : omp_get_max_threads();
+#else
+    (void)b;
+    return 1;
+#endif
+}
+
 int ct_bundle_team(const ct_bundle *b)
 {
     if (b->n < b->parallel_min)

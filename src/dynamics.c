@@ -65,6 +65,9 @@ struct ct_dyn_work {
     double f_m;
     int f_sorted; /* its x finite and its W nondecreasing */
     size_t f_cap;
+    /* a fork (ct_dyn_work_fork): first_pc, ue's arrays, f_d2 and f_wd are its parent's, read
+     * only; ue.rel (the releases ct_unload_split writes) is its own */
+    int fork;
 };
 
 static int unload_split(ct_dyn_work *w, double u_max, pcurve *out);
@@ -404,6 +407,12 @@ void ct_dyn_work_free(ct_dyn_work *w)
 {
     if (!w)
         return;
+    if (w->fork) { /* the parent's arrays stay */
+        free(w->ue.rel);
+        memset(&w->first_pc, 0, sizeof w->first_pc);
+        memset(&w->ue, 0, sizeof w->ue);
+        w->f_d2 = w->f_wd = NULL;
+    }
     pcurve_free(&w->first_pc);
     pcurve_free(&w->pprev);
     pcurve_free(&w->pcur);
@@ -941,6 +950,39 @@ static int first_products(ct_dyn_work *w, double m)
         w->f_sorted &= F->x[q + 1] < INFINITY && F->W[q + 1] >= F->W[q];
     }
     w->f_m = m;
+    return CT_OK;
+}
+
+int ct_dyn_work_fork(ct_dyn_work *parent, double m, ct_dyn_work **out)
+{
+    CT_NEED(parent);
+    CT_NEED(out);
+    int st;
+    *out = NULL;
+    if (!parent->first || parent->one_shot)
+        return ct_error_set(CT_EINVAL, "impact in time: fork of an unprepared workspace");
+    if (m != parent->f_m && (st = first_products(parent, m)))
+        return st;
+    ct_dyn_work *w;
+    if ((st = ct_dyn_work_alloc(&w)))
+        return st;
+    w->fork = 1;
+    w->first = parent->first;
+    w->first_pc = parent->first_pc;
+    w->ue = parent->ue;
+    w->ue.buf = NULL;
+    w->ue.cap = 0;
+    w->f_d2 = parent->f_d2;
+    w->f_wd = parent->f_wd;
+    w->f_m = parent->f_m;
+    w->f_sorted = parent->f_sorted;
+    w->f_cap = parent->f_cap;
+    if (!(w->ue.rel = malloc((parent->ue.ny ? parent->ue.ny : 1) * sizeof(double)))) {
+        ct_dyn_work_free(w);
+        return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
+    }
+    ct_dyn_reset(w);
+    *out = w;
     return CT_OK;
 }
 

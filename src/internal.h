@@ -75,6 +75,8 @@ size_t ct_curve_events(const ct_bundle *b);
 double ct_curve_bytes(size_t events);
 /* The thread count a sum over b's rods uses (1 below the parallel threshold). */
 int ct_bundle_team(const ct_bundle *b);
+/* The threads b may use (its setting, else OpenMP's), whatever its size. */
+int ct_bundle_threads(const ct_bundle *b);
 /* The same from factor times the bundle's rod threshold: for work whose team pays only on
  * larger bundles (the curve's event sort). */
 int ct_bundle_team_from(const ct_bundle *b, size_t factor);
@@ -154,6 +156,10 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
  * their moments. ct_dyn_reset starts a speed. */
 int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c);
 int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn);
+/* A workspace for another thread's speeds on parent's prepared curve, for mass m: it reads
+ * the parent's prepared arrays (the parent outlives it and is not prepared again meanwhile)
+ * and keeps its own state, so the speeds of a sweep can be shared among threads. */
+int ct_dyn_work_fork(ct_dyn_work *parent, double m, ct_dyn_work **out);
 
 /* ---- measured surfaces (src/surface/profile.c), for the fit ---- */
 

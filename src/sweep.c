@@ -9,6 +9,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 static int check_speeds(const double *V, size_t n)
 {
@@ -562,6 +565,8 @@ typedef struct {
     unsigned char *by_state;         /* per speed: left to the general path */
     unsigned char *check;            /* per speed: its impacts get the closed-form check */
     ct_dyn_work *dw;                 /* the impacts in time */
+    ct_dyn_work **forks;             /* dw's forks, for the other threads' speeds */
+    int nforks;
 } sweep_ws;
 
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
@@ -607,11 +612,9 @@ static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
     }
 }
 
-/* The fast path's speed v after the batched closed forms: its rows finished (e, the check)
- * and, with dynamics, its impacts in time on the first curve and the unloading curve of each
- * maximum. */
-static void fast_finish(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
-                        const sweep_ws *w, int closed, size_t v)
+/* The fast path's speed v after the batched closed forms: its rows finished (e, the check). */
+static void fast_finish(const ct_sweep_spec *s, ct_sweep_row *rows, const sweep_ws *w, int closed,
+                        size_t v)
 {
     const size_t impacts = (size_t)s->impacts;
     for (size_t i = 0; i < impacts; i++) {
@@ -633,19 +636,64 @@ static void fast_finish(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row
             break;
         }
     }
-    if (!w->dw)
-        return;
-    ct_dyn_reset(w->dw);
+}
+
+/* Speed v's impacts in time on the first curve and the unloading curve of each maximum, in
+ * workspace dw. */
+static void fast_speed_dynamics(const ct_sweep_spec *s, ct_sweep_row *rows, ct_dyn_work *dw,
+                                double m, size_t v)
+{
+    const size_t impacts = (size_t)s->impacts;
+    ct_dyn_reset(dw);
     for (size_t i = 0; i < impacts; i++) {
         ct_sweep_row *row = &rows[v * impacts + i];
         if (row->status)
             break;
-        int rs = ct_dyn_impact_fast(w->dw, &row->r, unit_mass(ct_bundle_layer(b)), &row->dyn);
+        int rs = ct_dyn_impact_fast(dw, &row->r, m, &row->dyn);
         if (rs) {
             fail_from(rows, impacts, v, i, rs, ct_error_message());
             break;
         }
     }
+}
+
+/* Rows below which the fast path's impacts in time stay on one thread (a speed's take a few
+ * microseconds; a team's start costs tens). */
+#define CT_DYN_PARALLEL_MIN 8192
+
+/* The fast path's impacts in time. Every speed starts from the first curve's state, so the
+ * speeds are independent: they are shared among the threads, each with its own workspace (a
+ * fork of w->dw, kept for the next block), and every row is the same for any thread count. */
+static int fast_dynamics(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
+                         sweep_ws *w)
+{
+    const double m = unit_mass(ct_bundle_layer(b));
+    int team = ct_bundle_threads(b);
+#ifdef _OPENMP
+    if (omp_in_parallel())
+        team = 1;
+#endif
+    if (s->nvel * (size_t)s->impacts < CT_DYN_PARALLEL_MIN)
+        team = 1;
+    if (team > 1 && !w->forks && !(w->forks = calloc((size_t)team - 1, sizeof *w->forks)))
+        team = 1;
+    while (w->nforks < team - 1 && !ct_dyn_work_fork(w->dw, m, &w->forks[w->nforks]))
+        w->nforks++;
+    if (team > w->nforks + 1)
+        team = w->nforks + 1; /* a fork out of memory: fewer threads, the same rows */
+#pragma omp parallel num_threads(team) if (team > 1)
+    {
+        ct_dyn_work *dw = w->dw;
+#ifdef _OPENMP
+        if (omp_get_thread_num() > 0)
+            dw = w->forks[omp_get_thread_num() - 1];
+#endif
+#pragma omp for schedule(dynamic, 16)
+        for (size_t v = 0; v < s->nvel; v++)
+            if (!w->by_state[v])
+                fast_speed_dynamics(s, rows, dw, m, v);
+    }
+    return CT_OK;
 }
 
 /* The fast path (every impact on the first curve, the closed-form check of all rows in
@@ -668,8 +716,8 @@ static int sweep_fast(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *
         return st;
     for (size_t v = 0; v < s->nvel; v++)
         if (!w->by_state[v])
-            fast_finish(b, s, rows, w, closed, v);
-    return CT_OK;
+            fast_finish(s, rows, w, closed, v);
+    return w->dw ? fast_dynamics(b, s, rows, w) : CT_OK;
 }
 
 /* The general path for the speeds that need it (all of them when not fast): one state
@@ -769,6 +817,9 @@ static void sweep_ws_end_block(sweep_ws *w)
 
 static void sweep_ws_free(sweep_ws *w, const ct_sweep_spec *s)
 {
+    for (int k = 0; k < w->nforks; k++)
+        ct_dyn_work_free(w->forks[k]);
+    free(w->forks);
     ct_dyn_work_free(w->dw);
     if (w->first != s->curve)
         ct_curve_free(w->first);
