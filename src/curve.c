@@ -26,6 +26,17 @@
 #include <omp.h>
 #endif
 
+/* On x86-64 the sweep over the events also gets an AVX2 clone, picked at load time: three-
+ * operand instructions and blends for the compensated sums' selects, a quarter fewer
+ * instructions an event. The same IEEE operations, so the same bits (no FMA: contraction is
+ * off under -std=c11, as in bundle.c). */
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) &&                             \
+    !defined(__SANITIZE_ADDRESS__)
+#define CT_CURVE_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define CT_CURVE_CLONES
+#endif
+
 struct ct_curve {
     size_t n, cap;
     double *x, *P, *W, *D, *slope, *A;
@@ -278,7 +289,9 @@ static inline void next_event(const rods_in *r, int yields, size_t *k, size_t *e
  * Cantor realisation): the two are merged as they are made, into the only order `less` then
  * allows, which sort_events finds as one run; without laying them out and merging them
  * after. Returns 0 at the first x out of order, shared or NaN, leaving ev to the general
- * pass. */
+ * pass. (A branch-free merge, both candidates made into both events and the earlier written
+ * by a select, took twice the instructions and more than twice the time: docs/benchmarks.md.) */
+CT_CURVE_CLONES
 static int merged_events(ct_curve *c, const rods_in *r)
 {
     const size_t nruns = r->nruns;
@@ -395,10 +408,8 @@ static inline size_t sweep_breakpoint(ct_curve *c, ct_sweep_state *st, const eve
     ct_sweep_to(st, x);
     for (; i < end && ev[i].x == x; i++) {
         const int yield = ct_sweep_event(st, &ev[i]);
-        if (yield && x < c->first_yield)
-            c->first_yield = x;
-        if (yield && ev[i].c <= yc)
-            yc = ev[i].c;
+        c->first_yield = yield && x < c->first_yield ? x : c->first_yield; /* selects */
+        yc = yield && ev[i].c <= yc ? ev[i].c : yc;
     }
     const size_t j = st->j;
     ct_point p;
@@ -418,6 +429,7 @@ static inline size_t sweep_breakpoint(ct_curve *c, ct_sweep_state *st, const eve
  * yielded force and longest yielded rod; into cmin, the smallest contact of the rods that yield
  * at each breakpoint, for contacts_below (-1: out of memory). distinct: every x differs (the
  * merged events), so that there are ne breakpoints of one event each. */
+CT_CURVE_CLONES
 static int sweep_events(ct_curve *c, size_t ne, int distinct)
 {
     const event *ev = c->ev;

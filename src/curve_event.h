@@ -117,37 +117,54 @@ static inline void ct_sweep_to(ct_sweep_state *s, double x)
     }
 }
 
-/* One event at the current x; returns 1 for a yield. */
-static inline int ct_sweep_event(ct_sweep_state *s, const event *e)
+/* The events at the current x. A contact adds its slope; a yield takes its slope back, adds
+ * its plateau force and its jump. Adding +0 to a compensated sum that is never -0 (it starts
+ * at +0, and neither its terms nor its errors are ever -0) leaves both words as they are, so a
+ * zero jump is added like any other (no branch on it), and a contact, whose force change, jump
+ * and length are +0, may take a yield's steps: ct_sweep_event does, without a branch on the
+ * kind, for events that mix in no predictable order. P_prev is Ps + Pc after every event (set
+ * so by ct_sweep_to and by each jump). */
+static inline void ct_sweep_contact(ct_sweep_state *s, const event *e)
 {
     ct_add_comp(&s->ks, &s->kc, e->dk);
-    if (signbit(e->dk)) { /* a yield (a rod of underflowed area: -0) */
-        ct_add_comp(&s->As, &s->Ac, e->dF);
-        s->Lmax = e->L > s->Lmax ? e->L : s->Lmax;
-        if (e->jump != 0.0) {
-            ct_add_comp(&s->Ps, &s->Pc, e->jump);
-            s->P_prev = s->Ps + s->Pc;
-        }
-        s->active--;
-        return 1;
-    }
     s->active++;
-    return 0;
+}
+
+static inline void ct_sweep_yield(ct_sweep_state *s, const event *e)
+{
+    ct_add_comp(&s->ks, &s->kc, e->dk);
+    ct_add_comp(&s->As, &s->Ac, e->dF);
+    s->Lmax = e->L > s->Lmax ? e->L : s->Lmax;
+    ct_add_comp(&s->Ps, &s->Pc, e->jump);
+    s->P_prev = s->Ps + s->Pc;
+    s->active--;
+}
+
+/* Either kind; returns 1 for a yield (a rod of underflowed area yields at -0). */
+static inline int ct_sweep_event(ct_sweep_state *s, const event *e)
+{
+    const int yield = signbit(e->dk) != 0;
+    ct_add_comp(&s->ks, &s->kc, e->dk);
+    ct_add_comp(&s->As, &s->Ac, e->dF);
+    s->Lmax = e->L > s->Lmax ? e->L : s->Lmax;
+    ct_add_comp(&s->Ps, &s->Pc, e->jump);
+    s->P_prev = s->Ps + s->Pc;
+    s->active += yield ? -1 : 1;
+    return yield;
 }
 
 /* The breakpoint at x once its events are in: its values into p. */
 static inline void ct_sweep_point(ct_sweep_state *s, double x, ct_point *p)
 {
-    if (s->active == 0) { /* no rod elastic: the slope is 0, not a rounding residue */
-        s->ks = s->kc = 0.0;
-    }
+    /* no rod elastic: the slope is 0, not a rounding residue */
+    s->ks = s->active == 0 ? 0.0 : s->ks;
+    s->kc = s->active == 0 ? 0.0 : s->kc;
     p->x = x;
     p->P = s->P_prev;
     p->W = s->Ws + s->Wc;
     p->D = s->Ds + s->Dc;
     s->k_prev = s->ks + s->kc;
-    if (s->k_prev < 0.0)
-        s->k_prev = 0.0;
+    s->k_prev = s->k_prev < 0.0 ? 0.0 : s->k_prev;
     s->A_prev = s->As + s->Ac;
     p->slope = s->k_prev;
     p->A = s->A_prev;

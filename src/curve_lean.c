@@ -204,12 +204,12 @@ static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm)
         if (cx == x) {
             do {
                 materialise(L, &L->con[s->ic++], 0, &ce);
-                ct_sweep_event(s, &ce);
+                ct_sweep_contact(s, &ce);
             } while (s->ic < n && L->con[s->ic].x == x);
         } else {
             do {
                 materialise(L, &L->yie[s->iy++], 1, &ye);
-                ct_sweep_event(s, &ye);
+                ct_sweep_yield(s, &ye);
                 if (cm && ye.c < *cm)
                     *cm = ye.c;
             } while (s->iy < n && L->yie[s->iy].x == x);
@@ -230,13 +230,13 @@ static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm)
         if (!have_c && !have_y)
             break;
         if (have_y && (!have_c || !ct_event_less(&ce, &ye))) {
-            ct_sweep_event(s, &ye);
+            ct_sweep_yield(s, &ye);
             if (cm && ye.c < *cm)
                 *cm = ye.c;
             s->iy++;
             have_y = 0;
         } else {
-            ct_sweep_event(s, &ce);
+            ct_sweep_contact(s, &ce);
             s->ic++;
             have_c = 0;
         }

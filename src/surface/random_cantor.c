@@ -407,11 +407,49 @@ static void finish_chunk(void *ctx, size_t c, size_t i0, size_t i1)
  * cost a full merge sort per realisation. LSD radix sort, stable, on the tops' bit patterns
  * (positive doubles order as their bits) less the smallest: only the bits where the keys can
  * differ are sorted, in as few digits of at most RADIX_BITS bits as they need (seven for
- * depth 16), each pass from one buffer to the other; digits that all keys share are skipped.
+ * depth 16, of which the top three are sorted first: below), each pass from one buffer to the
+ * other; digits that all keys share are skipped.
  * Bytes, not wider digits: a pass then scatters to 256 places per array, which the L1 cache
  * holds (11-bit digits, five passes, took a quarter longer: docs/benchmarks.md). The
  * permutation goes to m->piece, the sorted tops to `sorted`. */
 #define RADIX_BITS 8
+
+/* The top HIGH_DIGITS digits sort first; keys that share them (few: tops spread over their
+ * range) are put in order by a stable insertion sort within each such group, which together
+ * is the stable sort by the whole key; a group longer than FIXUP_MAX and out of order (near-
+ * ties in their thousands: a spread so small that tops agree to 24 bits) sends the sort back
+ * to all the digits, so the cost stays linear (ties alone, spread 0, are in order already).
+ * Depth 16: three passes and a scan instead of seven passes. */
+#define HIGH_DIGITS 3
+#define FIXUP_MAX 64
+
+/* Puts each run of keys equal in their bits from `shift` up in order of the whole key (stable:
+ * a key moves only past larger ones), the permutation alongside. Returns 0 when a run longer
+ * than FIXUP_MAX is out of order (nothing moved). */
+static int fix_groups(uint64_t *key, uint32_t *perm, size_t n, int shift)
+{
+    for (size_t a = 0, b; a < n; a = b) { /* the runs first: a long one must be in order */
+        int in_order = 1;
+        for (b = a + 1; b < n && key[b] >> shift == key[a] >> shift; b++)
+            in_order &= key[b] >= key[b - 1];
+        if (b - a > FIXUP_MAX && !in_order)
+            return 0;
+    }
+    for (size_t k = 1; k < n; k++) {
+        if (key[k] >= key[k - 1] || key[k] >> shift != key[k - 1] >> shift)
+            continue;
+        const uint64_t kk = key[k];
+        const uint32_t pk = perm[k];
+        size_t q = k;
+        for (; q > 0 && key[q - 1] > kk; q--) { /* within the run: its first key is <= kk */
+            key[q] = key[q - 1];
+            perm[q] = perm[q - 1];
+        }
+        key[q] = kk;
+        perm[q] = pk;
+    }
+    return 1;
+}
 
 static int sort_by_top(random_meta *m, const double *top, double *sorted, int keep)
 {
@@ -440,39 +478,48 @@ static int sort_by_top(random_meta *m, const double *top, double *sorted, int ke
         free(count);
         return ct_error_set(CT_ENOMEM, "random cantor surface: sorting %zu rods: out of memory", n);
     }
-    uint64_t *src = key, *dst = key + n;
-    uint32_t *perm = NULL, *perm_dst = m->piece; /* NULL: the identity */
-    for (size_t k = 0; k < n; k++) {
-        uint64_t bits;
-        memcpy(&bits, &top[k], sizeof bits);
-        src[k] = bits - low;
-        for (int d = 0; d < digits; d++)
-            count[d][(src[k] >> (width * d)) & mask]++;
-    }
-    for (int d = 0; d < digits; d++) {
-        uint32_t sum = 0;
-        int shared = 0;
-        for (size_t v = 0; v <= mask; v++)
-            shared |= count[d][v] == n;
-        if (shared)
-            continue;
-        for (size_t v = 0; v <= mask; v++) {
-            uint32_t c = count[d][v];
-            count[d][v] = sum;
-            sum += c;
-        }
-        uint32_t *at = count[d];
-        const int shift = width * d;
+    uint64_t *src, *dst;
+    uint32_t *perm, *perm_dst;
+    /* first the high digits alone (then the groups), else every digit */
+    for (int first = digits > HIGH_DIGITS ? digits - HIGH_DIGITS : 0;; first = 0) {
+        src = key, dst = key + n;
+        perm = NULL, perm_dst = m->piece; /* NULL: the identity */
+        if (digits)
+            memset(count, 0, (size_t)digits * sizeof *count);
         for (size_t k = 0; k < n; k++) {
-            const uint32_t q = at[(src[k] >> shift) & mask]++;
-            dst[q] = src[k];
-            perm_dst[q] = perm ? perm[k] : (uint32_t)k;
+            uint64_t bits;
+            memcpy(&bits, &top[k], sizeof bits);
+            src[k] = bits - low;
+            for (int d = first; d < digits; d++)
+                count[d][(src[k] >> (width * d)) & mask]++;
         }
-        uint64_t *t = src;
-        src = dst;
-        dst = t;
-        perm = perm_dst;
-        perm_dst = perm == m->piece ? tmp : m->piece;
+        for (int d = first; d < digits; d++) {
+            uint32_t sum = 0;
+            int shared = 0;
+            for (size_t v = 0; v <= mask; v++)
+                shared |= count[d][v] == n;
+            if (shared)
+                continue;
+            for (size_t v = 0; v <= mask; v++) {
+                uint32_t c = count[d][v];
+                count[d][v] = sum;
+                sum += c;
+            }
+            uint32_t *at = count[d];
+            const int shift = width * d;
+            for (size_t k = 0; k < n; k++) {
+                const uint32_t q = at[(src[k] >> shift) & mask]++;
+                dst[q] = src[k];
+                perm_dst[q] = perm ? perm[k] : (uint32_t)k;
+            }
+            uint64_t *t = src;
+            src = dst;
+            dst = t;
+            perm = perm_dst;
+            perm_dst = perm == m->piece ? tmp : m->piece;
+        }
+        if (first == 0 || (perm && fix_groups(src, perm, n, width * first)))
+            break;
     }
     free(count);
     if (!perm) /* already in order */
