@@ -272,6 +272,14 @@ enum { CT_CHECK_NONE = 0, CT_CHECK_ALL = 1, CT_CHECK_AUTO = 2 };
 #define CT_CHECK_BUDGET 524288.0
 #define CT_CHECK_MIN_SPEEDS 16
 #define CT_CHECK_E_BOUND 1e-12
+/* An ensemble (ct_ensemble) under CT_CHECK_AUTO checks the realisations whose index is a
+ * multiple of this stride (0, 8, 16, ...), each on its sweep's own sample: a function of the
+ * realisation alone, so the same for any thread count, split or sharing among processes. The
+ * check of one realisation costs about a tenth of its computation; a wrong curve or impact
+ * is wrong in every realisation. CT_CHECK_ALL checks every realisation, every impact. */
+#define CT_ENSEMBLE_CHECK_STRIDE 8
+/* The realisations of [first, first + count) that ct_ensemble checks under opts->check. */
+uint64_t ct_ensemble_checked(const ct_impact_opts *opts, uint64_t first, uint64_t count);
 
 typedef struct {
     double kinetic_energy;  /* 1/2 m v1^2 [energy] */

@@ -113,6 +113,8 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
                         .opts = sp->opts,
                         .path = sp->path,
                         .curve = ws->curve};
+    if (sp->opts.check == CT_CHECK_AUTO && r % CT_ENSEMBLE_CHECK_STRIDE != 0)
+        sw.opts.check = CT_CHECK_NONE; /* the check's stride over the realisations */
     st = ct_sweep(ws->b, &sw, rows);
     uint64_t draws;
     ct_random_cantor_clipped(ws->b, &out->fx_clipped[slot], &out->fz_clipped[slot], &draws);
@@ -139,6 +141,18 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
         }
     }
     return CT_OK;
+}
+
+uint64_t ct_ensemble_checked(const ct_impact_opts *opts, uint64_t first, uint64_t count)
+{
+    if (!opts || opts->check == CT_CHECK_NONE)
+        return opts && opts->rule == CT_QUAD_CLOSED ? count : 0;
+    if (opts->check != CT_CHECK_AUTO || opts->rule == CT_QUAD_CLOSED)
+        return count;
+    /* the multiples of the stride below first + count less those below first (below x:
+     * ceil(x / stride)) */
+    const uint64_t k = CT_ENSEMBLE_CHECK_STRIDE, end = first + count;
+    return (end == 0 ? 0 : (end - 1) / k + 1) - (first == 0 ? 0 : (first - 1) / k + 1);
 }
 
 static int check_spec(const ct_ensemble_spec *sp, const ct_ensemble_samples *out)

@@ -41,8 +41,11 @@ awk -F, 'NR > 1 && $1 == 1 { if ($2 > $7 && (a == "" || $2 < a)) { a = $2; ea = 
 # the curve path's general branch (impacts below an earlier maximum: the state carried)
 runs cantor -- "$ct" run "$src/examples/scenes/cantor.ini" --set impact.velocity=0.01:1:400:log \
     --set impact.impacts=4 --set surface.depth=18 --set surface.representation=segments
-# an ensemble of random surfaces (each realisation's sweep samples its check)
+# an ensemble of random surfaces: realisations 0 and 8 of 0 .. 9 checked, each on its sweep's
+# sample of the speeds, and the run says so
 runs ensemble -- "$ct" run "$src/examples/scenes/random_cantor.ini" --set surface.depth=12 \
-    --set ensemble.realisations=6 --set output.what=ensemble --set impact.velocity=0.01:1:600:log
+    --set ensemble.realisations=10 --set output.what=ensemble --set impact.velocity=0.01:1:600:log
+grep -q "closed-form check of 2 of 10 realisations (those whose index is a multiple of 8" \
+    "$tmp/ensemble.err" && ok || bad "ensemble: no note of the checked realisations: $(cat "$tmp/ensemble.err")"
 echo "check-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -196,6 +196,43 @@ static void samples_do_not_depend_on_how_they_are_computed(void **state)
     ct_ensemble_samples_free(ref);
 }
 
+/* The default check's stride over the realisations: the count of checked ones by hand, and
+ * which are checked seen in quad_error_max (NaN when no row was checked): realisations 1 .. 7
+ * are not, 8 is; the samples are the same checked or not (the check adds, it never alters). */
+static void check_stride(void **state)
+{
+    (void)state;
+    ct_impact_opts o;
+    ct_impact_opts_default(&o);
+    o.check = CT_CHECK_AUTO;
+    assert_true(ct_ensemble_checked(&o, 0, 20) == 3); /* 0, 8, 16 */
+    assert_true(ct_ensemble_checked(&o, 0, 1) == 1);
+    assert_true(ct_ensemble_checked(&o, 5, 3) == 0); /* 5, 6, 7 */
+    assert_true(ct_ensemble_checked(&o, 5, 4) == 1); /* 8 */
+    assert_true(ct_ensemble_checked(&o, 8, 1) == 1);
+    assert_true(ct_ensemble_checked(&o, 9, 15) == 1); /* 16 */
+    assert_true(ct_ensemble_checked(&o, 9, 16) == 2); /* 16, 24 */
+    assert_true(ct_ensemble_checked(&o, 1000, 1000) == 125);
+    o.check = CT_CHECK_ALL;
+    assert_true(ct_ensemble_checked(&o, 5, 3) == 3);
+    o.check = CT_CHECK_NONE;
+    assert_true(ct_ensemble_checked(&o, 0, 20) == 0);
+    ct_ensemble_spec sp = spec_of(9, 0.3, 1, 7);
+    sp.opts.check = CT_CHECK_AUTO;
+    ct_ensemble_samples *none = run(&sp);
+    assert_true(isnan(none->quad_error_max));
+    sp.count = 8;
+    ct_ensemble_samples *one = run(&sp);
+    assert_true(one->quad_error_max >= 0.0 && one->quad_error_max < 1e-12);
+    sp.opts.check = CT_CHECK_ALL;
+    ct_ensemble_samples *all = run(&sp);
+    assert_true(all->quad_error_max >= one->quad_error_max);
+    assert_true(same_samples(one, all, 0) && same_samples(none, all, 0));
+    ct_ensemble_samples_free(none);
+    ct_ensemble_samples_free(one);
+    ct_ensemble_samples_free(all);
+}
+
 /* Spread 0: every realisation is the deterministic surface (bit for bit the same as each
  * other, so sd = 0 and every quantile is the mean); e to 1e-12 of the stage rods'. */
 static void spread_zero_ensemble(void **state)
@@ -261,6 +298,7 @@ int main(void)
         cmocka_unit_test(stats_against_gsl),
         cmocka_unit_test(samples_are_the_realisations),
         cmocka_unit_test(samples_do_not_depend_on_how_they_are_computed),
+        cmocka_unit_test(check_stride),
         cmocka_unit_test(spread_zero_ensemble),
         cmocka_unit_test(failed_impacts),
     };

@@ -87,9 +87,8 @@ static const ct_key cli_keys[] = {
     {"solver", "check", CT_KEY_WORD, 0, 0, 0, "auto|all|closed|none",
      "must be auto, all, closed or none", "auto",
      "impacts also in closed form rod by rod (e_closed_form, quadrature_error): auto every "
-     "speed while rods x impacts x speeds <= 2^19, else a sample (the note says which); all (or "
-     "closed) "
-     "every impact",
+     "speed while rods x impacts x speeds <= 2^19, else a sample (the note says which), and in "
+     "an ensemble the realisations whose index is a multiple of 8; all (or closed) every impact",
      AT(check)},
     {"solver", "path", CT_KEY_WORD, 0, 0, 0, "auto|curve|rods|lean",
      "must be auto, curve, rods or lean", "auto",
