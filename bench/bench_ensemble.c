@@ -1,10 +1,11 @@
 /* Issue 16's ensemble inside one process: R realisations of a random Cantor surface at depth
  * 16 (131071 rods each; fx 1.5, fz 1.3 with 10 % / 5 % log-normal spread, H 10, E/sigma_y
  * 500) x 100 speeds (V* = 1e-4 .. 1e-2, log), ct_ensemble with 1 and 2 threads (whole
- * realisations per thread, and one realisation's rods shared), with and without the
- * closed-form check. The whole process with mpirun: scripts/bench.
- * Prints CSV: realisations,depth,speeds,threads,split,check,seconds,ms_per_realisation
- * Usage: bench_ensemble [--quick] [REALISATIONS]  (default 1000; --quick: 20) */
+ * realisations per thread, and one realisation's rods shared), with the closed-form check
+ * on every realisation (all), on every eighth (auto, the CLI's default) and off (none). The whole
+ * process with mpirun: scripts/bench. Prints CSV:
+ * realisations,depth,speeds,threads,split,check,seconds,ms_per_realisation Usage: bench_ensemble
+ * [--quick] [REALISATIONS]  (default 1000; --quick: 20) */
 #include "cantact.h"
 #include "common.h"
 
@@ -45,13 +46,15 @@ int main(int argc, char **argv)
         ct_ensemble_split split;
     } cases[] = {{1, CT_SPLIT_REALISATIONS}, {2, CT_SPLIT_REALISATIONS}, {2, CT_SPLIT_RODS}};
     double sink = 0.0;
-    for (int check = 1; check >= 0; check--)
+    /* the check: every realisation (all), every eighth (auto, the CLI's default), none */
+    const int checks[] = {CT_CHECK_ALL, CT_CHECK_AUTO, CT_CHECK_NONE};
+    for (size_t h = 0; h < sizeof checks / sizeof checks[0]; h++)
         for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
             if (!quick && cases[c].split == CT_SPLIT_RODS)
                 continue; /* small surfaces go by realisation; --quick shows why */
             sp.threads = cases[c].threads;
             sp.split = cases[c].split;
-            sp.opts.check = check;
+            sp.opts.check = checks[h];
             ct_ensemble_samples *s;
             if (ct_ensemble_samples_alloc(&s, 0, R, NV)) {
                 fprintf(stderr, "bench_ensemble: %s\n", ct_error_message());
@@ -65,7 +68,10 @@ int main(int argc, char **argv)
             double t = bench_now() - t0;
             sink += s->e[R * NV / 2];
             printf("%llu,16,%d,%d,%s,%s,%.4g,%.4g\n", (unsigned long long)R, NV, sp.threads,
-                   sp.split == CT_SPLIT_RODS ? "rods" : "realisations", check ? "closed" : "none",
+                   sp.split == CT_SPLIT_RODS ? "rods" : "realisations",
+                   checks[h] == CT_CHECK_ALL    ? "all"
+                   : checks[h] == CT_CHECK_AUTO ? "auto"
+                                                : "none",
                    t, 1e3 * t / (double)R);
             fflush(stdout);
             ct_ensemble_samples_free(s);
