@@ -657,9 +657,12 @@ static void fast_speed_dynamics(const ct_sweep_spec *s, ct_sweep_row *rows, ct_d
     }
 }
 
-/* Rows below which the fast path's impacts in time stay on one thread (a speed's take a few
- * microseconds; a team's start costs tens). */
-#define CT_DYN_PARALLEL_MIN 8192
+/* Rows below which the fast path's impacts in time stay on one thread: a speed's take a few
+ * microseconds, and on the 2-core CI machine (a VM) a team's start costs 0.1 ms to several ms;
+ * whole processes with the time columns there: 2000 speeds 8.8 ms on one thread, 13.6 ms on
+ * two; 9000 rows 23.5 / 24.1 ms; 20000 rows 53.7 / 46.3 ms (medians, docs/benchmarks.md). The
+ * CLI's blocks of whole speeds (16384 rows at most) reach it at any count of impacts. */
+#define CT_DYN_PARALLEL_MIN 12288
 
 /* The fast path's impacts in time. Every speed starts from the first curve's state, so the
  * speeds are independent: they are shared among the threads, each with its own workspace (a
