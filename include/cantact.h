@@ -116,6 +116,9 @@ int ct_layer_validate(const ct_layer *layer);
 /* Returns the bytes of memory the kernel can give without swapping (MemAvailable): the one
  * memory check of the library and the CLI before large allocations. */
 size_t ct_available_memory(void);
+/* Allocations below this many bytes skip that check: it reads /proc/meminfo (about 10 us), and
+ * a small run would read it a dozen times for kilobytes. */
+#define CT_MEMORY_CHECK_MIN 16777216.0
 
 /* Memory per rod in bytes: top, length, area and plastic strain, 4 doubles. */
 #define CT_BYTES_PER_ROD 32

@@ -192,7 +192,8 @@ int ct_bundle_create(ct_bundle **out, const ct_layer *layer, size_t n, const cha
         return st;
     if (n > SIZE_MAX / CT_BYTES_PER_ROD / 2)
         return ct_error_set(CT_ENOMEM, "%s: %zu rods cannot be addressed", what, n);
-    size_t need = n * CT_BYTES_PER_ROD, avail = ct_available_memory();
+    size_t need = n * CT_BYTES_PER_ROD,
+           avail = (double)need < CT_MEMORY_CHECK_MIN ? SIZE_MAX : ct_available_memory();
     if (need > avail / 10 * 9)
         return ct_error_set(CT_ENOMEM,
                             "%s: %zu rods need %.3g GiB, more than the %.3g GiB of memory "

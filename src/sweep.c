@@ -446,7 +446,8 @@ static int use_lean(const ct_bundle *b, const ct_sweep_spec *s, size_t *events)
         return 1;
     if (*events == SIZE_MAX)
         *events = ct_curve_events(b);
-    return ct_curve_bytes(*events) > 0.25 * (double)ct_available_memory();
+    const double need = ct_curve_bytes(*events);
+    return need >= CT_MEMORY_CHECK_MIN && need > 0.25 * (double)ct_available_memory();
 }
 
 /* Whether the rod path serves this sweep better than a curve (ct_sweep_path). */
@@ -457,9 +458,10 @@ static int use_rods(const ct_bundle *b, const ct_sweep_spec *s)
     if (s->path != CT_PATH_AUTO)
         return s->path == CT_PATH_RODS;
     size_t events = ct_curve_events(b);
-    double need = use_lean(b, s, &events) ? ct_curve_lean_bytes(events) : ct_curve_bytes(events),
-           avail = (double)ct_available_memory();
-    return need > 0.5 * avail || (events > 4000000 && s->nvel * (size_t)s->impacts <= 32);
+    const double need =
+        use_lean(b, s, &events) ? ct_curve_lean_bytes(events) : ct_curve_bytes(events);
+    return (need >= CT_MEMORY_CHECK_MIN && need > 0.5 * (double)ct_available_memory()) ||
+           (events > 4000000 && s->nvel * (size_t)s->impacts <= 32);
 }
 
 /* The first failed row in order, under stop_on_error. */

@@ -595,7 +595,7 @@ static int run_sweep(ct_scene *sc, int quiet)
      * ranges; streamed, a block holds whole speeds: 1e6 impacts of one speed are 272 MB) */
     /* an impact's history is held whole while written (about 48 bytes a point) */
     const double hist = (sc->what & CT_OUT_HISTORY) ? (double)sc->history_points * 48.0 : 0.0;
-    if (hist > 0.9 * (double)ct_available_memory()) {
+    if (hist >= CT_MEMORY_CHECK_MIN && hist > 0.9 * (double)ct_available_memory()) {
         ct_cli_fail("output.history_points = %zu: an impact's history needs about %.3g GiB (48 "
                     "bytes a point), more than the %.3g GiB of memory available",
                     sc->history_points, hist / 1073741824.0,
@@ -604,7 +604,7 @@ static int run_sweep(ct_scene *sc, int quiet)
     }
     const size_t held = streamable(sc) ? block_speeds(sc) : sc->nvel;
     const double bytes = (double)held * (double)sc->impacts * (double)sizeof(ct_sweep_row);
-    const double avail = (double)ct_available_memory();
+    const double avail = bytes < CT_MEMORY_CHECK_MIN ? INFINITY : (double)ct_available_memory();
     if (bytes > 0.9 * avail) {
         ct_cli_fail("%zu speeds x %ld impacts = %.3g result rows need %.3g GiB, more than the "
                     "%.3g GiB of memory available: split the scene",
