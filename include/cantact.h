@@ -281,7 +281,8 @@ enum { CT_CHECK_NONE = 0, CT_CHECK_ALL = 1, CT_CHECK_AUTO = 2 };
  * check of one realisation costs about a tenth of its computation; a wrong curve or impact
  * is wrong in every realisation. CT_CHECK_ALL checks every realisation, every impact. */
 #define CT_ENSEMBLE_CHECK_STRIDE 8
-/* The realisations of [first, first + count) that ct_ensemble checks under opts->check. */
+/* The realisations of [first, first + count) that ct_ensemble checks under opts->check (a
+ * range past UINT64_MAX ends there). */
 uint64_t ct_ensemble_checked(const ct_impact_opts *opts, uint64_t first, uint64_t count);
 
 typedef struct {

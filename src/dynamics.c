@@ -992,6 +992,8 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
     const double W_kin = res->kinetic_energy, u_max = res->u_max;
     double t_load, kmax;
     const pcurve *F = &w->first_pc;
+    if (m != w->f_m && w->fork) /* the products are the parent's, shared: not rewritten here */
+        return ct_error_set(CT_EINVAL, "impact in time: a fork's mass differs from its parent's");
     if (m != w->f_m && (st = first_products(w, m)))
         return st;
     double *k_load = res->elastic ? &kmax : NULL; /* else the unloading's stiffest piece */

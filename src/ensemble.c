@@ -149,10 +149,13 @@ uint64_t ct_ensemble_checked(const ct_impact_opts *opts, uint64_t first, uint64_
         return opts && opts->rule == CT_QUAD_CLOSED ? count : 0;
     if (opts->check != CT_CHECK_AUTO || opts->rule == CT_QUAD_CLOSED)
         return count;
-    /* the multiples of the stride below first + count less those below first (below x:
-     * ceil(x / stride)) */
-    const uint64_t k = CT_ENSEMBLE_CHECK_STRIDE, end = first + count;
-    return (end == 0 ? 0 : (end - 1) / k + 1) - (first == 0 ? 0 : (first - 1) / k + 1);
+    if (count == 0)
+        return 0;
+    /* the multiples of the stride up to the last realisation less those below first (up to
+     * x: x / stride + 1); a range past UINT64_MAX ends there */
+    const uint64_t k = CT_ENSEMBLE_CHECK_STRIDE,
+                   last = count - 1 > UINT64_MAX - first ? UINT64_MAX : first + (count - 1);
+    return (last / k + 1) - (first == 0 ? 0 : (first - 1) / k + 1);
 }
 
 static int check_spec(const ct_ensemble_spec *sp, const ct_ensemble_samples *out)

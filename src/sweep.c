@@ -568,7 +568,7 @@ typedef struct {
     unsigned char *check;            /* per speed: its impacts get the closed-form check */
     ct_dyn_work *dw;                 /* the impacts in time */
     ct_dyn_work **forks;             /* dw's forks, for the other threads' speeds */
-    int nforks;
+    int nforks, fork_cap;            /* made, room for */
 } sweep_ws;
 
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
@@ -680,8 +680,15 @@ static int fast_dynamics(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
 #endif
     if (s->nvel * (size_t)s->impacts < CT_DYN_PARALLEL_MIN)
         team = 1;
-    if (team > 1 && !w->forks && !(w->forks = calloc((size_t)team - 1, sizeof *w->forks)))
-        team = 1;
+    if (team - 1 > w->fork_cap) { /* the first block, or more threads than before */
+        ct_dyn_work **f = realloc(w->forks, (size_t)(team - 1) * sizeof *f);
+        if (f) {
+            w->forks = f;
+            w->fork_cap = team - 1;
+        }
+    }
+    if (team - 1 > w->fork_cap)
+        team = w->fork_cap + 1;
     while (w->nforks < team - 1 && !ct_dyn_work_fork(w->dw, m, &w->forks[w->nforks]))
         w->nforks++;
     if (team > w->nforks + 1)

@@ -213,6 +213,10 @@ static void check_stride(void **state)
     assert_true(ct_ensemble_checked(&o, 9, 15) == 1); /* 16 */
     assert_true(ct_ensemble_checked(&o, 9, 16) == 2); /* 16, 24 */
     assert_true(ct_ensemble_checked(&o, 1000, 1000) == 125);
+    assert_true(ct_ensemble_checked(&o, 3, 0) == 0);
+    assert_true(ct_ensemble_checked(&o, UINT64_MAX - 3, 8) == 0); /* UINT64_MAX - 7 is 8k */
+    assert_true(ct_ensemble_checked(&o, UINT64_MAX - 7, 8) == 1);
+    assert_true(ct_ensemble_checked(&o, UINT64_MAX - 8, UINT64_MAX) == 1);
     o.check = CT_CHECK_ALL;
     assert_true(ct_ensemble_checked(&o, 5, 3) == 3);
     o.check = CT_CHECK_NONE;

@@ -507,6 +507,59 @@ static void blocks_equal_the_whole_sweep(void **state)
     ct_bundle_free(b);
 }
 
+/* A caller's callback that gives the bundle more threads after the first block: the impacts
+ * in time of the next blocks then run on a larger team (the workspace's forks grow). */
+typedef struct {
+    collected c;
+    ct_bundle *b;
+} growing;
+
+static int collect_and_grow(const ct_sweep_row *rows, size_t n, void *ctx)
+{
+    growing *g = ctx;
+    ct_bundle_set_threads(g->b, 4);
+    return collect(rows, n, &g->c);
+}
+
+/* Blocks large enough for the impacts in time to be shared among threads (12288 rows and
+ * more), run on 2 threads and then, from the second block, on 4: every row bit for bit the
+ * rows of the whole sweep on one thread. */
+static void dynamics_blocks_on_threads(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    enum { NV = 30000 };
+    double *V = malloc(NV * sizeof *V);
+    ct_sweep_row *whole = malloc(NV * sizeof *whole), *got = malloc(NV * sizeof *got);
+    assert_non_null(V);
+    assert_non_null(whole);
+    assert_non_null(got);
+    for (size_t v = 0; v < NV; v++)
+        V[v] = 1e-4 * pow(100.0, (double)v / (NV - 1));
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 30, INFINITY), CT_OK);
+    ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = 1, .dynamics = 1};
+    ct_impact_opts_default(&spec.opts);
+    spec.opts.check = CT_CHECK_NONE;
+    ct_bundle_set_threads(b, 1);
+    assert_int_equal(ct_sweep(b, &spec, whole), CT_OK);
+    ct_bundle_set_threads(b, 2);
+    growing g = {{got, 0, 0}, b};
+    assert_int_equal(ct_sweep_blocks(b, &spec, 13000, collect_and_grow, &g), CT_OK);
+    assert_int_equal(g.c.n, NV);
+    assert_int_equal(g.c.calls, 3);
+    for (size_t k = 0; k < NV; k++) {
+        assert_int_equal(whole[k].status, CT_OK);
+        if (got[k].status != CT_OK || memcmp(&whole[k].r, &got[k].r, sizeof whole[k].r) ||
+            memcmp(&whole[k].dyn, &got[k].dyn, sizeof whole[k].dyn))
+            fail_msg("row %zu differs", k);
+    }
+    ct_bundle_free(b);
+    free(V);
+    free(whole);
+    free(got);
+}
+
 /* A row holds its results or its message in the same bytes (cantact.h): no room for the
  * results beside a full message; a row that succeeded says "", a failed one its message, and
  * a row not run the impact that stopped it, on both paths, with the impacts in time, whatever
@@ -810,6 +863,7 @@ int main(void)
         cmocka_unit_test(two_rods_five_impacts_on_paper),
         cmocka_unit_test(tiny_speed_is_elastic_not_an_error),
         cmocka_unit_test(blocks_equal_the_whole_sweep),
+        cmocka_unit_test(dynamics_blocks_on_threads),
         cmocka_unit_test(row_holds_results_or_its_message),
         cmocka_unit_test(tiny_energies_down_to_the_smallest_double),
         cmocka_unit_test(tiny_speed_on_offset_rods_is_elastic),
