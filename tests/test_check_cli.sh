@@ -47,5 +47,11 @@ runs ensemble -- "$ct" run "$src/examples/scenes/random_cantor.ini" --set surfac
     --set ensemble.realisations=10 --set output.what=ensemble --set impact.velocity=0.01:1:600:log
 grep -q "closed-form check of 2 of 10 realisations (those whose index is a multiple of 8" \
     "$tmp/ensemble.err" && ok || bad "ensemble: no note of the checked realisations: $(cat "$tmp/ensemble.err")"
+# a part of the ensemble with no multiple of 8 in it: nothing checked, and the run says so
+runs part -- "$ct" run "$src/examples/scenes/random_cantor.ini" --set surface.depth=10 \
+    --set ensemble.realisations=20 --set output.what=ensemble --set impact.velocity=0.01:1:20:log \
+    --realisations 1:7
+grep -q "closed-form check of none of realisations 1 .. 6" "$tmp/part.err" && ok ||
+    bad "part: no note that nothing was checked: $(cat "$tmp/part.err")"
 echo "check-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -459,6 +459,13 @@ static int report(outputs *o, const ct_scene *sc, const ct_ensemble_samples *all
                 "%.3g\n",
                 (unsigned long long)n, (unsigned long long)all->count, CT_ENSEMBLE_CHECK_STRIDE,
                 all->quad_error_max);
+    } else if (!quiet && rc == EXIT_DONE && sc->opts.check == CT_CHECK_AUTO &&
+               ct_ensemble_checked(&sc->opts, all->first, all->count) == 0) {
+        fprintf(stderr,
+                "cantact: closed-form check of none of realisations %llu .. %llu (it covers those "
+                "whose index is a multiple of %d; solver.check = all checks every one)\n",
+                (unsigned long long)all->first, (unsigned long long)(all->first + all->count - 1),
+                CT_ENSEMBLE_CHECK_STRIDE);
     }
     table_free(&t);
     return rc;
