@@ -106,13 +106,7 @@ int ct_bundle_threads(const ct_bundle *b)
 
 int ct_bundle_team(const ct_bundle *b)
 {
-    if (b->n < b->parallel_min)
-        return 1;
-#ifdef _OPENMP
-    return b->threads ? b->threads : omp_get_max_threads();
-#else
-    return 1;
-#endif
+    return b->n < b->parallel_min ? 1 : ct_bundle_threads(b);
 }
 
 int ct_bundle_team_from(const ct_bundle *b, size_t factor)
@@ -554,10 +548,7 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
      * in one parallel region per chunk of nodes, are slower than one thread
      * (docs/benchmarks.md has the figures). */
     const size_t nchunks = (m + CT_NODE_CHUNK - 1) / CT_NODE_CHUNK;
-    int avail = 1;
-#ifdef _OPENMP
-    avail = b->threads ? b->threads : omp_get_max_threads();
-#endif
+    const int avail = ct_bundle_threads(b);
     const int node_team =
         avail > 1 && nchunks >= 2 * (size_t)avail &&
                 (double)b->n * (double)m >= (double)b->parallel_min * NODE_WORK_FACTOR

@@ -130,13 +130,19 @@ static inline void ct_sweep_contact(ct_sweep_state *s, const event *e)
     s->active++;
 }
 
-static inline void ct_sweep_yield(ct_sweep_state *s, const event *e)
+/* A yield's steps past its slope: its plateau force, its length, its jump. */
+static inline void ct_sweep_plateau(ct_sweep_state *s, const event *e)
 {
-    ct_add_comp(&s->ks, &s->kc, e->dk);
     ct_add_comp(&s->As, &s->Ac, e->dF);
     s->Lmax = e->L > s->Lmax ? e->L : s->Lmax;
     ct_add_comp(&s->Ps, &s->Pc, e->jump);
     s->P_prev = s->Ps + s->Pc;
+}
+
+static inline void ct_sweep_yield(ct_sweep_state *s, const event *e)
+{
+    ct_add_comp(&s->ks, &s->kc, e->dk);
+    ct_sweep_plateau(s, e);
     s->active--;
 }
 
@@ -145,10 +151,7 @@ static inline int ct_sweep_event(ct_sweep_state *s, const event *e)
 {
     const int yield = signbit(e->dk) != 0;
     ct_add_comp(&s->ks, &s->kc, e->dk);
-    ct_add_comp(&s->As, &s->Ac, e->dF);
-    s->Lmax = e->L > s->Lmax ? e->L : s->Lmax;
-    ct_add_comp(&s->Ps, &s->Pc, e->jump);
-    s->P_prev = s->Ps + s->Pc;
+    ct_sweep_plateau(s, e);
     s->active += yield ? -1 : 1;
     return yield;
 }

@@ -444,29 +444,24 @@ static int report(outputs *o, const ct_scene *sc, const ct_ensemble_samples *all
         return EXIT_FAILED;
     }
     int rc = write_outputs(o, sc, &t, quiet);
-    if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max)) {
-        const uint64_t n = ct_ensemble_checked(&sc->opts, all->first, all->count);
-        if (n == all->count)
-            fprintf(
-                stderr,
+    const uint64_t n = ct_ensemble_checked(&sc->opts, all->first, all->count);
+    if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max) && n == all->count)
+        fprintf(stderr,
                 "cantact: closed-form check of every realisation: max |e - e_closed_form| = %.3g\n",
                 all->quad_error_max);
-        else
-            fprintf(
-                stderr,
+    else if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max))
+        fprintf(stderr,
                 "cantact: closed-form check of %llu of %llu realisations (those whose index is a "
                 "multiple of %d; solver.check = all checks every one): max |e - e_closed_form| = "
                 "%.3g\n",
                 (unsigned long long)n, (unsigned long long)all->count, CT_ENSEMBLE_CHECK_STRIDE,
                 all->quad_error_max);
-    } else if (!quiet && rc == EXIT_DONE && sc->opts.check == CT_CHECK_AUTO &&
-               ct_ensemble_checked(&sc->opts, all->first, all->count) == 0) {
+    else if (!quiet && rc == EXIT_DONE && sc->opts.check == CT_CHECK_AUTO && n == 0)
         fprintf(stderr,
                 "cantact: closed-form check of none of realisations %llu .. %llu (it covers those "
                 "whose index is a multiple of %d; solver.check = all checks every one)\n",
                 (unsigned long long)all->first, (unsigned long long)(all->first + all->count - 1),
                 CT_ENSEMBLE_CHECK_STRIDE);
-    }
     table_free(&t);
     return rc;
 }
