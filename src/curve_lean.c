@@ -16,9 +16,15 @@
  * read, not copied: they must not change while the curve is used (the sweep's own curve). */
 #include "curve_lean.h"
 
+#include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #define K 32 /* breakpoints per checkpoint */
 
@@ -95,43 +101,200 @@ static int tie_cmp(const void *a, const void *b)
     return ct_event_less(x, y) ? -1 : ct_event_less(y, x) ? 1 : 0;
 }
 
-#define BITS 11
-#define BUCKETS (1u << BITS)
-#define PASSES 6
+#define TEAM_MIN (1u << 17) /* events from which a sort's buckets go to the threads */
+#define MAX_BUCKETS 4096    /* a range's buckets: at most */
+#define PER_BUCKET 4        /* a range's buckets: about this many events each */
+#define SMALL 16            /* events a range of which is sorted by insertion */
 
-/* Sorts v[0..n) (tmp: room for n) into the events' order; -1 when out of memory. */
-static int sort_lean(const ct_lean *L, lev *v, lev *tmp, size_t n, int yield)
+/* How a range is split into buckets, in the keys' order: stretches of equal width between the
+ * smallest and the largest x (shift < 0), or, when x has no finite spread (infinities, NaN,
+ * -0 and +0 alone, a spread past the doubles' range), the top bits the keys differ in from
+ * bit shift on. */
+typedef struct {
+    double lo, scale;
+    int shift;
+    size_t nb;
+} split;
+
+typedef struct {
+    double lo, hi;
+    uint64_t klo, khi;
+} extent;
+
+static void extent_of(const lev *v, size_t n, extent *e)
 {
-    size_t(*count)[BUCKETS] = calloc(PASSES, sizeof *count);
-    if (!count)
-        return -1;
+    double lo = INFINITY, hi = -INFINITY;
+    uint64_t klo = UINT64_MAX, khi = 0;
     for (size_t i = 0; i < n; i++) {
-        const uint64_t k = key_of(v[i].x);
-        for (int p = 0; p < PASSES; p++)
-            count[p][(k >> (p * BITS)) & (BUCKETS - 1)]++;
+        const double x = v[i].x;
+        const uint64_t k = key_of(x);
+        lo = x < lo ? x : lo;
+        hi = x > hi ? x : hi;
+        klo = k < klo ? k : klo;
+        khi = k > khi ? k : khi;
     }
-    lev *src = v, *dst = tmp;
-    for (int p = 0; p < PASSES; p++) {
-        size_t *c = count[p], sum = 0;
-        int one = 0;
-        for (unsigned b = 0; b < BUCKETS; b++)
-            one |= c[b] == n;
-        if (one) /* every key has this digit: nothing to move */
-            continue;
-        for (unsigned b = 0; b < BUCKETS; b++) {
-            const size_t t = c[b];
-            c[b] = sum;
-            sum += t;
+    *e = (extent){lo, hi, klo, khi};
+}
+
+/* The split of n events of extent e (0: every key the same, nothing to sort). */
+static int plan(const extent *e, size_t n, split *s)
+{
+    if (e->klo >= e->khi)
+        return 0;
+    s->nb = n / PER_BUCKET < MAX_BUCKETS ? n / PER_BUCKET : MAX_BUCKETS;
+    s->lo = e->lo;
+    s->scale = (double)s->nb / (e->hi - e->lo);
+    s->shift = -1;
+    if (!(isfinite(e->lo) && isfinite(e->hi) && e->lo < e->hi && isfinite(s->scale) &&
+          s->scale > 0.0)) {
+        const int bits = 64 - __builtin_clzll(e->klo ^ e->khi);
+        int top = 1;
+        while (top < 12 && ((size_t)1 << top) < s->nb)
+            top++;
+        s->shift = bits > top ? bits - top : 0;
+        s->nb = (size_t)1 << (bits - s->shift);
+    }
+    return 1;
+}
+
+/* x's bucket: monotone in the key (a larger x is never in an earlier bucket). */
+static inline size_t bucket_of(const split *s, double x)
+{
+    if (s->shift >= 0)
+        return (size_t)((key_of(x) >> s->shift) & (s->nb - 1));
+    const double t = (x - s->lo) * s->scale; /* >= 0; nb at the largest x */
+    return t < (double)s->nb ? (size_t)t : s->nb - 1;
+}
+
+static void sort_range(lev *a, lev *b, size_t n, int into_a);
+
+/* Bucket k of a split range (its events in b, a free) into its place. */
+static void sort_bucket(lev *a, lev *b, const size_t *start, size_t k, int into_a)
+{
+    sort_range(b + start[k], a + start[k], start[k + 1] - start[k], !into_a);
+}
+
+/* Sorts a[0..n) by key (stable) into a itself (into_a) or into b, b[0..n) free. A range of a
+ * few events by insertion; a larger one scattered into b by bucket, each bucket then sorted
+ * the same way with a as the free room. The buckets of a large range fit the cache: the whole
+ * array goes through memory about twice, where a least-significant-digit sort moves it once
+ * per digit. */
+static void sort_range(lev *a, lev *b, size_t n, int into_a)
+{
+    lev *const out = into_a ? a : b;
+    extent e;
+    split s;
+    if (n > SMALL)
+        extent_of(a, n, &e);
+    if (n <= SMALL || !plan(&e, n, &s)) { /* by insertion, stable: a later event passes only
+                                             larger keys (none when every key is the same) */
+        if (out != a)
+            memcpy(out, a, n * sizeof *a);
+        for (size_t i = 1; n <= SMALL && i < n; i++) {
+            const lev v = out[i];
+            const uint64_t k = key_of(v.x);
+            size_t j = i;
+            for (; j > 0 && key_of(out[j - 1].x) > k; j--)
+                out[j] = out[j - 1];
+            out[j] = v;
         }
-        for (size_t i = 0; i < n; i++)
-            dst[c[(key_of(src[i].x) >> (p * BITS)) & (BUCKETS - 1)]++] = src[i];
-        lev *t = src;
-        src = dst;
-        dst = t;
+        return;
     }
+    size_t start[MAX_BUCKETS + 1], at[MAX_BUCKETS];
+    memset(start, 0, (s.nb + 1) * sizeof *start);
+    for (size_t i = 0; i < n; i++)
+        start[bucket_of(&s, a[i].x) + 1]++;
+    for (size_t k = 0; k < s.nb; k++)
+        start[k + 1] += start[k];
+    memcpy(at, start, s.nb * sizeof *at);
+    for (size_t i = 0; i < n; i++)
+        b[at[bucket_of(&s, a[i].x)]++] = a[i];
+    for (size_t k = 0; k < s.nb; k++)
+        sort_bucket(a, b, start, k, into_a);
+}
+
+/* sort_range(v, tmp, n, 1) on team threads: each scatters its share of v (in v's order, the
+ * shares in turn: the same places for any number of threads), then the buckets are shared.
+ * Every bucket's result is the same whoever sorts it. -1 when out of memory. */
+static int sort_team(lev *v, lev *tmp, size_t n, int team)
+{
+    extent *ext = malloc((size_t)team * sizeof *ext);
+    size_t *count = calloc((size_t)team * MAX_BUCKETS, sizeof *count);
+    size_t *start = malloc((MAX_BUCKETS + 1) * sizeof *start);
+    int st = ext && count && start ? 0 : -1, sorted = 0;
+    split s = {0};
+    if (st)
+        goto done;
+#pragma omp parallel num_threads(team)
+    {
+        int t = 0, T = 1;
+#ifdef _OPENMP
+        t = omp_get_thread_num();
+        T = omp_get_num_threads();
+#endif
+        const size_t i0 = n / (size_t)T * (size_t)t,
+                     i1 = t == T - 1 ? n : n / (size_t)T * (size_t)(t + 1);
+        extent_of(v + i0, i1 - i0, &ext[t]);
+#pragma omp barrier
+#pragma omp single
+        {
+            extent e = ext[0];
+            for (int u = 1; u < T; u++) {
+                e.lo = ext[u].lo < e.lo ? ext[u].lo : e.lo;
+                e.hi = ext[u].hi > e.hi ? ext[u].hi : e.hi;
+                e.klo = ext[u].klo < e.klo ? ext[u].klo : e.klo;
+                e.khi = ext[u].khi > e.khi ? ext[u].khi : e.khi;
+            }
+            sorted = !plan(&e, n, &s);
+        }
+        if (!sorted) {
+            size_t *c = count + (size_t)t * MAX_BUCKETS;
+            for (size_t i = i0; i < i1; i++)
+                c[bucket_of(&s, v[i].x)]++;
+#pragma omp barrier
+#pragma omp single
+            {
+                size_t sum = 0;
+                for (size_t k = 0; k < s.nb; k++) {
+                    start[k] = sum;
+                    for (int u = 0; u < T; u++) {
+                        const size_t m = count[(size_t)u * MAX_BUCKETS + k];
+                        count[(size_t)u * MAX_BUCKETS + k] = sum;
+                        sum += m;
+                    }
+                }
+                start[s.nb] = sum;
+            }
+            for (size_t i = i0; i < i1; i++)
+                tmp[c[bucket_of(&s, v[i].x)]++] = v[i];
+#pragma omp barrier
+#pragma omp for schedule(dynamic, 16)
+            for (ptrdiff_t k = 0; k < (ptrdiff_t)s.nb; k++)
+                sort_bucket(v, tmp, start, (size_t)k, 1);
+        }
+    }
+done:
+    free(ext);
     free(count);
-    if (src != v)
-        memcpy(v, src, n * sizeof *v);
+    free(start);
+    return st;
+}
+
+/* Sorts v[0..n) by key (stable; tmp: room for n), on team threads when it is large. */
+static int sort_keys(lev *v, lev *tmp, size_t n, int team)
+{
+    if (n >= TEAM_MIN && team > 1)
+        return sort_team(v, tmp, n, team);
+    sort_range(v, tmp, n, 1);
+    return 0;
+}
+
+/* Sorts v[0..n) (tmp: room for n) into the events' order (team: threads for the buckets of a
+ * large sort); -1 when out of memory. */
+static int sort_lean(const ct_lean *L, lev *v, lev *tmp, size_t n, int yield, int team)
+{
+    if (sort_keys(v, tmp, n, team))
+        return -1;
     /* runs of equal x (-0 and +0 are adjacent keys) in the total order */
     tie *t = NULL;
     size_t tcap = 0;
@@ -158,6 +321,14 @@ static int sort_lean(const ct_lean *L, lev *v, lev *tmp, size_t n, int yield)
     }
     free(t);
     return 0;
+}
+
+int ct_lean_sort_records(void *rec, size_t n, int team)
+{
+    lev *tmp = malloc((n ? n : 1) * sizeof *tmp);
+    const int st = tmp ? sort_keys(rec, tmp, n, team) : -1;
+    free(tmp);
+    return st;
 }
 
 /* ---- the sweep (curve.c's sweep_events, a breakpoint at a time) ---- */
@@ -373,13 +544,14 @@ int ct_lean_build(ct_lean **out, const ct_bundle *b)
     L->nrods = ct_bundle_size(b);
     L->E = lay->E;
     L->eps_y = lay->sigma_y / lay->E;
+    const int team = ct_bundle_team(b);
     int st = fill_events(L);
     if (!st) {
         lev *tmp = malloc((L->nruns ? L->nruns : 1) * sizeof *tmp);
-        st =
-            !tmp || sort_lean(L, L->con, tmp, L->nruns, 0) || sort_lean(L, L->yie, tmp, L->nruns, 1)
-                ? -1
-                : 0;
+        st = !tmp || sort_lean(L, L->con, tmp, L->nruns, 0, team) ||
+                     sort_lean(L, L->yie, tmp, L->nruns, 1, team)
+                 ? -1
+                 : 0;
         free(tmp);
     }
     if (!st)

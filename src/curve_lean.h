@@ -21,5 +21,10 @@ double ct_lean_first_yield(const ct_lean *L);
 void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin);
 /* The breakpoint with the largest W <= W, and the next breakpoint's x (INFINITY: none). */
 void ct_lean_piece_of_work(const ct_lean *L, double W, ct_point *p, double *x_next);
+/* For the tests: sorts n records of 16 bytes, {double x; uint64_t tag}, by x's total order
+ * (its bits: -NaN < -inf < ... < -0 < +0 < ... < +inf < +NaN), stable, as the lean curve sorts
+ * its events before putting each run of equal x in the events' order; on team threads from
+ * the size where the curve's sort uses them. -1 when out of memory. */
+int ct_lean_sort_records(void *rec, size_t n, int team);
 
 #endif
