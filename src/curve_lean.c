@@ -360,12 +360,28 @@ static inline void prefetch_rod(const ct_lean *L, const lev *v, size_t i, size_t
 #endif
 }
 
+/* Yields [base, end) made whole ahead of the sweep (by another thread). */
+typedef struct {
+    const event *ev;
+    size_t base, end;
+} made;
+
+/* Yield i, from m when m holds it. */
+static inline void yield_at(const ct_lean *L, const made *m, size_t i, event *out)
+{
+    if (m && i >= m->base && i < m->end)
+        *out = m->ev[i - m->base];
+    else
+        materialise(L, &L->yie[i], 1, out);
+}
+
 /* The breakpoint s stands before: its values into p, s advanced past it. *cm (not NULL): the
- * smallest contact of the yields swept. */
-static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm)
+ * smallest contact of the yields swept. m (not NULL): yields made ahead. */
+static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm, const made *m)
 {
     const size_t n = L->nruns;
-    prefetch_rod(L, L->yie, s->iy + AHEAD, n);
+    if (!m)
+        prefetch_rod(L, L->yie, s->iy + AHEAD, n);
     const double cx = s->ic < n ? L->con[s->ic].x : INFINITY;
     const double yx = s->iy < n ? L->yie[s->iy].x : INFINITY;
     const double x = cx < yx ? cx : yx;
@@ -379,7 +395,7 @@ static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm)
             } while (s->ic < n && L->con[s->ic].x == x);
         } else {
             do {
-                materialise(L, &L->yie[s->iy++], 1, &ye);
+                yield_at(L, m, s->iy++, &ye);
                 ct_sweep_yield(s, &ye);
                 if (cm && ye.c < *cm)
                     *cm = ye.c;
@@ -395,7 +411,7 @@ static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm)
             have_c = 1;
         }
         if (!have_y && s->iy < n && L->yie[s->iy].x == x) {
-            materialise(L, &L->yie[s->iy], 1, &ye);
+            yield_at(L, m, s->iy, &ye);
             have_y = 1;
         }
         if (!have_c && !have_y)
@@ -487,37 +503,101 @@ static int fill_events(ct_lean *L)
  * checkpoint's block the smallest contact of the yields still to come. The arrays are sized
  * for the most breakpoints there can be (two per run): the pages never reached are never
  * touched. */
-static int checkpoints(ct_lean *L)
+/* The checkpoints' sweep between calls: its state, the last W, the block's smallest contact. */
+typedef struct {
+    ct_sweep_state s;
+    double W_prev, cm;
+} cp_sweep;
+
+/* Sweeps on until the next yield is yield yend (to the end when yend is the last); 1 when W is
+ * not monotone. m (not NULL): the yields made ahead. */
+static int checkpoints_to(ct_lean *L, cp_sweep *c, size_t yend, const made *m)
 {
-    ct_sweep_state s = {0};
-    const size_t cap = 2 * L->nruns / K + 2;
-    if (!(L->cp = malloc(cap * sizeof *L->cp)) || !(L->cx = malloc(cap * sizeof *L->cx)) ||
-        !(L->cW = malloc(cap * sizeof *L->cW)) || !(L->ymin = malloc(cap * sizeof *L->ymin)))
-        return -1;
-    double W_prev = 0.0, cm = INFINITY;
-    L->first_yield = INFINITY;
-    while (s.ic < L->nruns || s.iy < L->nruns) {
-        const size_t q = s.j / K;
-        if (s.j % K == 0) {
-            L->cp[q] = s;
-            cm = INFINITY;
+    ct_sweep_state *s = &c->s;
+    while ((s->ic < L->nruns || s->iy < L->nruns) && (s->iy < yend || yend >= L->nruns)) {
+        const size_t q = s->j / K;
+        if (s->j % K == 0) {
+            L->cp[q] = *s;
+            c->cm = INFINITY;
         }
-        const size_t iy = s.iy;
+        const size_t iy = s->iy;
         ct_point p;
-        step(L, &s, &p, &cm);
-        L->ymin[q] = cm; /* the block's own, so far */
-        if (s.iy > iy && p.x < L->first_yield)
+        step(L, s, &p, &c->cm, m);
+        L->ymin[q] = c->cm; /* the block's own, so far */
+        if (s->iy > iy && p.x < L->first_yield)
             L->first_yield = p.x;
-        if (s.j - 1 == q * K) {
+        if (s->j - 1 == q * K) {
             L->cx[q] = p.x;
             L->cW[q] = p.W;
         }
-        if (!(p.W >= W_prev)) /* W not monotone (rounding): it cannot be searched */
+        if (!(p.W >= c->W_prev)) /* W not monotone (rounding): it cannot be searched */
             return 1;
-        W_prev = p.W;
+        c->W_prev = p.W;
     }
-    L->n = s.j;
-    L->ncp = (s.j + K - 1) / K;
+    return 0;
+}
+
+#define MADE (1u << 16)     /* yields made whole per part of a two-thread sweep */
+#define MADE_MIN (1u << 18) /* runs from which the sweep takes a second thread */
+
+/* Yields [base, end) whole into ev. */
+static void make_yields(const ct_lean *L, event *ev, size_t base, size_t end)
+{
+    for (size_t i = base; i < end; i++) {
+        prefetch_rod(L, L->yie, i + AHEAD, end);
+        materialise(L, &L->yie[i], 1, &ev[i - base]);
+    }
+}
+
+/* The sweep over every breakpoint: the checkpoints, the first yield, the count, and after each
+ * checkpoint's block the smallest contact of the yields still to come. The arrays are sized
+ * for the most breakpoints there can be (two per run): the pages never reached are never
+ * touched. On team threads (a large curve): one makes the yields whole from their rods (the
+ * bundle's scattered reads) a part ahead while the other sweeps the part before; the same
+ * events, so the same bits. */
+static int checkpoints(ct_lean *L, int team)
+{
+    cp_sweep c = {.W_prev = 0.0, .cm = INFINITY};
+    const size_t cap = 2 * L->nruns / K + 2, n = L->nruns;
+    if (!(L->cp = malloc(cap * sizeof *L->cp)) || !(L->cx = malloc(cap * sizeof *L->cx)) ||
+        !(L->cW = malloc(cap * sizeof *L->cW)) || !(L->ymin = malloc(cap * sizeof *L->ymin)))
+        return -1;
+    L->first_yield = INFINITY;
+    event *ev = team > 1 && n >= MADE_MIN ? malloc(2 * (size_t)MADE * sizeof *ev) : NULL;
+    int st = 0;
+    if (!ev) {
+        st = checkpoints_to(L, &c, n, NULL);
+    } else {
+        const size_t parts = (n + MADE - 1) / MADE;
+#pragma omp parallel num_threads(2)
+        {
+            int t = 0, T = 1;
+#ifdef _OPENMP
+            t = omp_get_thread_num();
+            T = omp_get_num_threads();
+#endif
+            if (t == T - 1)
+                make_yields(L, ev, 0, n < MADE ? n : MADE);
+#pragma omp barrier
+            for (size_t k = 0; k < parts; k++) {
+                const size_t base = k * MADE, end = base + MADE < n ? base + MADE : n;
+                if (t == 0 && !st) {
+                    const made m = {ev + (k % 2) * MADE, base, end};
+                    st = checkpoints_to(L, &c, end, &m);
+                }
+                if (t == T - 1 && end < n)
+                    make_yields(L, ev + ((k + 1) % 2) * MADE, end, end + MADE < n ? end + MADE : n);
+#pragma omp barrier
+                if (st) /* read by all after the barrier: all leave together */
+                    break;
+            }
+        }
+        free(ev);
+    }
+    if (st)
+        return 1;
+    L->n = c.s.j;
+    L->ncp = (c.s.j + K - 1) / K;
     L->x0 = L->n ? L->cx[0] : INFINITY;
     double m = INFINITY; /* each block's minimum becomes the minimum over the blocks after it */
     for (size_t q = L->ncp; q-- > 0;) {
@@ -555,7 +635,7 @@ int ct_lean_build(ct_lean **out, const ct_bundle *b)
         free(tmp);
     }
     if (!st)
-        st = checkpoints(L);
+        st = checkpoints(L, team);
     if (st) {
         const size_t runs = L->nruns;
         ct_lean_free(L);
@@ -593,13 +673,13 @@ void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin)
     const size_t q = ct_last_at_most(L->cx, L->ncp, u);
     ct_sweep_state s = L->cp[q];
     double cm = INFINITY;
-    step(L, &s, p, NULL);
+    step(L, &s, p, NULL, NULL);
     while (s.j < L->n && next_x(L, &s) <= u)
-        step(L, &s, p, NULL);
+        step(L, &s, p, NULL, NULL);
     if (cmin) { /* the yields after this breakpoint: to the end of the block, then ymin */
         ct_point t;
         while (s.j < L->n && s.j < (q + 1) * K)
-            step(L, &s, &t, &cm);
+            step(L, &s, &t, &cm, NULL);
         *cmin = cm < L->ymin[q] ? cm : L->ymin[q];
     }
 }
@@ -608,11 +688,11 @@ void ct_lean_piece_of_work(const ct_lean *L, double W, ct_point *p, double *x_ne
 {
     const size_t q = ct_last_at_most(L->cW, L->ncp, W);
     ct_sweep_state s = L->cp[q];
-    step(L, &s, p, NULL);
+    step(L, &s, p, NULL, NULL);
     *x_next = INFINITY;
     while (s.j < L->n) {
         ct_point t;
-        step(L, &s, &t, NULL);
+        step(L, &s, &t, NULL, NULL);
         if (!(t.W <= W)) {
             *x_next = t.x;
             break;

@@ -851,6 +851,68 @@ static void lean_curve_equals_full_curve_bit_for_bit(void **state)
     }
 }
 
+/* A lean curve large enough for its sort and its sweep to take threads (its events sorted by
+ * buckets on the threads; its yields made whole on one thread while another sweeps): every
+ * field of every row the same bits for 1, 2 and 3 threads and as the full curve's. Scattered
+ * tops with runs of equal ones (ties across the sort's buckets and the sweep's parts), a
+ * plastic state (contacts of their own), three impacts, the check on every row. */
+static void large_lean_curve_on_threads(void **state)
+{
+    (void)state;
+    enum { NV = 6, IMP = 3, NR = 300000 };
+    const double V[NV] = {3e-5, 2e-4, 1e-3, 1e-2, 0.1, 3.0};
+    double *top = malloc(NR * sizeof *top), *area = malloc(NR * sizeof *area);
+    assert_non_null(top);
+    assert_non_null(area);
+    ct_layer L = {.E = 500.0, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 1.0};
+    for (int k = 0; k < NR; k++) {
+        const double f = fmod(0.7548776662466927 * k, 1.0);
+        top[k] = k % 5 ? f * f : (k / 5 % 97) / 97.0; /* every fifth on one of 97 levels */
+        area[k] = (1.0 + k % 3) / (2.0 * NR);
+    }
+    ct_bundle *b[2];
+    assert_int_equal(ct_bundle_from_rods(&b[0], &L, NR, top, area), CT_OK);
+    assert_int_equal(ct_bundle_clone(&b[1], b[0]), CT_OK);
+    ct_bundle_advance(b[1], 0.3);
+    free(top);
+    free(area);
+    static ct_sweep_row c[NV * IMP], l[NV * IMP];
+    for (int k = 0; k < 2; k++) {
+        ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = IMP};
+        ct_impact_opts_default(&spec.opts);
+        spec.opts.check = CT_CHECK_ALL;
+        spec.path = CT_PATH_CURVE;
+        assert_int_equal(ct_bundle_set_threads(b[k], 1), 1);
+        assert_int_equal(ct_sweep(b[k], &spec, c), CT_OK);
+        for (int threads = 1; threads <= 3; threads++) {
+            assert_int_equal(ct_bundle_set_threads(b[k], threads), threads);
+            spec.path = CT_PATH_LEAN;
+            assert_int_equal(ct_sweep(b[k], &spec, l), CT_OK);
+            int ok = 0;
+            for (int q = 0; q < NV * IMP; q++) {
+                assert_int_equal(l[q].status, c[q].status);
+                ok += c[q].status == CT_OK;
+                const ct_impact_result *x = &c[q].r, *y = &l[q].r;
+                const double fx[] = {x->u_contact,       x->u_max,      x->u_release,
+                                     x->W_load,          x->W_unload,   x->W_load_closed,
+                                     x->W_unload_closed, x->e,          x->e_closed,
+                                     x->quad_error,      x->e_rounding, x->V_star_crit};
+                const double fy[] = {y->u_contact,       y->u_max,      y->u_release,
+                                     y->W_load,          y->W_unload,   y->W_load_closed,
+                                     y->W_unload_closed, y->e,          y->e_closed,
+                                     y->quad_error,      y->e_rounding, y->V_star_crit};
+                for (size_t f = 0; f < sizeof fx / sizeof fx[0]; f++)
+                    if (!same_bits(fx[f], fy[f]))
+                        fail_msg("bundle %d, %d threads, row %d, field %zu: full %.17g, lean "
+                                 "%.17g",
+                                 k, threads, q, f, fx[f], fy[f]);
+            }
+            assert_true(ok >= 3 * IMP); /* rows that ran, not only failures */
+        }
+        ct_bundle_free(b[k]);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -869,6 +931,7 @@ int main(void)
         cmocka_unit_test(tiny_speed_on_offset_rods_is_elastic),
         cmocka_unit_test(stiff_rod_at_contact_states_its_rounding),
         cmocka_unit_test(lean_curve_equals_full_curve_bit_for_bit),
+        cmocka_unit_test(large_lean_curve_on_threads),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }
