@@ -22,6 +22,10 @@
 #include "assert_rel.h"
 #include "cantact.h"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 static char dir[] = "/tmp/ct_profile_XXXXXX";
 
 static const char *path_of(const char *name)
@@ -164,6 +168,57 @@ static void levelling_exact(void **state)
     assert_int_equal(ct_profile_stats_of(p, &s), CT_OK);
     assert_rel(s.length, 0.25 * (NX * NY - 1), 1e-15); /* the valid pixels' area */
     ct_profile_free(p);
+}
+
+/* A grid large enough for its levelled heights to be shared among threads in chunks that
+ * start mid-row (530 columns): quadratic + signal levels to what the signal alone levels to,
+ * the quadratic alone to its rounding residue, with the same bits on 1 and 2 threads. */
+static void levelling_large_grid(void **state)
+{
+    (void)state;
+    enum { NX = 530, NY = 510 };
+    const double d = 1e-2;
+    double *sig = malloc(NX * NY * sizeof *sig), *all = malloc(NX * NY * sizeof *all),
+           *poly = malloc(NX * NY * sizeof *poly);
+    assert_true(sig && all && poly);
+    for (int j = 0; j < NY; j++)
+        for (int i = 0; i < NX; i++) {
+            const double x = i * d, y = j * d;
+            const size_t k = (size_t)j * NX + i;
+            sig[k] = 1e-3 * cos(0.07 * i) * cos(0.05 * j) + 1e-4 * sin(0.3 * i + 0.2 * j);
+            poly[k] = 5.0 - 3.0 * x + 2.0 * y + 0.7 * x * x - 0.4 * x * y + 0.3 * y * y;
+            all[k] = poly[k] + sig[k];
+        }
+    all[12345] = sig[12345] = poly[12345] = NAN; /* a hole */
+    ct_profile *pz[2], *ps, *pp;
+    for (int t = 0; t < 2; t++) {
+#ifdef _OPENMP
+        omp_set_num_threads(t + 1);
+#endif
+        assert_int_equal(ct_profile_from_grid(&pz[t], NX, NY, d, d, all), CT_OK);
+        assert_int_equal(ct_profile_level(pz[t], CT_DETREND_QUADRATIC), CT_OK);
+    }
+    assert_int_equal(ct_profile_from_grid(&ps, NX, NY, d, d, sig), CT_OK);
+    assert_int_equal(ct_profile_from_grid(&pp, NX, NY, d, d, poly), CT_OK);
+    assert_int_equal(ct_profile_level(ps, CT_DETREND_QUADRATIC), CT_OK);
+    assert_int_equal(ct_profile_level(pp, CT_DETREND_QUADRATIC), CT_EINVAL);
+    for (size_t k = 0; k < (size_t)NX * NY; k++) {
+        if (k == 12345) {
+            assert_true(isnan(pz[0]->z[k]) && isnan(pz[1]->z[k]));
+            continue;
+        }
+        assert_memory_equal(&pz[0]->z[k], &pz[1]->z[k], sizeof(double));
+        if (!(fabs(pz[0]->z[k] - ps->z[k]) < 1e-11 && fabs(pp->z[k]) < 1e-11))
+            fail_msg("sample %zu: levelled %.17g, the signal alone %.17g, the quadratic %.3g", k,
+                     pz[0]->z[k], ps->z[k], pp->z[k]);
+    }
+    for (int t = 0; t < 2; t++)
+        ct_profile_free(pz[t]);
+    ct_profile_free(ps);
+    ct_profile_free(pp);
+    free(sig);
+    free(all);
+    free(poly);
 }
 
 /* The statistics and the levelling do not depend on the heights' unit: the same profile
@@ -616,6 +671,7 @@ int main(void)
         cmocka_unit_test(rods_by_hand),
         cmocka_unit_test(bearing_by_hand),
         cmocka_unit_test(levelling_exact),
+        cmocka_unit_test(levelling_large_grid),
         cmocka_unit_test(heights_in_any_unit),
         cmocka_unit_test(trimming),
         cmocka_unit_test(text_readers),

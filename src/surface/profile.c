@@ -237,19 +237,6 @@ static void level_frame_of(const ct_profile *p, level_frame *L)
     L->ys = ys > 0.0 ? ys : 1.0;
 }
 
-/* The terms at sample j: 1 | s, (r) | s^2, (s r, r^2). */
-static void level_terms(const ct_profile *p, const level_frame *L, size_t j, const cursor *c,
-                        double *f)
-{
-    const double s = (x_at(p, j, c) - L->xm) / L->xs, r = (y_at(p, c) - L->ym) / L->ys;
-    f[0] = 1.0;
-    if (L->grid) {
-        f[1] = s, f[2] = r, f[3] = s * s, f[4] = s * r, f[5] = r * r;
-    } else {
-        f[1] = s, f[2] = s * s;
-    }
-}
-
 /* 1 when the m x m normal matrix A (row-major, symmetric, positive semi-definite) is well
  * enough conditioned to solve: its smallest singular value above 1e-10 of its largest. */
 static int level_spanned(const double *A, int m)
@@ -273,25 +260,78 @@ static int level_spanned(const double *A, int m)
     return hi > 0.0 && lo > 1e-10 * hi;
 }
 
+/* The m terms at sample j: 1 | s, (r) | s^2, (s r, r^2) (a line: 1, s, s^2). Inlined where m
+ * is a constant, so the terms stay in registers (a per-sample array of them, stored one by one
+ * and read back in pairs, cost a stalled store forwarding each time). */
+#if defined(__GNUC__)
+#define CT_INLINE static inline __attribute__((always_inline))
+#else
+#define CT_INLINE static inline
+#endif
+CT_INLINE void terms_of(const ct_profile *p, const level_frame *L, size_t j, const cursor *c,
+                        const int m, double *f)
+{
+    const double s = (x_at(p, j, c) - L->xm) / L->xs, r = (y_at(p, c) - L->ym) / L->ys;
+    f[0] = 1.0;
+    if (m == 6) {
+        f[1] = s, f[2] = r, f[3] = s * s, f[4] = s * r, f[5] = r * r;
+    } else if (m == 3 && L->grid) {
+        f[1] = s, f[2] = r;
+    } else if (m >= 2) {
+        f[1] = s;
+        if (m == 3)
+            f[2] = s * s;
+    }
+}
+
+/* The normal equations' sums over the valid samples, for m terms (A's upper triangle only: a
+ * product f[a] f[c] is f[c] f[a], so the lower one is the same sums, bit for bit). */
+CT_INLINE void fit_sums(const ct_profile *p, const level_frame *L, int k, double m2, const int m,
+                        double *A, double *bvec)
+{
+    const size_t total = p->nx * p->ny;
+    double a[6][6] = {{0}}, b[6] = {0};
+    cursor cu = {0, 0};
+    for (size_t j = 0; j < total; j++, next(p, &cu)) {
+        if (isnan(p->z[j]))
+            continue;
+        double f[6];
+        terms_of(p, L, j, &cu, m, f);
+        const double z = ct_times_pow2(p->z[j], m2, -k);
+        for (int u = 0; u < m; u++) {
+            b[u] += f[u] * z;
+            for (int v = u; v < m; v++)
+                a[u][v] += f[u] * f[v];
+        }
+    }
+    for (int u = 0; u < m; u++) {
+        bvec[u] = b[u];
+        for (int v = u; v < m; v++)
+            A[u * m + v] = A[v * m + u] = a[u][v];
+    }
+}
+
 /* The least-squares coefficients of the terms (coef[0..m)), by LU (GSL) on the normal
  * equations. */
 static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, double *coef)
 {
     const int m = L->m;
-    const size_t total = p->nx * p->ny;
     const int k = height_scale(p); /* the right-hand side in units of 2^k: exact, no overflow */
     const double m2 = ldexp(1.0, -k);
-    double A[36] = {0}, bvec[6] = {0}, f[6];
-    cursor cu = {0, 0};
-    for (size_t j = 0; j < total; j++, next(p, &cu)) {
-        if (isnan(p->z[j]))
-            continue;
-        level_terms(p, L, j, &cu, f);
-        for (int a = 0; a < m; a++) {
-            bvec[a] += f[a] * ct_times_pow2(p->z[j], m2, -k);
-            for (int c = 0; c < m; c++)
-                A[a * m + c] += f[a] * f[c];
-        }
+    double A[36] = {0}, bvec[6] = {0};
+    switch (m) {
+    case 1:
+        fit_sums(p, L, k, m2, 1, A, bvec);
+        break;
+    case 2:
+        fit_sums(p, L, k, m2, 2, A, bvec);
+        break;
+    case 3:
+        fit_sums(p, L, k, m2, 3, A, bvec);
+        break;
+    default:
+        fit_sums(p, L, k, m2, 6, A, bvec);
+        break;
     }
     /* No input may reach GSL's error handler (its default aborts the process, and changing it
      * would change process-wide state): the normal matrix's singular values (SVD never
@@ -325,6 +365,31 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
     return CT_OK;
 }
 
+#define LEVEL_TEAM_MIN (1u << 18) /* samples from which the levelled heights take threads */
+#define LEVEL_CHUNK (1u << 16)
+
+/* Samples [j0, j1) less the fitted terms (m of them, coef), and the extremes of the heights
+ * before (|z|: *big) and after (*lo, *hi). */
+CT_INLINE void subtract_fit(ct_profile *p, const level_frame *L, const double *coef, const int m,
+                            size_t j0, size_t j1, double *big, double *lo, double *hi)
+{
+    cursor cu = {j0 % p->nx, j0 / p->nx};
+    double b = *big, l = *lo, h = *hi;
+    for (size_t j = j0; j < j1; j++, next(p, &cu)) {
+        if (isnan(p->z[j]))
+            continue;
+        b = fabs(p->z[j]) > b ? fabs(p->z[j]) : b;
+        double f[6], t = 0.0;
+        terms_of(p, L, j, &cu, m, f);
+        for (int a = 0; a < m; a++)
+            t += coef[a] * f[a];
+        p->z[j] -= t;
+        l = p->z[j] < l ? p->z[j] : l;
+        h = p->z[j] > h ? p->z[j] : h;
+    }
+    *big = b, *lo = l, *hi = h;
+}
+
 int ct_profile_level(ct_profile *p, ct_detrend how)
 {
     CT_NEED(p);
@@ -342,24 +407,34 @@ int ct_profile_level(ct_profile *p, ct_detrend how)
                           : how == CT_DETREND_LINEAR ? (grid ? 3 : 2)
                                                      : (grid ? 6 : 3)};
     level_frame_of(p, &L);
-    double coef[6], f[6];
+    double coef[6];
     if ((st = level_fit(p, &L, how, coef)))
         return st;
-    const int m = L.m;
     const size_t total = p->nx * p->ny;
     double big = 0.0, lo = INFINITY, hi = -INFINITY;
-    cursor cu = {0, 0};
-    for (size_t j = 0; j < total; j++, next(p, &cu)) {
-        if (isnan(p->z[j]))
-            continue;
-        big = fabs(p->z[j]) > big ? fabs(p->z[j]) : big;
-        level_terms(p, &L, j, &cu, f);
-        double t = 0.0;
-        for (int a = 0; a < m; a++)
-            t += coef[a] * f[a];
-        p->z[j] -= t;
-        lo = p->z[j] < lo ? p->z[j] : lo;
-        hi = p->z[j] > hi ? p->z[j] : hi;
+    /* each sample on its own (the extremes are exact in any order): shared among threads */
+    const int team = total >= LEVEL_TEAM_MIN ? ct_default_threads() : 1;
+    (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1) reduction(max            \
+                                                                                    : big, hi)     \
+    reduction(min                                                                                  \
+              : lo)
+    for (size_t c = 0; c < (total + LEVEL_CHUNK - 1) / LEVEL_CHUNK; c++) {
+        const size_t j0 = c * LEVEL_CHUNK, j1 = j0 + LEVEL_CHUNK < total ? j0 + LEVEL_CHUNK : total;
+        switch (L.m) {
+        case 1:
+            subtract_fit(p, &L, coef, 1, j0, j1, &big, &lo, &hi);
+            break;
+        case 2:
+            subtract_fit(p, &L, coef, 2, j0, j1, &big, &lo, &hi);
+            break;
+        case 3:
+            subtract_fit(p, &L, coef, 3, j0, j1, &big, &lo, &hi);
+            break;
+        default:
+            subtract_fit(p, &L, coef, 6, j0, j1, &big, &lo, &hi);
+            break;
+        }
     }
     /* A flat or exactly tilted profile levels to its rounding residue (1e-23 m from heights of
      * 1e-7 m), which is no roughness: an e computed from it would be noise. Heights left within
