@@ -377,7 +377,11 @@ static inline void yield_at(const ct_lean *L, const made *m, size_t i, event *ou
 
 /* The breakpoint s stands before: its values into p, s advanced past it. *cm (not NULL): the
  * smallest contact of the yields swept. m (not NULL): yields made ahead. */
-static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm, const made *m)
+#if defined(__GNUC__)
+__attribute__((always_inline))
+#endif
+static inline void
+sweep_step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm, const made *m)
 {
     const size_t n = L->nruns;
     if (!m)
@@ -431,6 +435,11 @@ static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm, c
     ct_sweep_point(s, x, p);
 }
 
+static void step(const ct_lean *L, ct_sweep_state *s, ct_point *p, double *cm, const made *m)
+{
+    sweep_step(L, s, p, cm, m);
+}
+
 void ct_lean_free(ct_lean *L)
 {
     if (!L)
@@ -454,40 +463,31 @@ double ct_lean_bytes(size_t runs)
 }
 
 /* Pass over the rods: the runs' events in rod order and the summed areas of the long runs. */
-static int fill_events(ct_lean *L)
+#define FILL_BLOCKS 64 /* blocks of rods per chunk of the pass over the rods */
+
+/* Runs of rods [k0, k1) (block aligned) holds: all (*runs), of more than one rod (*multi). */
+static void count_runs(const ct_lean *L, size_t k0, size_t k1, size_t *runs, size_t *multi)
 {
-    const size_t n = L->nrods;
-    size_t runs = 0;
-    for (size_t k = 0; k < n; k++) /* block starts begin runs, as in ct_curve_build */
-        runs += k % CT_BLOCK == 0 || !ct_same_rod(L->top, L->length, L->eps_p, k);
-    L->nruns = runs;
-    /* the memory check reads /proc/meminfo: only for curves where it can matter */
-    const double need = ct_lean_bytes(runs);
-    if (need >= 64e6 && need > 0.9 * (double)ct_available_memory())
-        return -2;
-    L->con = malloc((runs ? runs : 1) * sizeof *L->con);
-    L->yie = malloc((runs ? runs : 1) * sizeof *L->yie);
-    if (!L->con || !L->yie)
-        return -1;
-    size_t r = 0, cap = 0;
-    for (size_t k = 0; k < n;) {
-        const size_t k1 = (k / CT_BLOCK + 1) * CT_BLOCK < n ? (k / CT_BLOCK + 1) * CT_BLOCK : n;
+    size_t r = 0, m = 0;
+    for (size_t k = k0; k < k1; k++) { /* block starts begin runs, as in ct_curve_build */
+        const int starts = k % CT_BLOCK == 0 || !ct_same_rod(L->top, L->length, L->eps_p, k);
+        r += starts;
+        m += starts && k + 1 < k1 && (k + 1) % CT_BLOCK != 0 &&
+             ct_same_rod(L->top, L->length, L->eps_p, k + 1);
+    }
+    *runs = r, *multi = m;
+}
+
+/* The events of the runs of rods [k0, k1) (block aligned) from run r and long run m on. */
+static void fill_runs(ct_lean *L, size_t k0, size_t k1, size_t r, size_t m)
+{
+    for (size_t k = k0; k < k1;) {
+        const size_t e = (k / CT_BLOCK + 1) * CT_BLOCK < k1 ? (k / CT_BLOCK + 1) * CT_BLOCK : k1;
         size_t l;
-        const double s = ct_run_area(L->top, L->length, L->eps_p, L->area, k, k1, &l);
+        const double s = ct_run_area(L->top, L->length, L->eps_p, L->area, k, e, &l);
         if (l - k > 1) {
-            if (L->nm == cap) {
-                cap = cap ? 2 * cap : 64;
-                uint64_t *a = realloc(L->mk, cap * sizeof *a);
-                if (!a)
-                    return -1;
-                L->mk = a;
-                double *b = realloc(L->ms, cap * sizeof *b);
-                if (!b)
-                    return -1;
-                L->ms = b;
-            }
-            L->mk[L->nm] = k;
-            L->ms[L->nm++] = s;
+            L->mk[m] = k;
+            L->ms[m++] = s;
         }
         event c, y;
         ct_run_events(L->top[k], L->length[k], L->eps_p[k], s, L->E, L->eps_y, &c, &y);
@@ -496,7 +496,47 @@ static int fill_events(ct_lean *L)
         r++;
         k = l;
     }
-    return 0;
+}
+
+/* Pass over the rods: the runs' events in rod order and the summed areas of the long runs. In
+ * chunks of whole blocks (a run never crosses a block): counted, then filled from each chunk's
+ * place, on team threads (the same arrays for any number). */
+static int fill_events(ct_lean *L, int team)
+{
+    const size_t n = L->nrods, chunk = (size_t)FILL_BLOCKS * CT_BLOCK, nc = (n + chunk - 1) / chunk;
+    size_t *at = calloc(2 * (nc + 1), sizeof *at); /* runs, then long runs, before chunk c */
+    if (!at)
+        return -1;
+    size_t *mat = at + nc + 1;
+    (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1 && nc > 1)
+    for (size_t c = 0; c < nc; c++)
+        count_runs(L, c * chunk, (c + 1) * chunk < n ? (c + 1) * chunk : n, &at[c + 1],
+                   &mat[c + 1]);
+    for (size_t c = 0; c < nc; c++) {
+        at[c + 1] += at[c];
+        mat[c + 1] += mat[c];
+    }
+    const size_t runs = at[nc];
+    L->nruns = runs;
+    L->nm = mat[nc];
+    /* the memory check reads /proc/meminfo: only for curves where it can matter */
+    const double need = ct_lean_bytes(runs);
+    int st = 0;
+    if (need >= 64e6 && need > 0.9 * (double)ct_available_memory())
+        st = -2;
+    else if (!(L->con = malloc((runs ? runs : 1) * sizeof *L->con)) ||
+             !(L->yie = malloc((runs ? runs : 1) * sizeof *L->yie)) ||
+             !(L->mk = malloc((L->nm ? L->nm : 1) * sizeof *L->mk)) ||
+             !(L->ms = malloc((L->nm ? L->nm : 1) * sizeof *L->ms)))
+        st = -1;
+    if (!st) {
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1 && nc > 1)
+        for (size_t c = 0; c < nc; c++)
+            fill_runs(L, c * chunk, (c + 1) * chunk < n ? (c + 1) * chunk : n, at[c], mat[c]);
+    }
+    free(at);
+    return st;
 }
 
 /* The sweep over every breakpoint: the checkpoints, the first yield, the count, and after each
@@ -513,28 +553,36 @@ typedef struct {
  * not monotone. m (not NULL): the yields made ahead. */
 static int checkpoints_to(ct_lean *L, cp_sweep *c, size_t yend, const made *m)
 {
-    ct_sweep_state *s = &c->s;
-    while ((s->ic < L->nruns || s->iy < L->nruns) && (s->iy < yend || yend >= L->nruns)) {
-        const size_t q = s->j / K;
-        if (s->j % K == 0) {
-            L->cp[q] = *s;
-            c->cm = INFINITY;
+    ct_sweep_state s = c->s; /* in registers, not through a pointer, while it sweeps */
+    double cm = c->cm, W_prev = c->W_prev, first_yield = L->first_yield;
+    int st = 0;
+    while ((s.ic < L->nruns || s.iy < L->nruns) && (s.iy < yend || yend >= L->nruns)) {
+        const size_t q = s.j / K;
+        if (s.j % K == 0) {
+            L->cp[q] = s;
+            cm = INFINITY;
         }
-        const size_t iy = s->iy;
+        const size_t iy = s.iy;
         ct_point p;
-        step(L, s, &p, &c->cm, m);
-        L->ymin[q] = c->cm; /* the block's own, so far */
-        if (s->iy > iy && p.x < L->first_yield)
-            L->first_yield = p.x;
-        if (s->j - 1 == q * K) {
+        sweep_step(L, &s, &p, &cm, m);
+        L->ymin[q] = cm; /* the block's own, so far */
+        if (s.iy > iy && p.x < first_yield)
+            first_yield = p.x;
+        if (s.j - 1 == q * K) {
             L->cx[q] = p.x;
             L->cW[q] = p.W;
         }
-        if (!(p.W >= c->W_prev)) /* W not monotone (rounding): it cannot be searched */
-            return 1;
-        c->W_prev = p.W;
+        if (!(p.W >= W_prev)) { /* W not monotone (rounding): it cannot be searched */
+            st = 1;
+            break;
+        }
+        W_prev = p.W;
     }
-    return 0;
+    c->s = s;
+    c->cm = cm;
+    c->W_prev = W_prev;
+    L->first_yield = first_yield;
+    return st;
 }
 
 #define MADE (1u << 16)     /* yields made whole per part of a two-thread sweep */
@@ -625,7 +673,7 @@ int ct_lean_build(ct_lean **out, const ct_bundle *b)
     L->E = lay->E;
     L->eps_y = lay->sigma_y / lay->E;
     const int team = ct_bundle_team(b);
-    int st = fill_events(L);
+    int st = fill_events(L, team);
     if (!st) {
         lev *tmp = malloc((L->nruns ? L->nruns : 1) * sizeof *tmp);
         st = !tmp || sort_lean(L, L->con, tmp, L->nruns, 0, team) ||

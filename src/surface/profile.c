@@ -613,6 +613,24 @@ int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sig
     }
     double *top, *length, *area, *eps_p;
     ct_bundle_arrays(b, &top, &length, &area, &eps_p);
+    if (!pm->index) { /* every sample a rod, rod k sample k: the arrays' first touch (the
+                         kernel's clearing of their pages) shared among threads */
+        const int team = total >= LEVEL_TEAM_MIN ? ct_default_threads() : 1;
+        (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
+        for (size_t c = 0; c < (total + LEVEL_CHUNK - 1) / LEVEL_CHUNK; c++) {
+            const size_t j1 = (c + 1) * LEVEL_CHUNK < total ? (c + 1) * LEVEL_CHUNK : total;
+            for (size_t j = c * LEVEL_CHUNK; j < j1; j++) {
+                top[j] = zmax - p->z[j];
+                length[j] = Hstar - top[j];
+                area[j] = share(p, j);
+                eps_p[j] = 0.0;
+            }
+        }
+        ct_bundle_set_surface(b, &profile_kind, pm, p->invalid);
+        *out = b;
+        return CT_OK;
+    }
     size_t k = 0;
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
