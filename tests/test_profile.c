@@ -212,6 +212,28 @@ static void levelling_large_grid(void **state)
             fail_msg("sample %zu: levelled %.17g, the signal alone %.17g, the quadratic %.3g", k,
                      pz[0]->z[k], ps->z[k], pp->z[k]);
     }
+    /* rods of the grid without its hole (rod k is sample k, filled in chunks on threads): each
+     * rod's top, length and pixel area by hand */
+    all[12345] = 0.5 * (all[12344] + all[12346]);
+    ct_profile *pr;
+    assert_int_equal(ct_profile_from_grid(&pr, NX, NY, d, d, all), CT_OK);
+    double zmax = -INFINITY;
+    for (size_t k = 0; k < (size_t)NX * NY; k++)
+        zmax = all[k] > zmax ? all[k] : zmax;
+    ct_bundle *b;
+    assert_int_equal(ct_profile_bundle(&b, pr, 100.0, 1.0, 1000.0), CT_OK);
+    assert_int_equal(ct_bundle_size(b), NX * NY);
+    for (size_t k = 0; k < (size_t)NX * NY; k++) {
+        ct_rod_info r;
+        assert_int_equal(ct_bundle_rod(b, k, &r), CT_OK);
+        const double top = zmax - all[k];
+        if (!(r.top == top && r.length == 1000.0 - top && r.area == d * d &&
+              r.plastic_strain == 0.0))
+            fail_msg("rod %zu: top %.17g length %.17g area %.17g, by hand %.17g %.17g %.17g", k,
+                     r.top, r.length, r.area, top, 1000.0 - top, d * d);
+    }
+    ct_bundle_free(b);
+    ct_profile_free(pr);
     for (int t = 0; t < 2; t++)
         ct_profile_free(pz[t]);
     ct_profile_free(ps);
