@@ -450,6 +450,18 @@ int ct_profile_level(ct_profile *p, ct_detrend how)
     return CT_OK;
 }
 
+/* The valid heights' peak to valley (ct_profile_stats_of's Rt; -inf when none is valid). */
+static double heights_span(const ct_profile *p)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t j = 0; j < p->nx * p->ny; j++)
+        if (!isnan(p->z[j])) {
+            lo = p->z[j] < lo ? p->z[j] : lo;
+            hi = p->z[j] > hi ? p->z[j] : hi;
+        }
+    return hi - lo;
+}
+
 int ct_profile_stats_of(const ct_profile *p, ct_profile_stats *s)
 {
     CT_NEED(p);
@@ -578,6 +590,9 @@ static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
 static const ct_rod_meta_kind profile_kind = {"profile", profile_rod_info, profile_meta_clone,
                                               profile_meta_free};
 
+static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
+                          double E, double sigma_y, double Hstar);
+
 int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sigma_y, double Hstar)
 {
     CT_NEED(out);
@@ -587,6 +602,15 @@ int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sig
     int st = ct_profile_stats_of(p, &s);
     if (st)
         return st;
+    return profile_bundle(out, p, &s, E, sigma_y, Hstar);
+}
+
+/* ct_profile_bundle with p's statistics known (sp). */
+static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
+                          double E, double sigma_y, double Hstar)
+{
+    const ct_profile_stats s = *sp;
+    int st;
     if (!(s.Rt > 0.0))
         return ct_error_set(CT_EINVAL, "profile: all heights are equal (peak to valley 0): a "
                                        "flat surface has no asperities to model");
@@ -845,9 +869,9 @@ static int profile_prepare(ct_surface *s, const char *dir)
     const double Hstar = c->Hstar * p->z_unit;
     for (int k = 0; k < 4; k++)
         c->band_m[k] = c->band[k] * (k < 2 ? p->z_unit : p->x_unit);
-    ct_profile_stats raw;
+    ct_profile_stats raw = {.Rt = heights_span(p)}; /* only Rt is asked of the raw heights */
     size_t clipped = 0;
-    if ((st = ct_profile_stats_of(p, &raw)) || (st = ct_profile_level(p, c->detrend)) ||
+    if ((st = ct_profile_level(p, c->detrend)) ||
         (c->trim_k > 0.0 && (st = ct_profile_trim(p, c->trim_k, &clipped))) ||
         (st = ct_profile_stats_of(p, &c->stats))) {
         return ct_error_set(st, "%s: %s", c->file, ct_error_message()); /* the file named */
@@ -898,7 +922,9 @@ static int profile_build(const ct_surface *s, const ct_build_request *r, ct_bund
 {
     (void)r;
     const profile_config *c = s->config;
-    int st = ct_profile_bundle(out, c->profile, c->layer.E, c->layer.sigma_y, c->layer.Hstar);
+    *out = NULL;
+    int st = profile_bundle(out, c->profile, &c->stats, c->layer.E, c->layer.sigma_y,
+                            c->layer.Hstar); /* the statistics of the profile as it stands */
     if (st)
         return st;
     info->depth = -1;
