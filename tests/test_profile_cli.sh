@@ -51,6 +51,10 @@ INI
 expect 0 "dektak run" -- "$ct" run "$tmp/d.ini" -o "$tmp/e.csv"
 has err "dektak-1.csv (dektak): 9600 points, levelled (linear)" "summary line"
 has err "measured surface, 9600 rods" "rods line"
+# the raw heights' peak to valley in the note: the file's Raw Micrometer column by awk
+raw=$(awk -F, 'f && NF >= 2 && $2 != "" { z = $2 + 0; if (n++ == 0 || z < lo) lo = z; if (n == 1 || z > hi) hi = z }
+    /^Lateral um,Raw Micrometer/ { f = 1 } END { printf "%.4g", (hi - lo) * 1e-6 }' "$dektak")
+has err "(raw Rt $raw m)" "the raw heights' peak to valley"
 $py "$src/tests/profile_reference.py" "$dektak" 1e-6 10 2e11 4e8 1e-3 ${speeds//,/} >"$tmp/ref.csv" ||
     bad "profile_reference.py failed"
 $py - "$tmp/e.csv" "$tmp/ref.csv" <<'PY' && ok || bad "e, V* against the NumPy reference"
