@@ -585,7 +585,7 @@ static int checkpoints_to(ct_lean *L, cp_sweep *c, size_t yend, const made *m)
     return st;
 }
 
-#define MADE (1u << 16)     /* yields made whole per part of a two-thread sweep */
+#define MADE (1u << 14)     /* yields made whole per part of a two-thread sweep */
 #define MADE_MIN (1u << 18) /* runs from which the sweep takes a second thread */
 
 /* Yields [base, end) whole into ev. */
