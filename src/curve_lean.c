@@ -5,11 +5,12 @@
  * other field); for a yield, the first rod of its run, everything else (the run's summed area,
  * slope, plateau force, ...) recomputed from the bundle's rods by the same code the full build
  * uses (curve_event.h). So the sweep reads the bundle, in scattered order, for the yields
- * alone (on a large map those reads are what the sweep waits on). Contacts and
- * yields are sorted apart (a radix sort on x, then the ties in the events' total order) and merged
- * as they are swept, which is the full build's order. Every K-th breakpoint keeps the sweep's state
- * (its compensated sums); a query finds its breakpoint among those and sweeps on from there, so it
- * gets the very doubles the full curve holds, in O(log n + K).
+ * alone (on a large map those reads are what the sweep waits on: on threads, another thread
+ * makes the yields whole ahead of it). Contacts and yields are sorted apart (by buckets of x,
+ * then the ties in the events' total order) and merged as they are swept, which is the full
+ * build's order. Every K-th breakpoint keeps the sweep's state (its compensated sums); a query
+ * finds its breakpoint among those and sweeps on from there, so it gets the very doubles the
+ * full curve holds, in O(log n + K). Threads change no bit.
  *
  * Memory: 32 bytes per run of rods (two events) plus a checkpoint per K breakpoints, and 16
  * more per run while sorting, against about 300 for the full curve. The bundle's arrays are
@@ -81,7 +82,7 @@ static void materialise(const ct_lean *L, const lev *e, int yield, event *out)
     ct_run_events(L->top[k], L->length[k], L->eps_p[k], run_area(L, k), L->E, L->eps_y, &c, out);
 }
 
-/* ---- sorting: LSD radix on x, then each run of equal x in the total order ---- */
+/* ---- sorting: by buckets of x, then each run of equal x in the total order ---- */
 
 static uint64_t key_of(double x)
 {
