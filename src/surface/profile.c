@@ -591,7 +591,7 @@ static const ct_rod_meta_kind profile_kind = {"profile", profile_rod_info, profi
                                               profile_meta_free};
 
 static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
-                          double E, double sigma_y, double Hstar);
+                          double E, double sigma_y, double Hstar, int threads);
 
 int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sigma_y, double Hstar)
 {
@@ -602,12 +602,13 @@ int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sig
     int st = ct_profile_stats_of(p, &s);
     if (st)
         return st;
-    return profile_bundle(out, p, &s, E, sigma_y, Hstar);
+    return profile_bundle(out, p, &s, E, sigma_y, Hstar, 0);
 }
 
-/* ct_profile_bundle with p's statistics known (sp). */
+/* ct_profile_bundle with p's statistics known (sp), filled on threads threads (0: the OpenMP
+ * default). */
 static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
-                          double E, double sigma_y, double Hstar)
+                          double E, double sigma_y, double Hstar, int threads)
 {
     const ct_profile_stats s = *sp;
     int st;
@@ -639,7 +640,7 @@ static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile
     ct_bundle_arrays(b, &top, &length, &area, &eps_p);
     if (!pm->index) { /* every sample a rod, rod k sample k: the arrays' first touch (the
                          kernel's clearing of their pages) shared among threads */
-        const int team = total >= LEVEL_TEAM_MIN ? ct_default_threads() : 1;
+        const int team = total < LEVEL_TEAM_MIN ? 1 : threads > 0 ? threads : ct_default_threads();
         (void)team;
 #pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
         for (size_t c = 0; c < (total + LEVEL_CHUNK - 1) / LEVEL_CHUNK; c++) {
@@ -920,11 +921,10 @@ static int profile_prepare(ct_surface *s, const char *dir)
 static int profile_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
                          ct_plan_info *info)
 {
-    (void)r;
     const profile_config *c = s->config;
     *out = NULL;
     int st = profile_bundle(out, c->profile, &c->stats, c->layer.E, c->layer.sigma_y,
-                            c->layer.Hstar); /* the statistics of the profile as it stands */
+                            c->layer.Hstar, r->threads); /* the profile's statistics as it stands */
     if (st)
         return st;
     info->depth = -1;
