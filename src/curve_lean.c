@@ -106,11 +106,16 @@ static int tie_cmp(const void *a, const void *b)
 #define MAX_BUCKETS 4096    /* a range's buckets: at most */
 #define PER_BUCKET 4        /* a range's buckets: about this many events each */
 #define SMALL 16            /* events a range of which is sorted by insertion */
+#define BY_VALUE 4          /* levels of splits by x's spread; the keys' bits below them */
+#define ON_STACK 512        /* buckets whose counts a level keeps on the stack */
 
 /* How a range is split into buckets, in the keys' order: stretches of equal width between the
- * smallest and the largest x (shift < 0), or, when x has no finite spread (infinities, NaN,
- * -0 and +0 alone, a spread past the doubles' range), the top bits the keys differ in from
- * bit shift on. */
+ * smallest and the largest x (shift < 0), or the top bits the keys differ in from bit shift
+ * on: when x has no finite spread (infinities, NaN, -0 and +0 alone, a spread past the
+ * doubles' range), and below the first BY_VALUE levels (a level by x's spread narrows the
+ * largest bucket's spread by a factor of its bucket count only: x spread over the doubles'
+ * 2098 binary orders took 175 levels, and their counts overflowed the stack; a level by the
+ * keys' bits takes at least two of the 64, so at most 32 follow). */
 typedef struct {
     double lo, scale;
     int shift;
@@ -120,12 +125,14 @@ typedef struct {
 typedef struct {
     double lo, hi;
     uint64_t klo, khi;
+    int nan; /* some x is NaN (its key may lead or trail: no place by value) */
 } extent;
 
 static void extent_of(const lev *v, size_t n, extent *e)
 {
     double lo = INFINITY, hi = -INFINITY;
     uint64_t klo = UINT64_MAX, khi = 0;
+    int nan = 0;
     for (size_t i = 0; i < n; i++) {
         const double x = v[i].x;
         const uint64_t k = key_of(x);
@@ -133,12 +140,14 @@ static void extent_of(const lev *v, size_t n, extent *e)
         hi = x > hi ? x : hi;
         klo = k < klo ? k : klo;
         khi = k > khi ? k : khi;
+        nan |= x != x;
     }
-    *e = (extent){lo, hi, klo, khi};
+    *e = (extent){lo, hi, klo, khi, nan};
 }
 
-/* The split of n events of extent e (0: every key the same, nothing to sort). */
-static int plan(const extent *e, size_t n, split *s)
+/* The split of n events of extent e at recursion level depth (0: every key the same, nothing
+ * to sort). */
+static int plan(const extent *e, size_t n, int depth, split *s)
 {
     if (e->klo >= e->khi)
         return 0;
@@ -146,7 +155,8 @@ static int plan(const extent *e, size_t n, split *s)
     s->lo = e->lo;
     s->scale = (double)s->nb / (e->hi - e->lo);
     s->shift = -1;
-    if (!(isfinite(e->lo) && isfinite(e->hi) && e->lo < e->hi && isfinite(s->scale) &&
+    if (e->nan || depth >= BY_VALUE ||
+        !(isfinite(e->lo) && isfinite(e->hi) && e->lo < e->hi && isfinite(s->scale) &&
           s->scale > 0.0)) {
         const int bits = 64 - __builtin_clzll(e->klo ^ e->khi);
         int top = 1;
@@ -167,28 +177,20 @@ static inline size_t bucket_of(const split *s, double x)
     return t < (double)s->nb ? (size_t)t : s->nb - 1;
 }
 
-static void sort_range(lev *a, lev *b, size_t n, int into_a);
-
-/* Bucket k of a split range (its events in b, a free) into its place. */
-static void sort_bucket(lev *a, lev *b, const size_t *start, size_t k, int into_a)
-{
-    sort_range(b + start[k], a + start[k], start[k + 1] - start[k], !into_a);
-}
-
-/* Sorts a[0..n) by key (stable) into a itself (into_a) or into b, b[0..n) free. A range of a
- * few events by insertion; a larger one scattered into b by bucket, each bucket then sorted
- * the same way with a as the free room. The buckets of a large range fit the cache: the whole
- * array goes through memory about twice, where a least-significant-digit sort moves it once
- * per digit. */
-static void sort_range(lev *a, lev *b, size_t n, int into_a)
+/* Sorts a[0..n) by key (stable) into a itself (into_a) or into b, b[0..n) free; depth: the
+ * recursion's level. A range of a few events by insertion; a larger one scattered into b by
+ * bucket, each bucket then sorted the same way with a as the free room. The buckets of a large
+ * range fit the cache: the whole array goes through memory about twice, where a
+ * least-significant-digit sort moves it once per digit. -1 when out of memory. */
+static int sort_range(lev *a, lev *b, size_t n, int into_a, int depth)
 {
     lev *const out = into_a ? a : b;
     extent e;
     split s;
     if (n > SMALL)
         extent_of(a, n, &e);
-    if (n <= SMALL || !plan(&e, n, &s)) { /* by insertion, stable: a later event passes only
-                                             larger keys (none when every key is the same) */
+    if (n <= SMALL || !plan(&e, n, depth, &s)) { /* by insertion, stable: a later event passes
+                                                    only larger keys (none when all are equal) */
         if (out != a)
             memcpy(out, a, n * sizeof *a);
         for (size_t i = 1; n <= SMALL && i < n; i++) {
@@ -199,19 +201,26 @@ static void sort_range(lev *a, lev *b, size_t n, int into_a)
                 out[j] = out[j - 1];
             out[j] = v;
         }
-        return;
+        return 0;
     }
-    size_t start[MAX_BUCKETS + 1], at[MAX_BUCKETS];
-    memset(start, 0, (s.nb + 1) * sizeof *start);
+    size_t small[ON_STACK + 1], *end = s.nb <= ON_STACK ? small : malloc(s.nb * sizeof *end);
+    if (!end)
+        return -1;
+    memset(end, 0, s.nb * sizeof *end);
     for (size_t i = 0; i < n; i++)
-        start[bucket_of(&s, a[i].x) + 1]++;
-    for (size_t k = 0; k < s.nb; k++)
-        start[k + 1] += start[k];
-    memcpy(at, start, s.nb * sizeof *at);
-    for (size_t i = 0; i < n; i++)
-        b[at[bucket_of(&s, a[i].x)]++] = a[i];
-    for (size_t k = 0; k < s.nb; k++)
-        sort_bucket(a, b, start, k, into_a);
+        end[bucket_of(&s, a[i].x)]++;
+    for (size_t k = 1; k < s.nb; k++) /* end[k]: where bucket k + 1 starts */
+        end[k] += end[k - 1];
+    for (size_t i = n; i-- > 0;) /* backwards: each bucket's events keep their order */
+        b[--end[bucket_of(&s, a[i].x)]] = a[i];
+    int st = 0; /* end[k] is now where bucket k starts */
+    for (size_t k = 0; k < s.nb && !st; k++) {
+        const size_t k0 = end[k], k1 = k + 1 < s.nb ? end[k + 1] : n;
+        st = sort_range(b + k0, a + k0, k1 - k0, !into_a, depth + 1);
+    }
+    if (end != small)
+        free(end);
+    return st;
 }
 
 /* sort_range(v, tmp, n, 1) on team threads: each scatters its share of v (in v's order, the
@@ -245,8 +254,9 @@ static int sort_team(lev *v, lev *tmp, size_t n, int team)
                 e.hi = ext[u].hi > e.hi ? ext[u].hi : e.hi;
                 e.klo = ext[u].klo < e.klo ? ext[u].klo : e.klo;
                 e.khi = ext[u].khi > e.khi ? ext[u].khi : e.khi;
+                e.nan |= ext[u].nan;
             }
-            sorted = !plan(&e, n, &s);
+            sorted = !plan(&e, n, 0, &s);
         }
         if (!sorted) {
             size_t *c = count + (size_t)t * MAX_BUCKETS;
@@ -270,8 +280,14 @@ static int sort_team(lev *v, lev *tmp, size_t n, int team)
                 tmp[c[bucket_of(&s, v[i].x)]++] = v[i];
 #pragma omp barrier
 #pragma omp for schedule(dynamic, 16)
-            for (ptrdiff_t k = 0; k < (ptrdiff_t)s.nb; k++)
-                sort_bucket(v, tmp, start, (size_t)k, 1);
+            for (ptrdiff_t k = 0; k < (ptrdiff_t)s.nb; k++) {
+                const int f =
+                    sort_range(tmp + start[k], v + start[k], start[k + 1] - start[k], 0, 1);
+                if (f) {
+#pragma omp atomic write
+                    st = f;
+                }
+            }
         }
     }
 done:
@@ -286,8 +302,7 @@ static int sort_keys(lev *v, lev *tmp, size_t n, int team)
 {
     if (n >= TEAM_MIN && team > 1)
         return sort_team(v, tmp, n, team);
-    sort_range(v, tmp, n, 1);
-    return 0;
+    return sort_range(v, tmp, n, 1, 0);
 }
 
 /* Sorts v[0..n) (tmp: room for n) into the events' order (team: threads for the buckets of a
@@ -618,6 +633,8 @@ static int checkpoints(ct_lean *L, int team)
         st = checkpoints_to(L, &c, n, NULL);
     } else {
         const size_t parts = (n + MADE - 1) / MADE;
+        int stp[2] = {0, 0}; /* part k's status in stp[k % 2]: written before barrier k, read
+                                after it, written again only after barrier k + 1 */
 #pragma omp parallel num_threads(2)
         {
             int t = 0, T = 1;
@@ -630,17 +647,18 @@ static int checkpoints(ct_lean *L, int team)
 #pragma omp barrier
             for (size_t k = 0; k < parts; k++) {
                 const size_t base = k * MADE, end = base + MADE < n ? base + MADE : n;
-                if (t == 0 && !st) {
+                if (t == 0) {
                     const made m = {ev + (k % 2) * MADE, base, end};
-                    st = checkpoints_to(L, &c, end, &m);
+                    stp[k % 2] = checkpoints_to(L, &c, end, &m);
                 }
                 if (t == T - 1 && end < n)
                     make_yields(L, ev + ((k + 1) % 2) * MADE, end, end + MADE < n ? end + MADE : n);
 #pragma omp barrier
-                if (st) /* read by all after the barrier: all leave together */
+                if (stp[k % 2]) /* read by all after the barrier: all leave together */
                     break;
             }
         }
+        st = stp[0] || stp[1];
         free(ev);
     }
     if (st)

@@ -12,6 +12,7 @@
 #include <cmocka.h>
 #include <float.h>
 #include <math.h>
+#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -148,8 +149,71 @@ static void no_finite_spread(void **s)
         for (size_t i = 0; i < n; i++)
             v[i].x = i % 3 ? 1.0 : INFINITY;
         sorts_like_qsort(v, n, "1 and +inf");
+        for (size_t i = 0; i < n; i++) /* NaN beside finite values only (x86's NaN is -NaN) */
+            v[i].x = i % 7 == 3 ? (i % 2 ? -NAN : NAN) : uniform() - 0.25;
+        sorts_like_qsort(v, n, "NaNs of both signs among finite values");
         free(v);
     }
+}
+
+typedef struct {
+    rec *v;
+    size_t n;
+    int st;
+} sort_job;
+
+static void *sort_on_thread(void *p)
+{
+    sort_job *j = p;
+    j->st = ct_lean_sort_records(j->v, j->n, 1);
+    return NULL;
+}
+
+/* x spread over every binary order of the doubles (2^-1074 .. 2^1023, repeated):
+ * a split by x's spread narrows the largest bucket's spread only by its bucket count, so the
+ * levels must go on by the keys' bits (175 levels by spread overflowed the stack). */
+static void every_binary_order(void **s)
+{
+    (void)s;
+    enum { N = 3 * 2098 * 8 };
+    rec *v = malloc(N * sizeof *v);
+    assert_non_null(v);
+    size_t n = 0;
+    for (int rep = 0; rep < 8; rep++)
+        for (int e = -1074; e <= 1023; e++) {
+            const double x = ldexp(1.0, e);
+            v[n] = (rec){x, n};
+            n++;
+            v[n] = (rec){x * 1.5, n};
+            n++;
+            v[n] = (rec){x * (1.0 + 0x1p-52 * rep), n};
+            n++;
+        }
+    for (size_t i = n; i-- > 1;) { /* shuffled */
+        const size_t j = next() % (i + 1);
+        const rec t = v[i];
+        v[i] = v[j];
+        v[j] = t;
+    }
+    for (size_t i = 0; i < n; i++) /* ties in their order here */
+        v[i].tag = i;
+    sorts_like_qsort(v, n, "every binary order");
+    /* and on a thread of a 512 KiB stack (a level's counts are on the stack) */
+    sort_job job = {malloc(n * sizeof *v), n, -2};
+    assert_non_null(job.v);
+    memcpy(job.v, v, n * sizeof *v);
+    pthread_attr_t attr;
+    pthread_t th;
+    assert_int_equal(pthread_attr_init(&attr), 0);
+    assert_int_equal(pthread_attr_setstacksize(&attr, 512 * 1024), 0);
+    assert_int_equal(pthread_create(&th, &attr, sort_on_thread, &job), 0);
+    assert_int_equal(pthread_join(th, NULL), 0);
+    pthread_attr_destroy(&attr);
+    assert_int_equal(job.st, 0);
+    qsort(v, n, sizeof *v, by_key_then_tag);
+    assert_memory_equal(job.v, v, n * sizeof *v);
+    free(job.v);
+    free(v);
 }
 
 /* Already in order and in reverse: the buckets' edges (the largest x at the last one). */
@@ -172,10 +236,9 @@ static void ordered_and_reversed(void **s)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(normal_tops),
-        cmocka_unit_test(runs_and_signs),
-        cmocka_unit_test(no_finite_spread),
-        cmocka_unit_test(ordered_and_reversed),
+        cmocka_unit_test(normal_tops),        cmocka_unit_test(runs_and_signs),
+        cmocka_unit_test(no_finite_spread),   cmocka_unit_test(ordered_and_reversed),
+        cmocka_unit_test(every_binary_order),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
