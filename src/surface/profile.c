@@ -605,6 +605,16 @@ int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sig
     return profile_bundle(out, p, &s, E, sigma_y, Hstar, 0);
 }
 
+/* Rod k of sample j: its top below the highest point, its length, its area, no plastic strain. */
+static inline void rod_of(const ct_profile *p, size_t j, double zmax, double Hstar, size_t k,
+                          double *top, double *length, double *area, double *eps_p)
+{
+    top[k] = zmax - p->z[j];
+    length[k] = Hstar - top[k];
+    area[k] = share(p, j);
+    eps_p[k] = 0.0;
+}
+
 /* ct_profile_bundle with p's statistics known (sp), filled on threads threads (0: the OpenMP
  * default). */
 static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
@@ -645,12 +655,8 @@ static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile
 #pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
         for (size_t c = 0; c < (total + LEVEL_CHUNK - 1) / LEVEL_CHUNK; c++) {
             const size_t j1 = (c + 1) * LEVEL_CHUNK < total ? (c + 1) * LEVEL_CHUNK : total;
-            for (size_t j = c * LEVEL_CHUNK; j < j1; j++) {
-                top[j] = zmax - p->z[j];
-                length[j] = Hstar - top[j];
-                area[j] = share(p, j);
-                eps_p[j] = 0.0;
-            }
+            for (size_t j = c * LEVEL_CHUNK; j < j1; j++)
+                rod_of(p, j, zmax, Hstar, j, top, length, area, eps_p);
         }
         ct_bundle_set_surface(b, &profile_kind, pm, p->invalid);
         *out = b;
@@ -660,10 +666,7 @@ static int profile_bundle(ct_bundle **out, const ct_profile *p, const ct_profile
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
             continue;
-        top[k] = zmax - p->z[j];
-        length[k] = Hstar - top[k];
-        area[k] = share(p, j);
-        eps_p[k] = 0.0;
+        rod_of(p, j, zmax, Hstar, k, top, length, area, eps_p);
         if (pm->index)
             pm->index[k] = j;
         k++;
