@@ -127,6 +127,15 @@ def _speeds(surface, V_star, mass, speed, name="V_star"):
     return V
 
 
+def _finite_info(info):
+    """info (what a surface's build found: its depth's truncation bound, ...), its numbers
+    checked finite."""
+    for k, v in info.items():
+        if isinstance(v, float):
+            chk.finite_result(f"info {k}", v)
+    return info
+
+
 def _opts(quadrature, nodes, tolerance, check_):
     o = ffi.new("ct_impact_opts *")
     lib.ct_impact_opts_default(o)
@@ -160,7 +169,7 @@ class Restitution:
     def __init__(self, V_star, impacts, rows, layer, info, surface=None, time=True):
         self.V_star = V_star
         self.impacts = impacts
-        self.info = info
+        self.info = _finite_info(info)
         self._surface = surface
         shape = (V_star.size, impacts)
         n = V_star.size * impacts
@@ -371,7 +380,8 @@ class LoadCurve:
             V_star = [1.0]
         V = chk.array("V_star", V_star, positive=True)
         opts = _opts("breakpoints", 64, 1e-14, False)
-        b, self.info = surface._build(V, 1, opts, keep_all=True)
+        b, info = surface._build(V, 1, opts, keep_all=True)
+        self.info = _finite_info(info)
         self._units = _units(b)
         if after is not None:
             u_adv = chk.real("after", after, 0.0, lo_closed=True) * self._units["u"]

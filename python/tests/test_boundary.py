@@ -255,6 +255,12 @@ def _fitted_inf(real, *args):
     return status
 
 
+def _plan_nan(real, plan, out, info):
+    status = real(plan, out, info)
+    info.bound = math.nan
+    return status
+
+
 # Every other call that hands back the library's numbers: a non-finite one with a status of
 # success (or from a function without one) is refused naming the figure.
 @pytest.mark.parametrize("module, lies, call, refused", [
@@ -276,6 +282,8 @@ def _fitted_inf(real, *args):
      r"^force\(u = 0.5\) = nan"),
     ("_api", {"ct_curve_first_yield": lambda real, c: math.inf},
      lambda s, rc, p: cantact.load_curve(s, V_star=[1e-3]), r"^first_yield = inf"),
+    ("_surfaces", {"ct_cantor_plan_build": _plan_nan},
+     lambda s, rc, p: cantact.restitution(s, V_star=[1e-3]), r"^info bound = nan"),
     ("_surfaces", {"ct_profile_fit_of": _fit_nan}, lambda s, rc, p: p.fit(),
      r"^D_spectrum = nan"),
     ("_surfaces", {"ct_profile_fitted_e": _fitted_inf},
