@@ -6,7 +6,8 @@ number (int, float, NumPy's, Fraction, Decimal; a 0-d array holds one) is the do
 to it, an integer must be one a double holds exactly (every integer up to 2^53 is; 2^53 + 1
 is not: give such a number as a float to have it rounded), and a number beyond the range of
 doubles (|x| >= 1.8e308, or a non-zero |x| below 4.9e-324) is refused naming it ("beyond
-double precision") rather than made inf or 0. Arrays follow the same rule element by element, whatever their dtype."""
+double precision") rather than made inf or 0. Arrays follow the same rule element by element,
+whatever their dtype."""
 import decimal
 import math
 import numbers
@@ -152,10 +153,14 @@ def _reals(name, value):
             raise invalid(f"{name}: must hold real numbers, got dtype {a.dtype}")
         with np.errstate(over="ignore", under="ignore"):
             out = np.array(a, dtype=np.float64, order="C", copy=True)
-        if kind in "iu" and a.dtype.itemsize * 8 > 53:
-            big = (a > _EXACT) | (a < -_EXACT) if kind == "i" else a > _EXACT
-            for k in np.flatnonzero(big.reshape(-1)):
-                index = np.unravel_index(int(k), a.shape)
+        if kind in "iu" and a.dtype.itemsize * 8 > 53:  # 64-bit integers: exactly doubles?
+            limit = 2.0 ** (a.dtype.itemsize * 8 - (1 if kind == "i" else 0))
+            fits = (out < limit) & (out >= -limit)  # back to the integer type
+            with np.errstate(invalid="ignore"):
+                back = np.where(fits, out, 0.0).astype(a.dtype)
+            inexact = ~fits | (back != a)
+            if inexact.any():
+                index = np.unravel_index(int(np.flatnonzero(inexact.reshape(-1))[0]), a.shape)
                 _double(_where(name, index), int(a[index]))
         elif kind == "f" and a.dtype.itemsize > 8:  # long double: wider than the library's
             lost = (np.isinf(out) & np.isfinite(a)) | ((out == 0) & (a != 0))

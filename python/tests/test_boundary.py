@@ -47,11 +47,15 @@ def test_exact_integers_in_object_arrays_are_numbers():
     # 2^53 and 2^60 are doubles exactly
     assert cantact.Rods([0], obj(2**60), E=100, Hstar=1000).area[0] == 2.0**60
     assert cantact.Rods([0], np.array([2**53]), E=100, Hstar=1000).area[0] == 2.0**53
+    # the ends of the 64-bit integers that doubles hold
+    assert _check._reals("x", np.array([-2**63, 2**63 - 1024])).tolist() == [-2.0**63,
+                                                                             2.0**63 - 1024]
+    assert _check._reals("x", np.array([2**64 - 2048], dtype=np.uint64))[0] == 2.0**64 - 2048
 
 
 @pytest.mark.parametrize("given", [
     2**53 + 1, np.uint64(2**64 - 1), obj(1, 2**53 + 1), np.array([1, 2**53 + 1]),
-    np.array([2**64 - 1], dtype=np.uint64)])
+    np.array([2**64 - 1], dtype=np.uint64), np.array([2**62, 2**63 - 1])])
 def test_integers_no_double_holds_refused_as_such(given):
     with pytest.raises(IN, match=r"^area(\[\d\])? = \d+: an integer no double holds exactly "
                                  r"\(the nearest is [0-9.e+]+\)"):
