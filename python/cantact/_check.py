@@ -76,8 +76,8 @@ def _double(name, value):
                 v = float(value)
         except OverflowError:
             v = math.inf
-        except (TypeError, ValueError, ArithmeticError):
-            raise invalid(f"{name} = {_text(value)}: must be a real number") from None
+        except (TypeError, ValueError, ArithmeticError) as exc:  # Decimal("sNaN")
+            raise invalid(f"{name} = {_text(value)}: no double stands for it ({exc})") from None
         # a finite number made inf, or a non-zero one made 0: beyond what doubles carry
         if (math.isinf(v) and value != v) or (v == 0.0 and value != 0):
             raise invalid(f"{name} = {_text(value)}: beyond double precision "
@@ -132,8 +132,15 @@ def _reals(name, value):
     """A float64 C-contiguous copy of value, any shape, if it holds real numbers (the module's
     rule, element by element): strings, booleans, complex numbers, other objects and ragged
     lists refused."""
-    if isinstance(value, (str, bytes)):
-        raise invalid(f"{name}: must be a number or an array of numbers, got a string")
+    if isinstance(value, (str, bytes, bytearray, memoryview)):  # NumPy reads bytes as uint8
+        raise invalid(f"{name}: must be a number or an array of numbers, got "
+                      f"{'a string' if isinstance(value, str) else type(value).__name__}")
+    if isinstance(value, np.ma.MaskedArray):  # NumPy would use the values under the mask
+        masked = int(np.ma.count_masked(value))
+        if masked:
+            raise invalid(f"{name}: a masked array with {masked} masked values: give the "
+                          "values to use (NaN where a grid point is missing)")
+        value = value.data
     try:
         a = np.asarray(value)
     except MemoryError:

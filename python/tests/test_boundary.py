@@ -82,6 +82,16 @@ def test_numbers_beyond_doubles_refused_naming_them():
         cantact.restitution(s, V_star=obj(1e-3, None))
     with pytest.raises(IN, match=r"^mass: must be one real number, got an array of shape"):
         cantact.restitution(s, mass=np.array([1.0, 2.0]), speed=1.0)
+    with pytest.raises(IN, match=r"^mass = Decimal\('sNaN'\): no double stands for it"):
+        cantact.restitution(s, mass=decimal.Decimal("sNaN"), speed=1.0)
+    # bytes are no numbers (NumPy would read b"1" as 49), the values under a mask no data
+    for given in (b"1", bytearray(b"1"), memoryview(b"1")):
+        with pytest.raises(IN, match=r"^speed: must be a number or an array of numbers, got"):
+            cantact.restitution(s, mass=1.0, speed=given)
+    with pytest.raises(IN, match=r"^speed: a masked array with 1 masked values"):
+        cantact.restitution(s, mass=1.0, speed=np.ma.masked_array([1.0, 2.0], mask=[0, 1]))
+    unmasked = cantact.restitution(s, mass=1e-3, speed=np.ma.masked_array([1.0, 2.0]))
+    assert np.array_equal(unmasked.e, cantact.restitution(s, mass=1e-3, speed=[1.0, 2.0]).e)
 
 
 # ---- memory ---------------------------------------------------------------------------------
