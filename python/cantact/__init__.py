@@ -12,6 +12,7 @@ rods (Cantor-fractal, random Cantor, a measured profile or your own rods), throu
 Results are dimensionless as the cantact program's (V*, u/h0, P/P_Y); errors raise
 cantact.Error subclasses carrying the library's status and message. See README.md.
 """
+from ._errors import guard as _guard
 from ._errors import (Error, InvalidInput, IOFailure, NoConvergence, NotRun, OutOfMemory,
                       OutsideModel, strerror)
 from ._ffi import LIBRARY_PATH, ffi, lib
@@ -27,3 +28,9 @@ __all__ = [
     "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS", "COLUMNS",
     "LIBRARY_PATH", "zeta_of_e", "e_of_zeta", "DAMPING_LAWS",
 ]
+
+# The boundary: every public function and method raises the module's exceptions only
+# (cantact.Error's classes), never a bare Python one (_errors.py states the rule).
+for _name in __all__:
+    globals()[_name] = _guard(globals()[_name])
+del _name

@@ -7,7 +7,7 @@ import re
 import numpy as np
 
 from . import _check as chk
-from ._errors import check as _ok, error, invalid
+from ._errors import check as _ok, error, invalid, memory, size_text
 from ._ffi import ffi, lib
 from ._surfaces import Cantor, RandomCantor, surface_of
 
@@ -84,6 +84,10 @@ _ROW_COLUMNS = tuple(c for c in COLUMNS if c["type"] == "d" and c["name"] != "V_
 # (attribute, field of ct_sweep_row, unit code) of each, derived from the table: kept for
 # compatibility; COLUMNS has the rest (e.g. dem_time_step_over_tau's divisor, 50).
 ROW_FIELDS = tuple((c["name"], c["field"], _UNIT_CODES[c["unit"]]) for c in _ROW_COLUMNS)
+# The columns whose NaN is the library's "not computed" in a row that succeeded (the
+# closed-form check did not cover the row: the program writes them empty). Any other number
+# of a row that succeeded must be finite: Restitution refuses it otherwise (OutsideModel).
+_MAY_BE_NAN = frozenset({"e_closed_form", "quadrature_error"})
 
 
 def _unit_factors(L):
@@ -112,7 +116,9 @@ def _speeds(surface, V_star, mass, speed, name="V_star"):
     m = chk.real("mass", mass, 0.0)
     v = chk.array("speed", speed, positive=True)
     l0, E, h0 = surface._physical_scales()
-    V = np.array([lib.ct_V_star_of(m, x, l0, E, h0) for x in v.tolist()], dtype=np.float64)
+    with memory(f"speed: V* of {v.size} speeds ({size_text(v.size, 8)})"):
+        V = np.fromiter((lib.ct_V_star_of(m, x, l0, E, h0) for x in v),
+                        dtype=np.float64, count=v.size)
     bad = ~(np.isfinite(V) & (V > 0))
     if bad.any():
         k = int(np.flatnonzero(bad)[0])
@@ -121,15 +127,22 @@ def _speeds(surface, V_star, mass, speed, name="V_star"):
     return V
 
 
+def _finite_info(info):
+    """info (what a surface's build found: its depth's truncation bound, ...), its numbers
+    checked finite."""
+    for k, v in info.items():
+        if isinstance(v, float):
+            chk.finite_result(f"info {k}", v)
+    return info
+
+
 def _opts(quadrature, nodes, tolerance, check_):
     o = ffi.new("ct_impact_opts *")
     lib.ct_impact_opts_default(o)
     o.rule = chk.choice("quadrature", quadrature, QUADRATURES)
     o.nodes = chk.integer("nodes", nodes, 3, 100000000)
     o.tolerance = chk.real("tolerance", tolerance, 1e-15, 1e-3, lo_closed=True)
-    if not isinstance(check_, (bool, np.bool_)):
-        raise invalid(f"check = {check_!r}: must be True or False")
-    o.check = 1 if check_ else 0
+    o.check = 1 if chk.flag("check", check_) else 0
     return o
 
 
@@ -156,7 +169,7 @@ class Restitution:
     def __init__(self, V_star, impacts, rows, layer, info, surface=None, time=True):
         self.V_star = V_star
         self.impacts = impacts
-        self.info = info
+        self.info = _finite_info(info)
         self._surface = surface
         shape = (V_star.size, impacts)
         n = V_star.size * impacts
@@ -167,6 +180,13 @@ class Restitution:
 
         self.status = field("status", np.intc).astype(int)
         failed = self.status != 0
+
+        def finite(name, x, may_be_nan=False):
+            """x, or OutsideModel naming a non-finite number of a row that succeeded."""
+            return chk.finite_result(
+                name, x, ~failed, may_be_nan,
+                lambda k: f"V* = {V_star[k[0]]!r}, impact {k[1] + 1}: {name}")
+
         factors = _unit_factors(layer)
         for c in _ROW_COLUMNS:
             if c["group"] == "time" and not time:
@@ -178,9 +198,10 @@ class Restitution:
                 x = x / u
             if c["divisor"] != 1.0:
                 x = x / c["divisor"]
+            finite(c["name"], x, c["name"] in _MAY_BE_NAN)
             x[failed] = np.nan
             setattr(self, c["name"], x)
-        self.kinetic_energy = field("r.kinetic_energy", np.float64)
+        self.kinetic_energy = finite("kinetic_energy", field("r.kinetic_energy", np.float64))
         self.kinetic_energy[failed] = np.nan
         self._u_max = field("r.u_max", np.float64)  # library units: a profile's refit
         self._u_max[failed] = np.nan
@@ -214,21 +235,24 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
     opts = _opts(quadrature, nodes, tolerance, check)
     how = chk.choice("path", path, PATHS)
     mode = chk.choice("errors", errors, ERRORS)
-    b, info = surface._build(V, impacts, opts)
-    rows = ffi.new("ct_sweep_row[]", V.size * impacts)
-    spec = ffi.new("ct_sweep_spec *")
-    speeds = ffi.from_buffer("double[]", V)
-    spec.V_star = speeds
-    spec.nvel = V.size
-    spec.impacts = impacts
-    spec.opts = opts[0]
-    spec.stop_on_error = 1 if mode == "raise" else 0
-    spec.path = how
-    if not isinstance(time, (bool, np.bool_)):
-        raise invalid(f"time = {time!r}: must be True or False")
-    spec.dynamics = 1 if time else 0
-    _ok(lib.ct_sweep(b, spec, rows))
-    return Restitution(V, impacts, rows, lib.ct_bundle_layer(b), info, surface, bool(time))
+    time = chk.flag("time", time)
+    # the rows and the arrays made of them: a request too large is OutOfMemory naming its size
+    n = V.size * impacts
+    with memory(f"restitution: {n} result rows ({V.size} speeds x {impacts} impacts; "
+                f"{size_text(n, ffi.sizeof('ct_sweep_row'))} for the library's rows)"):
+        rows = ffi.new("ct_sweep_row[]", n)
+        b, info = surface._build(V, impacts, opts)
+        spec = ffi.new("ct_sweep_spec *")
+        speeds = ffi.from_buffer("double[]", V)
+        spec.V_star = speeds
+        spec.nvel = V.size
+        spec.impacts = impacts
+        spec.opts = opts[0]
+        spec.stop_on_error = 1 if mode == "raise" else 0
+        spec.path = how
+        spec.dynamics = 1 if time else 0
+        _ok(lib.ct_sweep(b, spec, rows))
+        return Restitution(V, impacts, rows, lib.ct_bundle_layer(b), info, surface, bool(time))
 
 
 class Ensemble:
@@ -252,10 +276,17 @@ class Ensemble:
         self.u_max_over_h0 = take(s.u_max, np.float64, R * n).reshape(shape) / h0
         self.V_star_crit = take(s.V_star_crit, np.float64, R * n).reshape(shape)
         self.status = take(s.status, np.intc, R * n).reshape(shape).astype(int)
+        ok = self.status == 0
+        for name in ("e", "u_max_over_h0", "V_star_crit"):
+            chk.finite_result(name, getattr(self, name), ok, where=lambda k, name=name: (
+                f"realisation {self.first + int(k[0])}, V* = {V_star[k[1]]!r}, impact "
+                f"{k[2] + 1}: {name}"))
         self.fx_clipped = take(s.fx_clipped, np.uint64, R)
         self.fz_clipped = take(s.fz_clipped, np.uint64, R)
         self.draws = int(s.draws)
-        self.quadrature_error_max = float(s.quad_error_max)
+        # NaN: no closed-form check ran
+        self.quadrature_error_max = chk.finite_result("quadrature_error_max",
+                                                      float(s.quad_error_max), may_be_nan=True)
         self.message = ffi.string(s.message).decode(errors="replace")
 
     def stats(self, quantity="e"):
@@ -279,6 +310,10 @@ class Ensemble:
             out["n"][q] = st.n
             for k in keys:
                 out[k][q] = getattr(st, k)
+        for k in keys:  # sd and sem are NaN for one sample (the library's n - 1)
+            chk.finite_result(f"{quantity} {k}", out[k], out["n"] >= (2 if k in ("sd", "sem")
+                                                                     else 1),
+                              where=lambda i, k=k: f"row {int(i[0])}: {quantity} {k}")
         return {k: v.reshape(x.shape[1:]) for k, v in out.items()}
 
     def __repr__(self):
@@ -315,11 +350,16 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, realisations, first
     spec.stop_on_error = 1 if mode == "raise" else 0
     spec.threads = chk.integer("threads", threads, 0, 1024)
     spec.split = chk.choice("split", split, SPLITS)
-    out = ffi.new("ct_ensemble_samples **")
-    _ok(lib.ct_ensemble_samples_alloc(out, first, count, V.size * impacts))
-    s = ffi.gc(out[0], lib.ct_ensemble_samples_free)
-    _ok(lib.ct_ensemble(spec, s))
-    return Ensemble(V, impacts, s, surface._rc.params.h0)
+    nrows = V.size * impacts
+    # 3 doubles and a status per sample, in the library and again in the arrays returned
+    with memory(f"ensemble: {count * nrows} samples ({count} realisations x {nrows} rows; "
+                f"{size_text(count * nrows, 3 * 8 + ffi.sizeof('int'))} each in the library "
+                "and in the arrays returned)"):
+        out = ffi.new("ct_ensemble_samples **")
+        _ok(lib.ct_ensemble_samples_alloc(out, first, count, nrows))
+        s = ffi.gc(out[0], lib.ct_ensemble_samples_free)
+        _ok(lib.ct_ensemble(spec, s))
+        return Ensemble(V, impacts, s, surface._rc.params.h0)
 
 
 # ---- the load curve ----------------------------------------------------------------------
@@ -340,7 +380,8 @@ class LoadCurve:
             V_star = [1.0]
         V = chk.array("V_star", V_star, positive=True)
         opts = _opts("breakpoints", 64, 1e-14, False)
-        b, self.info = surface._build(V, 1, opts, keep_all=True)
+        b, info = surface._build(V, 1, opts, keep_all=True)
+        self.info = _finite_info(info)
         self._units = _units(b)
         if after is not None:
             u_adv = chk.real("after", after, 0.0, lo_closed=True) * self._units["u"]
@@ -357,32 +398,42 @@ class LoadCurve:
         pts = lib.ct_curve_points(self._curve)
         self.breakpoints = np.frombuffer(ffi.buffer(pts, n * 8), dtype=np.float64).copy()
         self.breakpoints /= self._units["u"]
-        self.first_contact = lib.ct_curve_first_contact(self._curve) / self._units["u"]
-        self.first_yield = lib.ct_curve_first_yield(self._curve) / self._units["u"]
+        chk.finite_result("breakpoints", self.breakpoints)
+        self.first_contact = chk.finite_result(
+            "first_contact", lib.ct_curve_first_contact(self._curve) / self._units["u"])
+        self.first_yield = chk.finite_result(
+            "first_yield", lib.ct_curve_first_yield(self._curve) / self._units["u"])
 
-    def _map(self, fn, x, name, unit_in, unit_out, nonnegative=False):
-        a = chk.array(name, x, nonnegative=nonnegative) * self._units[unit_in]
-        return np.array([fn(self._curve, v) for v in a], dtype=np.float64) / self._units[unit_out]
+    def _map(self, what, fn, x, name, unit_in, unit_out, nonnegative=False):
+        given = chk.array(name, x, nonnegative=nonnegative)
+        with memory(f"{what}: {given.size} values ({size_text(given.size, 8)})"), \
+                np.errstate(over="ignore"):  # a value beyond doubles in the library's units:
+            a = given * self._units[unit_in]  # inf, and its result refused below
+            out = np.fromiter((fn(self._curve, v) for v in a), dtype=np.float64,
+                              count=a.size) / self._units[unit_out]
+        return chk.finite_result(what, out,
+                                 where=lambda k: f"{what}({name} = {given[k[0]]!r})")
 
     def force(self, u):
         """P/P_Y at u/h0 (0 below the first contact)."""
-        return self._map(lib.ct_curve_force, u, "u", "u", "P")
+        return self._map("force", lib.ct_curve_force, u, "u", "u", "P")
 
     def work(self, u):
         """W/(P_Y h0) from the first contact to u/h0."""
-        return self._map(lib.ct_curve_work, u, "u", "u", "W")
+        return self._map("work", lib.ct_curve_work, u, "u", "u", "W")
 
     def dissipation(self, u):
         """The plastic work/(P_Y h0) of loading the state to u/h0."""
-        return self._map(lib.ct_curve_dissipation, u, "u", "u", "W")
+        return self._map("dissipation", lib.ct_curve_dissipation, u, "u", "u", "W")
 
     def release(self, u):
         """The release point/h0 after loading to u/h0."""
-        return self._map(lib.ct_curve_release, u, "u", "u", "u")
+        return self._map("release", lib.ct_curve_release, u, "u", "u", "u")
 
     def inverse_work(self, W):
         """u/h0 where the work from the first contact is W (in P_Y h0), W >= 0."""
-        return self._map(lib.ct_curve_inverse_work, W, "W", "W", "u", nonnegative=True)
+        return self._map("inverse_work", lib.ct_curve_inverse_work, W, "W", "W", "u",
+                         nonnegative=True)
 
 
 def load_curve(surface, V_star=None, after=None):
@@ -400,25 +451,29 @@ def _law_surface(surface):
     return surface._params
 
 
-def _pointwise(fn, n, errors):
-    """Calls fn(k, out) for k < n; a failure raises (errors="raise") or gives NaN."""
+def _pointwise(what, fn, x, errors):
+    """Calls fn(k, out) for k < x.size; a failure raises (errors="raise") or gives NaN; a
+    non-finite value with a status of success is refused (OutsideModel)."""
     mode = chk.choice("errors", errors, {"raise": "raise", "nan": "nan"})
-    out = np.full(n, np.nan)
+    with memory(f"{what}: {x.size} values ({size_text(x.size, 8)})"):
+        out = np.full(x.size, np.nan)
+        ok = np.zeros(x.size, dtype=bool)
     val = ffi.new("double *")
-    for k in range(n):
+    for k in range(x.size):
         st = fn(k, val)
         if st == lib.CT_OK:
             out[k] = val[0]
+            ok[k] = True
         elif mode == "raise":
             raise error(st, f"[{k}]: " + ffi.string(lib.ct_error_message()).decode())
-    return out
+    return chk.finite_result(what, out, ok, where=lambda k: f"{what}(u = {x[k[0]]!r})")
 
 
 def series_load(surface, u, errors="raise"):
     """The paper's series (Eqs. 12-21, Eq. 15 between nodes): P/P_Y at u/h0."""
     p = _law_surface(surface)
     x = chk.array("u", u, nonnegative=True)
-    return _pointwise(lambda k, v: lib.ct_series_load(p, x[k], v), x.size, errors)
+    return _pointwise("series_load", lambda k, v: lib.ct_series_load(p, x[k], v), x, errors)
 
 
 def series_unload(surface, u_max, u, errors="raise"):
@@ -426,14 +481,15 @@ def series_unload(surface, u_max, u, errors="raise"):
     p = _law_surface(surface)
     um = chk.real("u_max", u_max, 0.0, lo_closed=True)
     x = chk.array("u", u, nonnegative=True)
-    return _pointwise(lambda k, v: lib.ct_series_unload(p, um, x[k], v), x.size, errors)
+    return _pointwise("series_unload", lambda k, v: lib.ct_series_unload(p, um, x[k], v), x,
+                      errors)
 
 
 def asym_load(surface, u, errors="raise"):
     """The asymptotic law (Eqs. 33-34): P/P_Y at u/h0 (u <= h0)."""
     p = _law_surface(surface)
     x = chk.array("u", u, nonnegative=True)
-    return _pointwise(lambda k, v: lib.ct_asym_load(p, x[k], v), x.size, errors)
+    return _pointwise("asym_load", lambda k, v: lib.ct_asym_load(p, x[k], v), x, errors)
 
 
 def asym_unload(surface, u_max, u, consistent=False, errors="raise"):
@@ -442,10 +498,9 @@ def asym_unload(surface, u_max, u, consistent=False, errors="raise"):
     p = _law_surface(surface)
     um = chk.real("u_max", u_max, 0.0, lo_closed=True)
     x = chk.array("u", u, nonnegative=True)
-    if not isinstance(consistent, (bool, np.bool_)):
-        raise invalid(f"consistent = {consistent!r}: must be True or False")
-    c = 1 if consistent else 0
-    return _pointwise(lambda k, v: lib.ct_asym_unload(p, um, x[k], c, v), x.size, errors)
+    c = 1 if chk.flag("consistent", consistent) else 0
+    return _pointwise("asym_unload", lambda k, v: lib.ct_asym_unload(p, um, x[k], c, v), x,
+                      errors)
 
 
 def law_restitution(surface, V_star=None, *, mass=None, speed=None, law="asymptotic",
@@ -457,17 +512,22 @@ def law_restitution(surface, V_star=None, *, mass=None, speed=None, law="asympto
     V = _speeds(surface, V_star, mass, speed)
     which = chk.choice("law", law, LAWS)
     scale = lib.ct_energy_scale(p)
-    W = V * V * scale  # the kinetic energy, as a sweep computes it
     mode = chk.choice("errors", errors, {"raise": "raise", "nan": "nan"})
-    e = np.full(V.size, np.nan)
-    u = np.full(V.size, np.nan)
+    with memory(f"law_restitution: {V.size} speeds ({size_text(V.size, 3 * 8)})"), \
+            np.errstate(over="ignore"):  # an energy beyond doubles: the library refuses inf
+        W = V * V * scale  # the kinetic energy, as a sweep computes it
+        e = np.full(V.size, np.nan)
+        u = np.full(V.size, np.nan)
+        ok = np.zeros(V.size, dtype=bool)
     um, ev = ffi.new("double *"), ffi.new("double *")
     for k in range(V.size):
         st = lib.ct_law_impact(p, which, W[k], um, ev)
         if st == lib.CT_OK:
-            e[k], u[k] = ev[0], um[0]
+            e[k], u[k], ok[k] = ev[0], um[0], True
         elif mode == "raise":
             raise error(st, f"V* = {V[k]!r}: " + ffi.string(lib.ct_error_message()).decode())
+    for name, x in (("e", e), ("u_max_over_h0", u)):
+        chk.finite_result(name, x, ok, where=lambda k, name=name: f"V* = {V[k[0]]!r}: {name}")
     return e, u
 
 
@@ -558,7 +618,9 @@ def _damping_map(name, value, law, fn, check):
             where = f"{name}[{k}]" if a.ndim else name
             raise invalid(f"{where} = {x!r}: must be "
                           + ("in [0, 1]" if name == "e" else "a number >= 0 (or inf)"))
-    out = np.array([fn(x, law_code) for x in flat.tolist()], dtype=np.float64).reshape(a.shape)
+    with memory(f"{name}: {flat.size} values ({size_text(flat.size, 8)})"):
+        out = np.fromiter((fn(x, law_code) for x in flat.tolist()), dtype=np.float64,
+                          count=flat.size).reshape(a.shape)
     return float(out) if a.ndim == 0 else out
 
 

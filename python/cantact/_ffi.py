@@ -473,11 +473,19 @@ def _candidates():
     yield "libcantact.so.0"
 
 
+# Loaded never to be unloaded (RTLD_NODELETE): cffi closes the library when its handle is
+# collected, at the latest when Python exits, and that would unmap libcantact and the OpenMP
+# runtime it brings while the runtime's worker threads still run (spinning between parallel
+# regions, e.g. under OMP_WAIT_POLICY=ACTIVE): they crash in unmapped code and the process
+# dies with SIGSEGV after its work is done. python/tests/test_exit.py runs such processes.
+DLOPEN_FLAGS = ffi.RTLD_NOW | ffi.RTLD_NODELETE
+
+
 def _load():
     errors = []
     for path in _candidates():
         try:
-            return ffi.dlopen(path), path
+            return ffi.dlopen(path, DLOPEN_FLAGS), path
         except OSError as exc:
             errors.append(f"{path}: {exc}")
         if path == os.environ.get("CANTACT_LIBRARY"):

@@ -509,6 +509,10 @@ class Profile:
         for k in ("bearing", "variation", "structure", "spectrum"):
             r[k] = _line(getattr(f, k))
         r.update({k: getattr(f.stats, k) for k in ("Rq", "Ra", "Rt")})
+        for k, v in list(r.items()):  # a fit that succeeded: every figure a number
+            for name, x in (v.items() if isinstance(v, dict) else ((None, v),)):
+                if isinstance(x, float):
+                    chk.finite_result(k if name is None else f"{k}.{name}", x)
         r["band"] = band
         r["note"] = note
         return r
@@ -537,6 +541,8 @@ class Profile:
             W.size, self.threads, ffi.from_buffer("double[]", out["e_cantor_fit"]),
             ffi.from_buffer("double[]", out["e_asymptotic_fit"]),
             ffi.from_buffer("double[]", out["V_star_cantor_fit"])))
+        for k, v in out.items():  # NaN: not computed (see above); inf never a result
+            chk.finite_result(k, v, may_be_nan=True)
         return {k: v.reshape(shape) for k, v in out.items()}
 
     def _physical_scales(self):

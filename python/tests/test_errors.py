@@ -37,7 +37,8 @@ def test_wrong_types():
            V_star=[1e-3 + 1j])
     raises(cantact.InvalidInput, "got booleans", cantact.restitution, cantor(),
            V_star=np.array([True]))
-    raises(cantact.InvalidInput, "dtype object", cantact.restitution, cantor(),
+    raises(cantact.InvalidInput, r"V_star\[1\] = None: must be a real number, got NoneType",
+           cantact.restitution, cantor(),
            V_star=[1e-3, None])
 
 

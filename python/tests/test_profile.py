@@ -149,7 +149,7 @@ def test_bad_arrays_and_paths(dektak):
                z=np.array([True, False, True, False]), dx=1.0, **m)
         raises(IN, r"^z: .*got dtype complex128", cantact.Profile, z=np.array(z) + 1j, dx=1.0,
                **m)
-        raises(IN, r"^z: .*got dtype object", cantact.Profile,
+        raises(IN, r"^z\[2\] = None: must be a real number, got NoneType", cantact.Profile,
                z=np.array([0.0, 1.0, None, 2.0], dtype=object), dx=1.0, **m)
         raises(IN, r"^z: not an array of numbers", cantact.Profile, z=[[0.0, 1.0], [2.0]],
                dx=1.0, dy=1.0, **m)
