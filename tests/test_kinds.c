@@ -163,12 +163,14 @@ static void write_file(const char *path, const char *text)
     fclose(f);
 }
 
-static int file_rods(const char *path, ct_scales *sc)
+/* The rods of a file (unit mm, E = 100; H = 10 unless H is NULL: lengths in the file). */
+static int file_rods_H(const char *path, const char *H, ct_scales *sc)
 {
     ct_surface *s;
     assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
     assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
-    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    if (H)
+        assert_int_equal(ct_surface_set(s, "surface", "H", H, ""), CT_OK);
     assert_int_equal(ct_surface_set(s, "surface", "unit", "mm", ""), CT_OK);
     assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
     assert_int_equal(ct_surface_check(s, "t"), CT_OK);
@@ -177,6 +179,11 @@ static int file_rods(const char *path, ct_scales *sc)
         ct_surface_scales(s, sc);
     ct_surface_free(s);
     return st;
+}
+
+static int file_rods(const char *path, ct_scales *sc)
+{
+    return file_rods_H(path, "10", sc);
 }
 
 static void rod_files(void **state)
@@ -192,7 +199,15 @@ static void rod_files(void **state)
     assert_true(sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3 && sc.layer.Hstar == 10 * 0.5e-3);
     const char *bad[][2] = {
         {"0 1\n2\n", ":2: expected 2 numbers"},
-        {"depth,area\n0,1\n", ":1: neither rod numbers nor a header"},
+        {"depth,area\n0,1\n", ":1: header field 1 is 'depth': neither a number nor a column"},
+        /* a header names every column once: a repeated one would leave a field unread */
+        {"top,area,area\n0,1,0.5\n0.5,1,0.7\n",
+         ":1: header: column 'area' named twice (fields 2 and 3)"},
+        {"top,top,area\n0,0,1\n", ":1: header: column 'top' named twice (fields 1 and 2)"},
+        {"top,area,length,top\n0,1,2,0\n", "column 'top' named twice (fields 1 and 4)"},
+        {"top,length\n0,1\n", ":1: header: no column 'area'"},
+        {"length;area\n1,1\n", ":1: header: no column 'top'"},
+        {"top area depth\n0 1 2\n", ":1: header field 3 is 'depth'"},
         {"0 1 2 3\n", ":1: expected"},
         {"0 -1\n", "area = -0.001: must be finite and > 0"},
         {"0 x\n", ":1:"},
@@ -205,6 +220,11 @@ static void rod_files(void **state)
         if (!strstr(ct_error_message(), bad[k][1]))
             fail_msg("'%s': message '%s' lacks '%s'", bad[k][0], ct_error_message(), bad[k][1]);
     }
+    /* columns in the header's order, lengths among them: rod (top 0.5, area 1, length 2) and
+     * (top 0, area 3, length 4) in mm; H* = min(top + length) = 2.5 mm, h0 = 0.5, l0 = 4 */
+    write_file(path, "length,area,top\n2,1,0.5\n4,3,0\n");
+    assert_int_equal(file_rods_H(path, NULL, &sc), CT_OK);
+    assert_true(sc.layer.Hstar == 2.5e-3 && sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3);
     unlink(path);
     assert_int_equal(file_rods("/nonexistent/rods.csv", &sc), CT_EIO);
 }

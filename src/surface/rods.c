@@ -130,7 +130,7 @@ static int push(rods_config *c, size_t *cap, const double *v, int nv)
     }
     c->top[c->n] = v[0];
     c->area[c->n] = v[1];
-    c->length[c->n] = nv == 3 ? v[2] : NAN;
+    c->length[c->n] = nv == 3 ? v[2] : NAN; /* NaN: no length (read numbers are finite) */
     c->n++;
     return CT_OK;
 }
@@ -162,23 +162,36 @@ static int split_numbers(char *line, double *v, int *nv, char **bad)
     return 0;
 }
 
-/* A header: the column names top, area, length in some order. */
-static int header(char *line, int col[3], int *ncol)
+/* A header: the column names top, area and optionally length, each once, in any order: col[i]
+ * is the column (0 top, 1 area, 2 length) of field i. 0, or an error naming the column. */
+static int header(char *line, int col[3], int *ncol, const char *shown, size_t lineno)
 {
     static const char *const names[] = {"top", "area", "length"};
+    int field[3] = {0, 0, 0}; /* the field (1, 2, 3) that names each column, 0: none */
     *ncol = 0;
     for (char *tok = strtok(line, ",; \t\r\n"); tok; tok = strtok(NULL, ",; \t\r\n")) {
         int k = 0;
         while (k < 3 && strcmp(tok, names[k]))
             k++;
-        if (k == 3 || *ncol == 3)
-            return -1;
+        if (k == 3)
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: header field %d is '%.40s': neither a number nor a "
+                                "column name (top, area, length)",
+                                shown, lineno, *ncol + 1, tok);
+        if (field[k])
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: header: column '%s' named twice (fields %d and %d)", shown,
+                                lineno, names[k], field[k], *ncol + 1);
+        field[k] = *ncol + 1;
         col[(*ncol)++] = k;
     }
-    int seen = 0;
-    for (int i = 0; i < *ncol; i++)
-        seen |= 1 << col[i];
-    return (seen & 3) == 3 ? 0 : -1;
+    for (int k = 0; k < 2; k++)
+        if (!field[k])
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: header: no column '%s' (a header names top, area and "
+                                "optionally length)",
+                                shown, lineno, names[k]);
+    return CT_OK;
 }
 
 static int read_file(rods_config *c, const char *path, const char *shown)
@@ -211,13 +224,8 @@ static int read_file(rods_config *c, const char *path, const char *shown)
         snprintf(copy, sizeof copy, "%s", p);
         int r = split_numbers(p, v, &nv, &bad);
         if (r == -1 && !width && c->n == 0) { /* a header before the first rod */
-            if (header(copy, col, &width)) {
-                st = ct_error_set(CT_EINVAL,
-                                  "%s:%zu: neither rod numbers nor a header naming top, area "
-                                  "(and length)",
-                                  shown, lineno);
+            if ((st = header(copy, col, &width, shown, lineno)))
                 break;
-            }
             continue;
         }
         if (!width && !r && (nv == 2 || nv == 3))
@@ -227,9 +235,12 @@ static int read_file(rods_config *c, const char *path, const char *shown)
                               shown, lineno, width ? width : 2, width == 3 ? ", length" : "");
             break;
         }
+        /* every column once (the header's rule), so every field of row is written: a length
+         * only when a column holds it */
+        row[0] = row[1] = row[2] = NAN;
         for (int i = 0; i < nv; i++)
             row[col[i]] = v[i];
-        st = push(c, &cap, row, nv);
+        st = push(c, &cap, row, isnan(row[2]) ? 2 : 3);
     }
     if (!st && ferror(f))
         st = ct_error_set(CT_EIO, "%s: read error", shown);
