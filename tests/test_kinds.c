@@ -208,11 +208,26 @@ static void rod_files(void **state)
         {"top,length\n0,1\n", ":1: header: no column 'area'"},
         {"length;area\n1,1\n", ":1: header: no column 'top'"},
         {"top area depth\n0 1 2\n", ":1: header field 3 is 'depth'"},
-        {"0 1 2 3\n", ":1: expected"},
+        {"0 1 2 3\n", ":1: more than 3 fields"},
+        {"0 1\n0.5 1 2\n", ":2: more than 2 fields: expected 2 numbers"},
         {"0 -1\n", "area = -0.001: must be finite and > 0"},
         {"0 x\n", ":1:"},
         {"", "no rods"},
         {"-1 1\n", "top = -0.001: must be finite and >= 0"},
+        /* no field is empty: none between two separators, none at either end of a row */
+        {"0.5,,2\n", ":1: field 2 is empty"},
+        {"0,1\n0.5,1,\n", ":2: field 3 is empty"},
+        {",0,1\n", ":1: field 1 is empty"},
+        {"0 ; ; 1\n", ":1: field 2 is empty"},
+        {"0;1;\n", ":1: field 3 is empty"},
+        {"top,,area\n0,1\n", ":1: header field 2 is empty"},
+        {"top,area,\n0,1\n", ":1: header field 3 is empty"},
+        /* a number that is no usable double is named, with its field and column */
+        {"0,1\n1e-320,1\n", ":2: field 1 (top) = 1e-320: underflows double precision"},
+        {"area top\n1 1e-320\n", ":2: field 2 (top) = 1e-320: underflows"},
+        {"0 1e999\n", ":1: field 2 (area) = 1e999: overflows double precision"},
+        {"0 nan\n", ":1: field 2 (area) = nan: not a finite number"},
+        {"0 1\n0.5 1x\n", ":2: field 2 (area) = 1x: not a finite number"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         write_file(path, bad[k][0]);
@@ -220,6 +235,29 @@ static void rod_files(void **state)
         if (!strstr(ct_error_message(), bad[k][1]))
             fail_msg("'%s': message '%s' lacks '%s'", bad[k][0], ct_error_message(), bad[k][1]);
     }
+    /* text as scenes and profiles: a UTF-8 byte-order mark dropped (before a header or a
+     * row), line ends \n, \r\n or a lone \r, blanks around separators; all the same two rods
+     * (tops 0.5 and 0 mm, areas 3 and 1 mm) */
+    const char *same[] = {"\xEF\xBB\xBFtop,area\n0.5,3\n0,1\n",
+                          "\xEF\xBB\xBF"
+                          "0.5 3\n0 1\n",
+                          "0.5 3\r0 1\r",
+                          "0.5 3\r\n0 1\r\n",
+                          "0.5 , 3\n\t0 ;1 \n",
+                          "area\ttop\n3  0.5\n1 0\n"};
+    for (size_t k = 0; k < sizeof same / sizeof same[0]; k++) {
+        write_file(path, same[k]);
+        if (file_rods(path, &sc))
+            fail_msg("'%s': %s", same[k], ct_error_message());
+        assert_true(sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3);
+    }
+    /* a NUL byte (UTF-16 text, binary data) makes no rod file */
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    fwrite("0 1\n0.5\0 3\n", 1, 11, f);
+    fclose(f);
+    assert_int_equal(file_rods(path, &sc), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), ":2: a NUL byte"));
     /* columns in the header's order, lengths among them: rod (top 0.5, area 1, length 2) and
      * (top 0, area 3, length 4) in mm; H* = min(top + length) = 2.5 mm, h0 = 0.5, l0 = 4 */
     write_file(path, "length,area,top\n2,1,0.5\n4,3,0\n");
@@ -227,6 +265,45 @@ static void rod_files(void **state)
     assert_true(sc.layer.Hstar == 2.5e-3 && sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3);
     unlink(path);
     assert_int_equal(file_rods("/nonexistent/rods.csv", &sc), CT_EIO);
+}
+
+/* surface.rods: the rule of every list (no empty field, a trailing separator included) and
+ * of every number (one that underflows is named), the key and where it was set in the
+ * message. */
+static void inline_rods(void **state)
+{
+    (void)state;
+    const char *bad[][2] = {
+        {"0:1,,1:1,", "s.ini:3: surface.rods = 0:1,,1:1,: rod 2 (field 2 of the list) is empty"},
+        {"0:1, 1:1,", "rod 3 (field 3 of the list) is empty"},
+        {",0:1", "rod 1 (field 1 of the list) is empty"},
+        {"0::1", "rod 1: field 2 of top:area[:length] is empty"},
+        {"0:1:", "rod 1: field 3 of top:area[:length] is empty"},
+        {":1", "rod 1: field 1 of top:area[:length] is empty"},
+        {"0:1, 1e-320:1", "rod 2: field 1 (top) = 1e-320: underflows double precision"},
+        {"0:1e999", "rod 1: field 2 (area) = 1e999: overflows"},
+        {"0:1:1:1", "rod 1: more than 3 fields"},
+        {"0:1, 1:1:1", "rod 2: has a length and rod 1 has none"},
+        {"0", "rod 1: expected top:area or top:area:length"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        ct_surface *s;
+        assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", "rods", bad[k][0], "s.ini:3"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", "Hstar", "2", ""), CT_OK);
+        assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+        assert_int_equal(ct_surface_check(s, "s.ini"), CT_OK);
+        assert_int_equal(ct_surface_prepare(s, NULL), CT_EINVAL);
+        if (!strstr(ct_error_message(), bad[k][1]))
+            fail_msg("'%s': message '%s' lacks '%s'", bad[k][0], ct_error_message(), bad[k][1]);
+        ct_surface_free(s);
+    }
+    /* blanks around separators are not fields: tops 0.5 and 0, areas 3 and 1 */
+    ct_surface *s = rods(" 0.5 : 3 ,0:1 ", "2", "100", "1");
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    assert_true(sc.layer.h0 == 0.5 && sc.layer.l0 == 4.0);
+    ct_surface_free(s);
 }
 
 static void keys_of_other_kinds(void **state)
@@ -263,6 +340,7 @@ int main(void)
         cmocka_unit_test(one_rod_closed_forms),
         cmocka_unit_test(lengths_set_the_crushed_limit),
         cmocka_unit_test(rod_files),
+        cmocka_unit_test(inline_rods),
         cmocka_unit_test(keys_of_other_kinds),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
