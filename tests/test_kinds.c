@@ -227,6 +227,8 @@ static void rod_files(void **state)
         {"area top\n1 1e-320\n", ":2: field 2 (top) = 1e-320: underflows"},
         {"0 1e999\n", ":1: field 2 (area) = 1e999: overflows double precision"},
         {"0 nan\n", ":1: field 2 (area) = nan: not a finite number"},
+        {"nan 1\n", ":1: field 1 (top) = nan: not a finite number"}, /* a row, not a header */
+        {"-inf,1\n", ":1: field 1 (top) = -inf: not a finite number"},
         {"0 1\n0.5 1x\n", ":2: field 2 (area) = 1x: not a finite number"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
