@@ -155,6 +155,77 @@ static void lengths_set_the_crushed_limit(void **state)
     ct_surface_free(s);
 }
 
+/* With lengths, a rod whose top lies below another's bottom (0:1:1, 2:1:10: rod 2 starts at
+ * 2, rod 1 crushes at H* = 1) is never reached within the model: the set is computed, and its
+ * impacts are those of rod 1 alone (docs/model.md §3 in closed form); only the scales count
+ * rod 2 (h0 = its top 2, l0 = both areas 2). */
+static void deep_rod_never_reached(void **state)
+{
+    (void)state;
+    ct_surface *s = rods("0:1:1, 2:1:10", NULL, "100", "1");
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    assert_true(sc.layer.Hstar == 1.0 && sc.layer.h0 == 2.0 && sc.layer.l0 == 2.0);
+    /* rod 1: E = 100, A = 1, L = 1, eps_y = 0.01: Wy = E A L eps_y^2 / 2 = 5e-3 */
+    const double E = 100, A = 1, L = 1, ey = 0.01, Wy = E * A * L * ey * ey / 2;
+    const double W[3] = {0.5 * Wy, 4 * Wy, 100 * Wy};
+    double V[3];
+    for (int k = 0; k < 3; k++)
+        V[k] = sqrt(W[k] / sc.energy_scale); /* l0 E h0 = 400 */
+    ct_sweep_row r[3];
+    sweep(s, V, 3, r);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(r[k].status, CT_OK);
+        const double u = W[k] <= Wy ? L * sqrt(2 * W[k] / (E * A * L))
+                                    : L * (W[k] / (E * A * L) + ey * ey / 2) / ey;
+        const double e = W[k] <= Wy ? 1.0 : sqrt(Wy / W[k]);
+        if (!(fabs(r[k].r.u_max - u) <= 1e-14 * u && fabs(r[k].r.e - e) <= 1e-14))
+            fail_msg("W = %g: u_max %.17g (want %.17g), e %.17g (want %.17g)", W[k], r[k].r.u_max,
+                     u, r[k].r.e, e);
+    }
+    /* rod 1 crushes at u = 1 after W(1) = E A eps_y L (1 - eps_y / 2) = 0.995: beyond it the
+     * impact is refused as outside the model, never computed on rod 2 */
+    ct_bundle *b;
+    ct_build_request req = {.V_star = V, .nvel = 1, .impacts = 1};
+    ct_impact_opts_default(&req.opts);
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    ct_impact_opts o;
+    ct_impact_opts_default(&o);
+    ct_impact_result res;
+    assert_int_equal(ct_impact(b, 0.995 * 1.001, &o, &res), CT_ERANGE);
+    ct_bundle_reset(b);
+    assert_int_equal(ct_impact(b, 0.995 * 0.999, &o, &res), CT_OK);
+    assert_true(res.u_max < 1.0);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    /* without lengths every rod reaches down to H*: a top at or below it is refused, naming
+     * where H* came from */
+    const char *bad[][3] = {{"0:1, 5:1", "Hstar", "4"}, {"0:1, 4:1", "Hstar", "4"}};
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", "rods", bad[k][0], "s.ini:3"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", bad[k][1], bad[k][2], ""), CT_OK);
+        assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+        assert_int_equal(ct_surface_check(s, "s.ini"), CT_OK);
+        assert_int_equal(ct_surface_prepare(s, NULL), CT_EINVAL);
+        assert_non_null(strstr(ct_error_message(), "s.ini:3: surface.rods = "));
+        assert_non_null(strstr(ct_error_message(), ": rod 2: top = "));
+        assert_non_null(strstr(ct_error_message(), "must be < H* = 4 (surface.Hstar): a rod "
+                                                   "without a length reaches down"));
+        ct_surface_free(s);
+    }
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "rods", "1:1, 5:1", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "2", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "h0", "2", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+    assert_int_equal(ct_surface_check(s, "s.ini"), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "top = 5: must be < H* = 4 (surface.H = 2 times "
+                                               "h0 = 2)"));
+    ct_surface_free(s);
+}
+
 static void write_file(const char *path, const char *text)
 {
     FILE *f = fopen(path, "w");
@@ -341,6 +412,7 @@ int main(void)
         cmocka_unit_test(registry_complete),
         cmocka_unit_test(one_rod_closed_forms),
         cmocka_unit_test(lengths_set_the_crushed_limit),
+        cmocka_unit_test(deep_rod_never_reached),
         cmocka_unit_test(rod_files),
         cmocka_unit_test(inline_rods),
         cmocka_unit_test(keys_of_other_kinds),

@@ -12,6 +12,7 @@
 #include <errno.h>
 #include <locale.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -406,10 +407,26 @@ static int read_rods(const ct_surface *s, rods_config *c, const char *dir, int *
     return st;
 }
 
+/* An error of rod k (from 0): named by the key and where it was set for inline rods, else by
+ * the file (or "arrays"). */
+static int rod_error(const ct_surface *s, const rods_config *c, size_t k, const char *fmt, ...)
+    CT_PRINTF(4, 5);
+static int rod_error(const ct_surface *s, const rods_config *c, size_t k, const char *fmt, ...)
+{
+    char why[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    if (!c->given_top && !c->file)
+        return ct_surface_key_error(s, "surface", "rods", CT_EINVAL, "rod %zu: %s", k + 1, why);
+    return ct_error_set(CT_EINVAL, "%s: rod %zu: %s", c->source, k + 1, why);
+}
+
 /* Every rod in the unit u [m per unit; 1: as given] and checked; the deepest top, the total
  * area and the shallowest bottom (top + length; infinite without lengths). */
-static int check_rods(rods_config *c, int lengths, double u, double *deepest, double *total,
-                      double *bottom)
+static int check_rods(const ct_surface *s, rods_config *c, int lengths, double u, double *deepest,
+                      double *total, double *bottom)
 {
     *deepest = *total = 0.0;
     *bottom = INFINITY;
@@ -417,16 +434,13 @@ static int check_rods(rods_config *c, int lengths, double u, double *deepest, do
         c->top[k] *= u;
         c->area[k] *= u;
         if (!(c->top[k] >= 0.0) || !isfinite(c->top[k]))
-            return ct_error_set(CT_EINVAL, "%s: rod %zu: top = %g: must be finite and >= 0",
-                                c->source, k + 1, c->top[k]);
+            return rod_error(s, c, k, "top = %g: must be finite and >= 0", c->top[k]);
         if (!(c->area[k] > 0.0) || !isfinite(c->area[k]))
-            return ct_error_set(CT_EINVAL, "%s: rod %zu: area = %g: must be finite and > 0",
-                                c->source, k + 1, c->area[k]);
+            return rod_error(s, c, k, "area = %g: must be finite and > 0", c->area[k]);
         if (lengths) {
             c->length[k] *= u;
             if (!(c->length[k] > 0.0) || !isfinite(c->length[k]))
-                return ct_error_set(CT_EINVAL, "%s: rod %zu: length = %g: must be finite and > 0",
-                                    c->source, k + 1, c->length[k]);
+                return rod_error(s, c, k, "length = %g: must be finite and > 0", c->length[k]);
             *bottom = fmin(*bottom, c->top[k] + c->length[k]);
         }
         *deepest = fmax(*deepest, c->top[k]);
@@ -450,7 +464,7 @@ static int rods_prepare(ct_surface *s, const char *dir)
     }
     const double u = ct_surface_given(s, "surface", "unit") ? unit_metres[c->unit] : 1.0;
     double deepest, total, bottom;
-    if ((st = check_rods(c, lengths, u, &deepest, &total, &bottom)))
+    if ((st = check_rods(s, c, lengths, u, &deepest, &total, &bottom)))
         return st;
     const int given_H = ct_surface_given(s, "surface", "H"),
               given_Hstar = ct_surface_given(s, "surface", "Hstar");
@@ -474,10 +488,22 @@ static int rods_prepare(ct_surface *s, const char *dir)
     }
     if (given_H)
         Hstar = c->H * h0;
-    for (size_t k = 0; k < c->n; k++)
-        if (!(c->top[k] < Hstar))
-            return ct_error_set(CT_EINVAL, "%s: rod %zu: top = %g: must be < H* = %g", c->source,
-                                k + 1, c->top[k], Hstar);
+    /* Without lengths every rod reaches down to the layer's bottom H*, so it must start above
+     * it. With lengths a rod's top may lie at or below another's bottom (the crushed limit
+     * H*): it is reached only after the layer has crushed, so no impact within the model
+     * touches it, and it only counts in the scales (h0, l0), as docs/model.md §12 says. */
+    for (size_t k = 0; k < c->n && !lengths; k++)
+        if (!(c->top[k] < Hstar)) {
+            char from[96];
+            if (given_H)
+                snprintf(from, sizeof from, "surface.H = %g times h0 = %g", c->H, h0);
+            else
+                snprintf(from, sizeof from, "surface.Hstar");
+            return rod_error(s, c, k,
+                             "top = %g: must be < H* = %g (%s): a rod without a length reaches "
+                             "down to the layer's bottom H*",
+                             c->top[k], Hstar, from);
+        }
     c->layer = (ct_layer){.E = c->E, .sigma_y = c->sigma_y, .Hstar = Hstar, .l0 = l0, .h0 = h0};
     if ((st = ct_layer_validate(&c->layer)))
         return st;
