@@ -11,8 +11,12 @@
 #define _GNU_SOURCE /* fwrite_unlocked */
 #include "number.h"
 
+#include <ctype.h>
+#include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -295,4 +299,100 @@ void ct_line_str(ct_line *l, const char *s)
         s += k;
         n -= k;
     }
+}
+
+int ct_number_parse(const char *text, size_t n, double *out)
+{
+    const char *end_text = text + n;
+    while (text < end_text && isspace((unsigned char)*text))
+        text++;
+    while (end_text > text && isspace((unsigned char)end_text[-1]))
+        end_text--;
+    if (text == end_text)
+        return CT_NUMBER_NONE;
+    char small[128], *end;
+    const size_t len = (size_t)(end_text - text);
+    /* a copy ends where the field ends: strtod cannot read into what follows it */
+    char *buf = len < sizeof small ? small : malloc(len + 1);
+    if (!buf)
+        return CT_NUMBER_NONE;
+    memcpy(buf, text, len);
+    buf[len] = '\0';
+    errno = 0;
+    const double v = strtod(buf, &end);
+    const int whole = end == buf + len, range = errno == ERANGE;
+    if (buf != small)
+        free(buf);
+    if (!whole)
+        return CT_NUMBER_NONE;
+    if (isinf(v) && range)
+        return CT_NUMBER_OVERFLOW;
+    if (!isfinite(v))
+        return CT_NUMBER_NOT_FINITE;
+    /* a subnormal, or 0 from a text that is not zero: digits lost (glibc flags both ERANGE;
+     * an exact subnormal, e.g. in hex, is no more usable) */
+    if ((v != 0.0 && fabs(v) < DBL_MIN) || (v == 0.0 && range))
+        return CT_NUMBER_UNDERFLOW;
+    *out = v;
+    return CT_NUMBER_OK;
+}
+
+const char *ct_number_why(int status)
+{
+    switch (status) {
+    case CT_NUMBER_OK:
+        return "a number";
+    case CT_NUMBER_OVERFLOW:
+        return "overflows double precision (|value| > 1.8e308)";
+    case CT_NUMBER_UNDERFLOW:
+        return "underflows double precision (0 < |value| < 2.2e-308)";
+    default:
+        return "not a finite number";
+    }
+}
+
+static int is_blank(char c)
+{
+    return c == ' ' || c == '\t';
+}
+
+void ct_list_start(ct_list *l, const char *text, const char *seps)
+{
+    l->next = text;
+    l->seps = seps;
+    l->blanks = strchr(seps, ' ') != NULL;
+    l->done = 0;
+}
+
+int ct_list_next(ct_list *l, const char **field, size_t *len)
+{
+    if (l->done)
+        return 0;
+    const char *p = l->next;
+    while (isspace((unsigned char)*p))
+        p++;
+    const char *start = p;
+    /* a hard separator: one of seps that is not a blank */
+    while (*p && !(strchr(l->seps, *p) && !is_blank(*p)) &&
+           !(l->blanks && isspace((unsigned char)*p)))
+        p++;
+    const char *end = p;
+    while (end > start && isspace((unsigned char)end[-1]))
+        end--;
+    while (isspace((unsigned char)*p))
+        p++;
+    *field = start;
+    *len = (size_t)(end - start);
+    if (!*p)
+        l->done = 1;
+    else if (strchr(l->seps, *p) && !is_blank(*p))
+        l->next = p + 1; /* another field follows, maybe an empty one */
+    else
+        l->next = p; /* blanks alone separated it */
+    return 1;
+}
+
+const char *ct_list_empty_why(void)
+{
+    return "lists take no empty field, a separator at either end included";
 }

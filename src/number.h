@@ -1,4 +1,5 @@
-/* Doubles as text: byte for byte what printf("%.17g") writes (round-trip exact), faster. */
+/* Doubles as text: byte for byte what printf("%.17g") writes (round-trip exact), faster; and
+ * text as doubles and lists, by one rule for every reader. */
 #ifndef CT_NUMBER_H
 #define CT_NUMBER_H
 
@@ -58,5 +59,40 @@ static inline void ct_line_g3(ct_line *l, double x)
 }
 void ct_line_long(ct_line *l, long v);
 void ct_line_str(ct_line *l, const char *s);
+
+/* ---- reading: one rule for every number and list the program reads ---- */
+
+/* What a text is as a number: CT_NUMBER_OK, or why a computation cannot use it. */
+enum {
+    CT_NUMBER_OK = 0,
+    CT_NUMBER_NONE,       /* no number, or characters after it */
+    CT_NUMBER_NOT_FINITE, /* inf or nan spelled out */
+    CT_NUMBER_OVERFLOW,   /* |value| beyond the largest double */
+    CT_NUMBER_UNDERFLOW   /* 0 < |value| < DBL_MIN: a subnormal or 0 */
+};
+
+/* Reads the number that the n bytes at text spell, blanks around it allowed, into *out (strtod
+ * in the caller's locale: readers hold the C locale while they read). Returns CT_NUMBER_OK or
+ * why the text is not a finite normal double (or 0); *out is set only when it is. */
+int ct_number_parse(const char *text, size_t n, double *out);
+/* The words of a status of ct_number_parse ("not a finite number", "underflows double
+ * precision (0 < |value| < 2.2e-308)", ...). */
+const char *ct_number_why(int status);
+
+/* A list's fields. Fields are separated by one of the characters of seps; a blank (space or
+ * tab) in seps makes any run of blanks a separator as well. Blanks around a field are not part
+ * of it. An empty field is returned as one (length 0): two separators in a row, a separator at
+ * the start or at the end, or an empty text; every list refuses it. */
+typedef struct {
+    const char *next, *seps;
+    int blanks, done;
+} ct_list;
+
+/* Starts reading the fields of text. */
+void ct_list_start(ct_list *l, const char *text, const char *seps);
+/* The next field: 1 with *field and *len (0: an empty field), or 0 when none is left. */
+int ct_list_next(ct_list *l, const char **field, size_t *len);
+/* The message of an empty field: "field N is empty (...)". */
+const char *ct_list_empty_why(void);
 
 #endif

@@ -155,6 +155,77 @@ static void lengths_set_the_crushed_limit(void **state)
     ct_surface_free(s);
 }
 
+/* With lengths, a rod whose top lies below another's bottom (0:1:1, 2:1:10: rod 2 starts at
+ * 2, rod 1 crushes at H* = 1) is never reached within the model: the set is computed, and its
+ * impacts are those of rod 1 alone (docs/model.md §3 in closed form); only the scales count
+ * rod 2 (h0 = its top 2, l0 = both areas 2). */
+static void deep_rod_never_reached(void **state)
+{
+    (void)state;
+    ct_surface *s = rods("0:1:1, 2:1:10", NULL, "100", "1");
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    assert_true(sc.layer.Hstar == 1.0 && sc.layer.h0 == 2.0 && sc.layer.l0 == 2.0);
+    /* rod 1: E = 100, A = 1, L = 1, eps_y = 0.01: Wy = E A L eps_y^2 / 2 = 5e-3 */
+    const double E = 100, A = 1, L = 1, ey = 0.01, Wy = E * A * L * ey * ey / 2;
+    const double W[3] = {0.5 * Wy, 4 * Wy, 100 * Wy};
+    double V[3];
+    for (int k = 0; k < 3; k++)
+        V[k] = sqrt(W[k] / sc.energy_scale); /* l0 E h0 = 400 */
+    ct_sweep_row r[3];
+    sweep(s, V, 3, r);
+    for (int k = 0; k < 3; k++) {
+        assert_int_equal(r[k].status, CT_OK);
+        const double u = W[k] <= Wy ? L * sqrt(2 * W[k] / (E * A * L))
+                                    : L * (W[k] / (E * A * L) + ey * ey / 2) / ey;
+        const double e = W[k] <= Wy ? 1.0 : sqrt(Wy / W[k]);
+        if (!(fabs(r[k].r.u_max - u) <= 1e-14 * u && fabs(r[k].r.e - e) <= 1e-14))
+            fail_msg("W = %g: u_max %.17g (want %.17g), e %.17g (want %.17g)", W[k], r[k].r.u_max,
+                     u, r[k].r.e, e);
+    }
+    /* rod 1 crushes at u = 1 after W(1) = E A eps_y L (1 - eps_y / 2) = 0.995: beyond it the
+     * impact is refused as outside the model, never computed on rod 2 */
+    ct_bundle *b;
+    ct_build_request req = {.V_star = V, .nvel = 1, .impacts = 1};
+    ct_impact_opts_default(&req.opts);
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    ct_impact_opts o;
+    ct_impact_opts_default(&o);
+    ct_impact_result res;
+    assert_int_equal(ct_impact(b, 0.995 * 1.001, &o, &res), CT_ERANGE);
+    ct_bundle_reset(b);
+    assert_int_equal(ct_impact(b, 0.995 * 0.999, &o, &res), CT_OK);
+    assert_true(res.u_max < 1.0);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    /* without lengths every rod reaches down to H*: a top at or below it is refused, naming
+     * where H* came from */
+    const char *bad[][3] = {{"0:1, 5:1", "Hstar", "4"}, {"0:1, 4:1", "Hstar", "4"}};
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", "rods", bad[k][0], "s.ini:3"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", bad[k][1], bad[k][2], ""), CT_OK);
+        assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+        assert_int_equal(ct_surface_check(s, "s.ini"), CT_OK);
+        assert_int_equal(ct_surface_prepare(s, NULL), CT_EINVAL);
+        assert_non_null(strstr(ct_error_message(), "s.ini:3: surface.rods = "));
+        assert_non_null(strstr(ct_error_message(), ": rod 2: top = "));
+        assert_non_null(strstr(ct_error_message(), "must be < H* = 4 (surface.Hstar): a rod "
+                                                   "without a length reaches down"));
+        ct_surface_free(s);
+    }
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "rods", "1:1, 5:1", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "2", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "h0", "2", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+    assert_int_equal(ct_surface_check(s, "s.ini"), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "top = 5: must be < H* = 4 (surface.H = 2 times "
+                                               "h0 = 2)"));
+    ct_surface_free(s);
+}
+
 static void write_file(const char *path, const char *text)
 {
     FILE *f = fopen(path, "w");
@@ -163,12 +234,14 @@ static void write_file(const char *path, const char *text)
     fclose(f);
 }
 
-static int file_rods(const char *path, ct_scales *sc)
+/* The rods of a file (unit mm, E = 100; H = 10 unless H is NULL: lengths in the file). */
+static int file_rods_H(const char *path, const char *H, ct_scales *sc)
 {
     ct_surface *s;
     assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
     assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
-    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    if (H)
+        assert_int_equal(ct_surface_set(s, "surface", "H", H, ""), CT_OK);
     assert_int_equal(ct_surface_set(s, "surface", "unit", "mm", ""), CT_OK);
     assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
     assert_int_equal(ct_surface_check(s, "t"), CT_OK);
@@ -177,6 +250,11 @@ static int file_rods(const char *path, ct_scales *sc)
         ct_surface_scales(s, sc);
     ct_surface_free(s);
     return st;
+}
+
+static int file_rods(const char *path, ct_scales *sc)
+{
+    return file_rods_H(path, "10", sc);
 }
 
 static void rod_files(void **state)
@@ -192,12 +270,37 @@ static void rod_files(void **state)
     assert_true(sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3 && sc.layer.Hstar == 10 * 0.5e-3);
     const char *bad[][2] = {
         {"0 1\n2\n", ":2: expected 2 numbers"},
-        {"depth,area\n0,1\n", ":1: neither rod numbers nor a header"},
-        {"0 1 2 3\n", ":1: expected"},
+        {"depth,area\n0,1\n", ":1: header field 1 is 'depth': neither a number nor a column"},
+        /* a header names every column once: a repeated one would leave a field unread */
+        {"top,area,area\n0,1,0.5\n0.5,1,0.7\n",
+         ":1: header: column 'area' named twice (fields 2 and 3)"},
+        {"top,top,area\n0,0,1\n", ":1: header: column 'top' named twice (fields 1 and 2)"},
+        {"top,area,length,top\n0,1,2,0\n", "column 'top' named twice (fields 1 and 4)"},
+        {"top,length\n0,1\n", ":1: header: no column 'area'"},
+        {"length;area\n1,1\n", ":1: header: no column 'top'"},
+        {"top area depth\n0 1 2\n", ":1: header field 3 is 'depth'"},
+        {"0 1 2 3\n", ":1: more than 3 fields"},
+        {"0 1\n0.5 1 2\n", ":2: more than 2 fields: expected 2 numbers"},
         {"0 -1\n", "area = -0.001: must be finite and > 0"},
         {"0 x\n", ":1:"},
         {"", "no rods"},
         {"-1 1\n", "top = -0.001: must be finite and >= 0"},
+        /* no field is empty: none between two separators, none at either end of a row */
+        {"0.5,,2\n", ":1: field 2 is empty"},
+        {"0,1\n0.5,1,\n", ":2: field 3 is empty"},
+        {",0,1\n", ":1: field 1 is empty"},
+        {"0 ; ; 1\n", ":1: field 2 is empty"},
+        {"0;1;\n", ":1: field 3 is empty"},
+        {"top,,area\n0,1\n", ":1: header field 2 is empty"},
+        {"top,area,\n0,1\n", ":1: header field 3 is empty"},
+        /* a number that is no usable double is named, with its field and column */
+        {"0,1\n1e-320,1\n", ":2: field 1 (top) = 1e-320: underflows double precision"},
+        {"area top\n1 1e-320\n", ":2: field 2 (top) = 1e-320: underflows"},
+        {"0 1e999\n", ":1: field 2 (area) = 1e999: overflows double precision"},
+        {"0 nan\n", ":1: field 2 (area) = nan: not a finite number"},
+        {"nan 1\n", ":1: field 1 (top) = nan: not a finite number"}, /* a row, not a header */
+        {"-inf,1\n", ":1: field 1 (top) = -inf: not a finite number"},
+        {"0 1\n0.5 1x\n", ":2: field 2 (area) = 1x: not a finite number"},
     };
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         write_file(path, bad[k][0]);
@@ -205,8 +308,75 @@ static void rod_files(void **state)
         if (!strstr(ct_error_message(), bad[k][1]))
             fail_msg("'%s': message '%s' lacks '%s'", bad[k][0], ct_error_message(), bad[k][1]);
     }
+    /* text as scenes and profiles: a UTF-8 byte-order mark dropped (before a header or a
+     * row), line ends \n, \r\n or a lone \r, blanks around separators; all the same two rods
+     * (tops 0.5 and 0 mm, areas 3 and 1 mm) */
+    const char *same[] = {"\xEF\xBB\xBFtop,area\n0.5,3\n0,1\n",
+                          "\xEF\xBB\xBF"
+                          "0.5 3\n0 1\n",
+                          "0.5 3\r0 1\r",
+                          "0.5 3\r\n0 1\r\n",
+                          "0.5 , 3\n\t0 ;1 \n",
+                          "area\ttop\n3  0.5\n1 0\n"};
+    for (size_t k = 0; k < sizeof same / sizeof same[0]; k++) {
+        write_file(path, same[k]);
+        if (file_rods(path, &sc))
+            fail_msg("'%s': %s", same[k], ct_error_message());
+        assert_true(sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3);
+    }
+    /* a NUL byte (UTF-16 text, binary data) makes no rod file */
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    fwrite("0 1\n0.5\0 3\n", 1, 11, f);
+    fclose(f);
+    assert_int_equal(file_rods(path, &sc), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), ":2: a NUL byte"));
+    /* columns in the header's order, lengths among them: rod (top 0.5, area 1, length 2) and
+     * (top 0, area 3, length 4) in mm; H* = min(top + length) = 2.5 mm, h0 = 0.5, l0 = 4 */
+    write_file(path, "length,area,top\n2,1,0.5\n4,3,0\n");
+    assert_int_equal(file_rods_H(path, NULL, &sc), CT_OK);
+    assert_true(sc.layer.Hstar == 2.5e-3 && sc.layer.h0 == 0.5e-3 && sc.layer.l0 == 4e-3);
     unlink(path);
     assert_int_equal(file_rods("/nonexistent/rods.csv", &sc), CT_EIO);
+}
+
+/* surface.rods: the rule of every list (no empty field, a trailing separator included) and
+ * of every number (one that underflows is named), the key and where it was set in the
+ * message. */
+static void inline_rods(void **state)
+{
+    (void)state;
+    const char *bad[][2] = {
+        {"0:1,,1:1,", "s.ini:3: surface.rods = 0:1,,1:1,: rod 2 (field 2 of the list) is empty"},
+        {"0:1, 1:1,", "rod 3 (field 3 of the list) is empty"},
+        {",0:1", "rod 1 (field 1 of the list) is empty"},
+        {"0::1", "rod 1: field 2 of top:area[:length] is empty"},
+        {"0:1:", "rod 1: field 3 of top:area[:length] is empty"},
+        {":1", "rod 1: field 1 of top:area[:length] is empty"},
+        {"0:1, 1e-320:1", "rod 2: field 1 (top) = 1e-320: underflows double precision"},
+        {"0:1e999", "rod 1: field 2 (area) = 1e999: overflows"},
+        {"0:1:1:1", "rod 1: more than 3 fields"},
+        {"0:1, 1:1:1", "rod 2: has a length and rod 1 has none"},
+        {"0", "rod 1: expected top:area or top:area:length"},
+    };
+    for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        ct_surface *s;
+        assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", "rods", bad[k][0], "s.ini:3"), CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", "Hstar", "2", ""), CT_OK);
+        assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+        assert_int_equal(ct_surface_check(s, "s.ini"), CT_OK);
+        assert_int_equal(ct_surface_prepare(s, NULL), CT_EINVAL);
+        if (!strstr(ct_error_message(), bad[k][1]))
+            fail_msg("'%s': message '%s' lacks '%s'", bad[k][0], ct_error_message(), bad[k][1]);
+        ct_surface_free(s);
+    }
+    /* blanks around separators are not fields: tops 0.5 and 0, areas 3 and 1 */
+    ct_surface *s = rods(" 0.5 : 3 ,0:1 ", "2", "100", "1");
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    assert_true(sc.layer.h0 == 0.5 && sc.layer.l0 == 4.0);
+    ct_surface_free(s);
 }
 
 static void keys_of_other_kinds(void **state)
@@ -242,7 +412,9 @@ int main(void)
         cmocka_unit_test(registry_complete),
         cmocka_unit_test(one_rod_closed_forms),
         cmocka_unit_test(lengths_set_the_crushed_limit),
+        cmocka_unit_test(deep_rod_never_reached),
         cmocka_unit_test(rod_files),
+        cmocka_unit_test(inline_rods),
         cmocka_unit_test(keys_of_other_kinds),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

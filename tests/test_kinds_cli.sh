@@ -121,6 +121,23 @@ head -1 "$tmp/r_profile.csv" | grep -q "^rod,top_over_h0,area_over_l0,length_ove
 # the plastic strain eps - eps_y = 0.015 of L = 1 m: the top now at 0.015 m (h0 = 1 m)
 near "rods residual top" "$(col "$tmp/r_profile.csv" residual_top_over_h0 1)" 0.015
 
+# --- rods with lengths, the second below the first's bottom: rod 1 (0:1:1) crushes at H* = 1 m
+# before rod 2 (top 2 m) could be reached, so every impact is rod 1's alone (the bounce's first
+# impact above: e = 0.5, P_peak = 1 N/m, the same contact time) and rod 2 stays untouched
+sed 's|^rods = 0:1$|rods = 0:1:1, 2:1:10|; /^Hstar/d' "$tmp/rods.ini" >"$tmp/deep.ini"
+"$ct" run -q "$tmp/deep.ini" --set impact.velocity=0.2 --set output.what=e,time,profile \
+    -o "$tmp/deep.csv" || bad "rods below the crushed limit: exited $?"
+near "deep rods e" "$(col "$tmp/deep.csv" e 1)" 0.5
+near "deep rods P_peak_N_per_m" "$(col "$tmp/deep.csv" P_peak_N_per_m 1)" 1
+near "deep rods t_contact_s" "$(col "$tmp/deep.csv" t_contact_s 1)" "$t1"
+# h0 = the deepest top, 2 m: rod 1's plastic strain 0.015 of L = 1 m leaves its top at 0.0075 h0
+near "deep rods residual top 1" "$(col "$tmp/deep_profile.csv" residual_top_over_h0 1)" 0.0075
+near "deep rods residual top 2" "$(col "$tmp/deep_profile.csv" residual_top_over_h0 2)" 1
+# a speed that crushes rod 1 is refused as outside the model: one line, exit 2, no file
+"$ct" run -q "$tmp/deep.ini" --set impact.velocity=1.42 -o "$tmp/crushed.csv" 2>"$tmp/err"
+[ $? -eq 2 ] && [ ! -e "$tmp/crushed.csv" ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] &&
+    grep -q "u_max >= H\* = 1" "$tmp/err" && ok || bad "deep rods crushed: $(cat "$tmp/err")"
+
 # --- a rod file beside the scene, a header naming its columns
 printf 'top,area\n0,1\n0.9,1\n0.9,1\n' >"$tmp/rods.csv"
 sed 's|rods = 0:1|file = rods.csv|' "$tmp/rods.ini" >"$tmp/rodfile.ini"

@@ -1,5 +1,6 @@
-/* The CLI's number formatting (src/cli/number.c) against glibc's printf("%.17g"): the
- * reference is an independent implementation; they must agree byte for byte. */
+/* The CLI's number formatting (src/number.c) against glibc's printf("%.17g"): the reference is
+ * an independent implementation; they must agree byte for byte. And the one rule by which
+ * every reader takes numbers and lists: what is a usable double, what is a list's field. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -174,6 +175,102 @@ static void lines_agree_with_printf(void **state)
     assert_string_equal(got, ref);
 }
 
+static void expect_number(const char *text, int status, double want)
+{
+    double x = -12345.0;
+    const int st = ct_number_parse(text, strlen(text), &x);
+    if (st != status)
+        fail_msg("'%s': status %d, want %d", text, st, status);
+    if (st == CT_NUMBER_OK && !(x == want && signbit(x) == signbit(want)))
+        fail_msg("'%s': %a, want %a", text, x, want);
+    if (st != CT_NUMBER_OK && x != -12345.0)
+        fail_msg("'%s': refused but written", text);
+}
+
+static void numbers_read(void **state)
+{
+    (void)state;
+    expect_number("1.5", CT_NUMBER_OK, 1.5);
+    expect_number(" \t-2e3 ", CT_NUMBER_OK, -2000.0);
+    expect_number("-0.0", CT_NUMBER_OK, -0.0);
+    expect_number("0e-400", CT_NUMBER_OK, 0.0); /* zero spelled small is zero, exactly */
+    expect_number("2.2250738585072014e-308", CT_NUMBER_OK, DBL_MIN);
+    expect_number("1.7976931348623157e308", CT_NUMBER_OK, DBL_MAX);
+    expect_number("", CT_NUMBER_NONE, 0);
+    expect_number("  ", CT_NUMBER_NONE, 0);
+    expect_number("1x", CT_NUMBER_NONE, 0);
+    expect_number("1 2", CT_NUMBER_NONE, 0);
+    expect_number("x1", CT_NUMBER_NONE, 0);
+    expect_number("inf", CT_NUMBER_NOT_FINITE, 0);
+    expect_number("-Infinity", CT_NUMBER_NOT_FINITE, 0);
+    expect_number("nan", CT_NUMBER_NOT_FINITE, 0);
+    expect_number("1e309", CT_NUMBER_OVERFLOW, 0);
+    expect_number("-1e400", CT_NUMBER_OVERFLOW, 0);
+    /* below the smallest normal double, DBL_MIN = 2^-1022: a subnormal or a lost value */
+    expect_number("1e-320", CT_NUMBER_UNDERFLOW, 0);
+    expect_number("-2e-310", CT_NUMBER_UNDERFLOW, 0);
+    expect_number("2.2250738585072009e-308", CT_NUMBER_UNDERFLOW, 0); /* DBL_MIN - 2^-1074 */
+    expect_number("1e-400", CT_NUMBER_UNDERFLOW, 0);
+    expect_number("0x1p-1030", CT_NUMBER_UNDERFLOW, 0); /* exact, yet subnormal */
+    /* only the n bytes given: a field inside a longer text */
+    double x = 0;
+    assert_int_equal(ct_number_parse("12,34", 2, &x), CT_NUMBER_OK);
+    assert_true(x == 12.0);
+    assert_int_equal(ct_number_parse("0.5e", 3, &x), CT_NUMBER_OK);
+    assert_true(x == 0.5);
+    /* a long spelling (past any fixed buffer) is still read whole: 1.000...0001 with 300
+     * digits rounds to 1 */
+    char longer[320] = "1.";
+    memset(longer + 2, '0', 300);
+    longer[302] = '1';
+    longer[303] = '\0';
+    expect_number(longer, CT_NUMBER_OK, 1.0);
+    longer[303] = 'x';
+    longer[304] = '\0';
+    expect_number(longer, CT_NUMBER_NONE, 0);
+    assert_non_null(strstr(ct_number_why(CT_NUMBER_UNDERFLOW), "underflows"));
+    assert_non_null(strstr(ct_number_why(CT_NUMBER_OVERFLOW), "overflows"));
+    assert_non_null(strstr(ct_number_why(CT_NUMBER_NOT_FINITE), "not a finite number"));
+}
+
+/* The fields of text as "[a][][b]" */
+static void expect_fields(const char *text, const char *seps, const char *want)
+{
+    char got[256] = "";
+    size_t used = 0, n;
+    const char *f;
+    ct_list l;
+    ct_list_start(&l, text, seps);
+    while (ct_list_next(&l, &f, &n))
+        used += (size_t)snprintf(got + used, sizeof got - used, "[%.*s]", (int)n, f);
+    if (strcmp(got, want))
+        fail_msg("'%s' split at '%s': %s, want %s", text, seps, got, want);
+}
+
+static void list_fields(void **state)
+{
+    (void)state;
+    expect_fields("a,b,c", ",", "[a][b][c]");
+    expect_fields(" a , b ", ",", "[a][b]");
+    expect_fields("a,,b", ",", "[a][][b]"); /* two separators in a row */
+    expect_fields("a,", ",", "[a][]");      /* a trailing separator */
+    expect_fields("a , ", ",", "[a][]");    /* also with blanks after it */
+    expect_fields(",a", ",", "[][a]");      /* a leading one */
+    expect_fields("", ",", "[]");           /* nothing at all */
+    expect_fields("   ", ",", "[]");
+    expect_fields("a b", ",", "[a b]"); /* blanks separate only where seps say so */
+    expect_fields("1:2::3", ":", "[1][2][][3]");
+    /* a blank in seps: runs of blanks separate, blanks around a comma belong to it */
+    expect_fields("a  b\tc", ", ", "[a][b][c]");
+    expect_fields("a , b;c", ",; ", "[a][b][c]");
+    expect_fields("a ,, b", ", ", "[a][][b]");
+    expect_fields("a , ; b", ",; ", "[a][][b]");
+    expect_fields("a b ,", ", ", "[a][b][]");
+    expect_fields(" a b ", ", ", "[a][b]");
+    expect_fields(", a", ", ", "[][a]");
+    assert_non_null(strstr(ct_list_empty_why(), "empty"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -181,6 +278,8 @@ int main(void)
         cmocka_unit_test(edges),
         cmocka_unit_test(longs_agree_with_printf),
         cmocka_unit_test(lines_agree_with_printf),
+        cmocka_unit_test(numbers_read),
+        cmocka_unit_test(list_fields),
     };
     return cmocka_run_group_tests_name("number", tests, NULL, NULL);
 }

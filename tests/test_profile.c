@@ -354,6 +354,18 @@ static void text_readers(void **state)
     expect_read_error("bad4.csv", &um, "bad4.csv:1: wrong number of columns");
     write_file("bad5.csv", "x,z\nx2,z2\n0,1\n");
     expect_read_error("bad5.csv", &um, "bad5.csv:2:");
+    /* the rule of every list and number read: no empty field before a number (trailing ones,
+     * as instruments write them, are fine), no number beyond doubles */
+    write_file("bad6.csv", "0;1\n1;;2\n2;3\n");
+    expect_read_error("bad6.csv", &um, "bad6.csv:2: not a row of numbers: field 2 is empty");
+    write_file("bad7.csv", "0 1\n1 2\n2 1e-320\n");
+    expect_read_error("bad7.csv", &um,
+                      "bad7.csv:3: not a row of numbers: field 2 = 1e-320: underflows double");
+    write_file("trailing.csv", "0;1;\n1;2;;\n2;3 ;\n");
+    assert_int_equal(ct_profile_read(path_of("trailing.csv"), &um, &p), CT_OK);
+    assert_int_equal(p->n, 3);
+    assert_rel(p->z[2], 3e-6, 1e-15);
+    ct_profile_free(p);
     expect_read_error("missing.csv", &um, "cannot open");
 }
 

@@ -316,6 +316,38 @@ static void list_fields_checked(void **state)
     assert_int_equal(sc.nvel, 3);
     assert_true(fabs(sc.V_star[1] - sqrt(1e-5)) < 1e-15);
     ct_scene_free(&sc);
+    /* one rule for every list: an empty field (a separator at either end included) is refused,
+     * naming the key and the field */
+    const char *empty[][2] = {
+        {"impact.V_star=1e-3,,1e-2", "impact.V_star = 1e-3,,1e-2: field 2 of the list is empty"},
+        {"impact.V_star=1e-3,", "field 2 of the list is empty"},
+        {"impact.V_star=,1e-3", "field 1 of the list is empty"},
+        {"impact.V_star=1e-3::1e-2:3", "field 2 of from:to:count[:log] is empty"},
+        {"impact.V_star=1e-3:1e-2:3:log:", "field 5 of from:to:count[:log] is empty"},
+        {"output.what=e,,time", "output.what = e,,time: field 2 of the list is empty"},
+        {"output.what=e,", "output.what = e,: field 2 of the list is empty"},
+        {"output.what=,e", "field 1 of the list is empty"},
+        {"output.what=e , ,time", "field 2 of the list is empty"},
+        {"table.V_star=1e-3:", "table.V_star = 1e-3:: field 2 of from:to is empty"},
+        {"table.V_star=:1e-3", "field 1 of from:to is empty"},
+    };
+    for (size_t k = 0; k < sizeof empty / sizeof *empty; k++) {
+        const char *set[] = {empty[k][0]};
+        expect_error(good, set, 1, "--set: ", empty[k][1]);
+    }
+    expect_error("[surface]\ntype = rods\nrods = 0:1,,1:1,\nHstar = 2\n[material]\nE = 100\n"
+                 "[impact]\nV_star = 1e-3\n",
+                 NULL, 0, "s.ini:3: surface.rods = 0:1,,1:1,: rod 2 (field 2 of the list) is empty",
+                 NULL);
+    expect_error("[surface]\ntype = rods\nrods = 0:1, 1e-320:1\nHstar = 2\n[material]\n"
+                 "E = 100\n[impact]\nV_star = 1e-3\n",
+                 NULL, 0, "s.ini:3: surface.rods = 0:1, 1e-320:1: rod 2: field 1 (top) = 1e-320",
+                 "underflows");
+    /* words separated by commas or blanks */
+    const char *words[] = {"output.what = e  time,curve"};
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, words, 1), CT_OK);
+    assert_int_equal(sc.what, CT_OUT_E | CT_OUT_TIME | CT_OUT_CURVE);
+    ct_scene_free(&sc);
 }
 
 /* Messages that say what happened: an indented key is a key (not a continuation of the
@@ -397,6 +429,16 @@ static void numbers_in_the_c_locale(void **state)
     ct_scene_free(&sc);
     const char *comma[] = {"surface.fx=1,5"};
     expect_error(good, comma, 1, "surface.fx = 1,5", "not a finite number");
+    /* a rod set's numbers too: tops 0.5 and 0.25 */
+    assert_int_equal(ct_scene_parse(&sc, "s.ini",
+                                    "[surface]\ntype = rods\nrods = 0.5:1, 0.25:1.5\n"
+                                    "Hstar = 2\n[material]\nE = 100\n[impact]\nV_star = 1e-3\n",
+                                    NULL, 0),
+                     CT_OK);
+    if (ct_scene_prepare(&sc))
+        fail_msg("rods in a de_DE locale: %s", ct_scene_message());
+    assert_true(sc.scales.layer.h0 == 0.5 && sc.scales.layer.l0 == 2.5);
+    ct_scene_free(&sc);
     assert_true(strtod("1,5", NULL) == 1.5); /* and the caller's locale is back */
     setlocale(LC_NUMERIC, "C");
     unsetenv("LOCPATH");

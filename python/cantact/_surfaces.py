@@ -189,8 +189,9 @@ def _optional(name, value, lo, lo_closed=False):
 class Rods:
     """Your own surface as rods (MODEL.md §3-4, docs/model.md §12), the library's kind `rods`
     (as `surface.type = rods` of the cantact program): top[k] is rod k's depth below the
-    reference plane (0 <= top < H*), area[k] its area (> 0), length[k] (optional, > 0) its
-    length (default H* - top), in one Winkler layer with E and sigma_y. The layer's thickness:
+    reference plane (0 <= top, and top < H* for rods without lengths), area[k] its area (> 0),
+    length[k] (optional, > 0) its length (default H* - top), in one Winkler layer with E and
+    sigma_y. The layer's thickness:
     Hstar, or H = H*/h0, or, for rods that give their lengths, none of them (H* is then the
     shallowest rod bottom, min(top + length), where the first rod reaches strain 1). l0 and h0
     are the reference length and depth of the outputs (V*, u/h0, P/P_Y = P/(sigma_y l0)):

@@ -3,6 +3,7 @@
  * whichever front-end reads it. Numbers are read in the C locale (a decimal comma would make
  * "1.5" fail and "1,5" pass): uselocale is per thread, and restored. */
 #include "internal.h"
+#include "number.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -47,32 +48,39 @@ static void words_list(const char *words, char *buf, size_t len)
 }
 
 /* A number the whole text spells (white space around it allowed), finite and representable;
- * else 0 with *why saying what is wrong. */
+ * else 0 with *why saying what is wrong (one rule: src/number.c). */
 static int read_number(const char *text, double *out, const char **why)
 {
-    char *end;
-    while (isspace((unsigned char)*text))
-        text++;
-    const char *nan_why = "not a finite number";
-    if (!*text) {
-        *why = nan_why;
-        return 0;
+    const int st = ct_number_parse(text, strlen(text), out);
+    if (st)
+        *why = ct_number_why(st);
+    return !st;
+}
+
+/* The fields of a list into parts (at most max, each copied into its own NUL-ended text in
+ * buf): their count; an empty field or more than max fields an error. */
+static int list_fields(const char *v, const char *seps, char *buf, size_t size, char **parts,
+                       int max, int *np, const char *form)
+{
+    ct_list l;
+    const char *f;
+    size_t n, used = 0;
+    *np = 0;
+    ct_list_start(&l, v, seps);
+    while (ct_list_next(&l, &f, &n)) {
+        if (!n)
+            return ct_error_set(CT_EINVAL, "field %d of %s is empty (%s)", *np + 1, form,
+                                ct_list_empty_why());
+        if (*np == max)
+            return ct_error_set(CT_EINVAL, "expected %s (too many fields)", form);
+        if (used + n + 1 > size)
+            return ct_error_set(CT_EINVAL, "%s longer than %zu characters", form, size - 1);
+        memcpy(buf + used, f, n);
+        buf[used + n] = '\0';
+        parts[(*np)++] = buf + used;
+        used += n + 1;
     }
-    errno = 0;
-    double v = strtod(text, &end);
-    while (isspace((unsigned char)*end))
-        end++;
-    if (*end || end == text || (!isfinite(v) && errno != ERANGE)) { /* inf, nan spelled out */
-        *why = nan_why;
-        return 0;
-    }
-    if (errno == ERANGE) {
-        *why = fabs(v) >= 1.0 ? "overflows double precision (|value| > 1.8e308)"
-                              : "underflows double precision (0 < |value| < 2.2e-308)";
-        return 0;
-    }
-    *out = v;
-    return 1;
+    return CT_OK;
 }
 
 static int read_integer(const char *text, long *out)
@@ -118,22 +126,10 @@ static int in_range(const ct_key *row, double v)
 static int speeds_range(const char *v, ct_speeds *out)
 {
     char buf[256];
-    if (strlen(v) >= sizeof buf)
-        return ct_error_set(CT_EINVAL, "from:to:count[:log] longer than 255 characters");
-    snprintf(buf, sizeof buf, "%s", v);
     char *parts[4];
-    int np = 0;
-    for (char *f = buf;;) { /* exactly three or four fields, none skipped */
-        char *colon = strchr(f, ':');
-        if (colon)
-            *colon = '\0';
-        if (np == 4)
-            return ct_error_set(CT_EINVAL, "expected from:to:count[:log] (too many fields)");
-        parts[np++] = f;
-        if (!colon)
-            break;
-        f = colon + 1;
-    }
+    int np, st;
+    if ((st = list_fields(v, ":", buf, sizeof buf, parts, 4, &np, "from:to:count[:log]")))
+        return st;
     double ends[2];
     long cnt;
     const char *why;
@@ -147,12 +143,7 @@ static int speeds_range(const char *v, ct_speeds *out)
         return ct_error_set(CT_EINVAL, "expected from:to:count[:log]: count is no integer");
     int logscale = 0;
     if (np == 4) {
-        char *m = parts[3], *end = m + strlen(m);
-        while (isspace((unsigned char)*m))
-            m++;
-        while (end > m && isspace((unsigned char)end[-1]))
-            end--;
-        if (end - m != 3 || strncmp(m, "log", 3))
+        if (strcmp(parts[3], "log"))
             return ct_error_set(CT_EINVAL, "the fourth field may only be 'log'");
         logscale = 1;
     }
@@ -174,7 +165,7 @@ static int speeds_range(const char *v, ct_speeds *out)
     return CT_OK;
 }
 
-/* a, b, c: every value finite and > 0 */
+/* a, b, c: every value finite and > 0, no field empty */
 static int speeds_list(const char *v, ct_speeds *out)
 {
     size_t cap = 1, n = 0;
@@ -183,29 +174,24 @@ static int speeds_list(const char *v, ct_speeds *out)
     if (cap > CT_MAX_SPEEDS)
         return ct_error_set(CT_EINVAL, "at most 1000000 values");
     double *vals = malloc(cap * sizeof(double));
-    char *buf = strdup(v);
-    if (!vals || !buf) {
-        free(vals);
-        free(buf);
+    if (!vals)
         return ct_error_set(CT_ENOMEM, "out of memory");
-    }
-    for (char *start = buf;;) {
-        char *comma = strchr(start, ',');
-        if (comma)
-            *comma = '\0';
-        const char *why = "must be > 0";
-        vals[n] = NAN;
-        if (!read_number(start, &vals[n], &why) || !(vals[n] > 0.0)) {
+    ct_list l;
+    const char *f;
+    size_t len;
+    ct_list_start(&l, v, ",");
+    while (ct_list_next(&l, &f, &len)) {
+        int st = len ? ct_number_parse(f, len, &vals[n]) : CT_OK;
+        if (!len || st || !(vals[n] > 0.0)) {
             free(vals);
-            free(buf);
-            return ct_error_set(CT_EINVAL, "value %zu: %s", n + 1, why);
+            if (!len)
+                return ct_error_set(CT_EINVAL, "field %zu of the list is empty (%s)", n + 1,
+                                    ct_list_empty_why());
+            return ct_error_set(CT_EINVAL, "value %zu: %s", n + 1,
+                                st ? ct_number_why(st) : "must be > 0");
         }
         n++;
-        if (!comma)
-            break;
-        start = comma + 1;
     }
-    free(buf);
     out->v = vals;
     out->n = n;
     return CT_OK;
@@ -213,16 +199,17 @@ static int speeds_list(const char *v, ct_speeds *out)
 
 static int parse_range2(const ct_key *row, const char *v, double *out)
 {
-    const char *colon = strchr(v, ':');
-    char first[128];
+    char buf[256];
+    char *parts[2];
+    int np, st;
     const char *why = "not a finite number";
     (void)row;
-    if (!colon || strchr(colon + 1, ':') || (size_t)(colon - v) >= sizeof first)
-        return ct_error_set(CT_EINVAL, "expected from:to (two numbers, 0 < from < to)");
-    memcpy(first, v, (size_t)(colon - v));
-    first[colon - v] = '\0';
+    if ((st = list_fields(v, ":", buf, sizeof buf, parts, 2, &np, "from:to")))
+        return st;
     double a, b;
-    if (!read_number(first, &a, &why) || !read_number(colon + 1, &b, &why))
+    if (np != 2)
+        return ct_error_set(CT_EINVAL, "expected from:to (two numbers, 0 < from < to)");
+    if (!read_number(parts[0], &a, &why) || !read_number(parts[1], &b, &why))
         return ct_error_set(CT_EINVAL, "%s", why);
     if (!(a > 0.0 && b > a))
         return ct_error_set(CT_EINVAL, "expected from:to with 0 < from < to");
@@ -231,24 +218,26 @@ static int parse_range2(const ct_key *row, const char *v, double *out)
     return CT_OK;
 }
 
+/* words separated by commas or blanks, no field empty */
 static int parse_words(const ct_key *row, const char *v, unsigned *out)
 {
     unsigned bits = 0;
-    char *buf = strdup(v);
-    if (!buf)
-        return ct_error_set(CT_ENOMEM, "out of memory");
-    char *save = NULL;
-    for (char *tok = strtok_r(buf, ", \t", &save); tok; tok = strtok_r(NULL, ", \t", &save)) {
-        int k = ct_word_index(row->words, tok);
-        if (k < 0) {
-            free(buf);
+    ct_list l;
+    const char *f;
+    size_t n, k = 0;
+    char word[64];
+    ct_list_start(&l, v, ", ");
+    while (ct_list_next(&l, &f, &n)) {
+        k++;
+        if (!n)
+            return ct_error_set(CT_EINVAL, "field %zu of the list is empty (%s)", k,
+                                ct_list_empty_why());
+        snprintf(word, sizeof word, "%.*s", (int)(n < sizeof word ? n : sizeof word - 1), f);
+        int w = n < sizeof word ? ct_word_index(row->words, word) : -1;
+        if (w < 0)
             return ct_error_set(CT_EINVAL, "%s", row->range);
-        }
-        bits |= 1u << k;
+        bits |= 1u << w;
     }
-    free(buf);
-    if (!bits)
-        return ct_error_set(CT_EINVAL, "%s", row->range);
     *out = bits;
     return CT_OK;
 }
@@ -380,8 +369,11 @@ void ct_key_describe(const ct_key *row, char *buf, size_t len)
     case CT_KEY_WORDS:
         snprintf(buf, len, "a list of %s", words);
         break;
-    case CT_KEY_TEXT:
-        snprintf(buf, len, "text (a path)");
+    case CT_KEY_TEXT: /* a path, or text of its own form (its range says which) */
+        if (row->flags & CT_KEY_FILE)
+            snprintf(buf, len, "text (a path)");
+        else
+            snprintf(buf, len, "text: %s", row->range);
         break;
     case CT_KEY_SPEEDS:
         snprintf(buf, len, "numbers > 0: a, b, c or from:to:count[:log]");

@@ -6,6 +6,7 @@
  * every start of every program using cantact, about 2 ms, most of a short run's time. */
 #define _DEFAULT_SOURCE /* getline, strcasecmp */
 #include "internal.h"
+#include "number.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -52,43 +53,42 @@ static int push(points *p, double x, double z)
 }
 
 /* The numbers of a row: separated by commas (when the row has one) or by blanks, tabs and
- * semicolons; empty trailing fields (Dektak's "x,z,,") ignored. Returns the count (at most
- * max), or -1 when a field is not a number. */
-static int row_numbers(char *line, double *v, int max)
+ * semicolons; empty trailing fields (Dektak's "x,z,,") ignored, as the instruments write them,
+ * but an empty field before a number refused (the list rule, src/number.c). Returns the count
+ * (at most max stored), or -1 when a field is empty before another or is no usable number
+ * (why: which field and why, the rule of every number read). */
+static int row_numbers(char *line, double *v, int max, char *why, size_t why_len)
 {
-    const int commas = strchr(line, ',') != NULL;
-    int n = 0;
-    char *s = line;
-    for (;;) {
-        while (*s == ' ' || *s == '\t' || (!commas && *s == ';'))
-            s++;
-        if (!*s || *s == '\n' || *s == '\r')
-            break;
-        char *end;
-        if (commas && *s == ',') { /* an empty field: only trailing ones are allowed */
-            for (char *t = s; *t; t++)
-                if (!(*t == ',' || isspace((unsigned char)*t)))
-                    return -1;
-            break;
+    ct_list l;
+    const char *f;
+    size_t len;
+    int n = 0, field = 0, empty = 0; /* empty: the first empty field so far, 0: none */
+    why[0] = '\0';
+    ct_list_start(&l, line, strchr(line, ',') ? "," : "; ");
+    while (ct_list_next(&l, &f, &len)) {
+        field++;
+        if (!len) {
+            if (!empty)
+                empty = field;
+            continue;
         }
-        errno = 0;
-        double x = strtod(s, &end);
-        if (end == s || !isfinite(x))
+        if (empty) {
+            snprintf(why, why_len,
+                     "field %d is empty (no field of a row may be empty but its last ones, "
+                     "as instruments write them)",
+                     empty);
             return -1;
+        }
+        double x;
+        const int st = ct_number_parse(f, len, &x);
+        if (st) {
+            snprintf(why, why_len, "field %d = %.*s: %s", field, (int)(len < 40 ? len : 40), f,
+                     ct_number_why(st));
+            return -1;
+        }
         if (n < max)
             v[n] = x;
         n++;
-        s = end;
-        if (!commas && *s && !isspace((unsigned char)*s) && *s != ';')
-            return -1; /* "1x": a number runs into other characters */
-        while (*s == ' ' || *s == '\t')
-            s++;
-        if (commas) {
-            if (*s == ',')
-                s++;
-            else if (*s && *s != '\n' && *s != '\r')
-                return -1;
-        }
     }
     return n;
 }
@@ -225,12 +225,15 @@ static int data_start(text_reader *r)
     return CT_OK;
 }
 
-/* A data row of n numbers v (n < 0: not numbers): its point, in metres, appended. */
-static int data_row(text_reader *r, const double *v, int n)
+/* A data row of n numbers v (n < 0: not numbers, why says which field when it can): its
+ * point, in metres, appended. */
+static int data_row(text_reader *r, const double *v, int n, const char *why)
 {
     const ct_profile_read_opts *o = r->o;
     const int one_column = r->one_column;
     points *pts = &r->pts;
+    if (n < 0 && why[0])
+        return ct_error_set(CT_EINVAL, "%s:%ld: not a row of numbers: %s", r->path, r->lineno, why);
     if (n != (one_column ? 1 : 2))
         return ct_error_set(CT_EINVAL, "%s:%ld: %s: expected %s", r->path, r->lineno,
                             n < 0 ? "not a row of numbers" : "wrong number of columns",
@@ -363,13 +366,14 @@ static int read_text(const char *path, FILE *f, const ct_profile_read_opts *give
         if (r.in_header && r.lineno == 1 && !strncmp(t, "Scan Parameters", 15))
             r.dektak = 1; /* a Dektak export: its header block runs to "Scan Data" */
         double v[3];
-        int n = row_numbers(line, v, 3);
+        char why[160];
+        int n = row_numbers(line, v, 3, why, sizeof why);
         if (r.in_header && n < 0 && !starts_with_number(t)) {
             if ((st = header_line(&r, line)))
                 break;
             continue;
         }
-        if ((r.in_header && (st = data_start(&r))) || (st = data_row(&r, v, n)))
+        if ((r.in_header && (st = data_start(&r))) || (st = data_row(&r, v, n, why)))
             break;
     }
     free(line);

@@ -10,7 +10,9 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <locale.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -40,10 +42,12 @@ static const double unit_metres[] = {1.0, 1e-3, 1e-6, 1e-9};
 #define AT(field) offsetof(rods_config, field)
 static const ct_key rods_keys[] = {
     {"surface", "file", CT_KEY_TEXT, 0, 0, CT_KEY_FILE, NULL, "must be a path", "",
-     "a file of rods: columns top, area and optionally length (a header naming them may come "
-     "first); relative to the scene's directory",
+     "a file of rods: rows of top, area and optionally length, separated by commas, semicolons "
+     "or blanks, no field empty (a header naming each column once may come first); relative to "
+     "the scene's directory",
      AT(file)},
-    {"surface", "rods", CT_KEY_TEXT, 0, 0, 0, NULL, "must be top:area[:length], ...", "",
+    {"surface", "rods", CT_KEY_TEXT, 0, 0, 0, NULL,
+     "must be top:area[:length], ... (no field empty)", "",
      "rods inline: top:area[:length], ... (or give file)", AT(rods)},
     {"surface", "unit", CT_KEY_WORD, 0, 0, 0, "m|mm|um|nm", "must be m, mm, um or nm",
      "the scene's units", "the unit of tops, areas, lengths, Hstar, h0 and l0", AT(unit)},
@@ -130,106 +134,176 @@ static int push(rods_config *c, size_t *cap, const double *v, int nv)
     }
     c->top[c->n] = v[0];
     c->area[c->n] = v[1];
-    c->length[c->n] = nv == 3 ? v[2] : NAN;
+    c->length[c->n] = nv == 3 ? v[2] : NAN; /* NaN: no length (read numbers are finite) */
     c->n++;
     return CT_OK;
 }
 
-/* The numbers of a line split at commas, semicolons, tabs and blanks: at most 3. */
-static int split_numbers(char *line, double *v, int *nv, char **bad)
-{
-    *nv = 0;
-    for (char *p = line; *p;) {
-        while (*p && (isspace((unsigned char)*p) || *p == ',' || *p == ';'))
-            p++;
-        if (!*p)
-            break;
-        char *end;
-        errno = 0;
-        double x = strtod(p, &end);
-        if (end == p || errno == ERANGE || !isfinite(x) ||
-            (*end && !isspace((unsigned char)*end) && *end != ',' && *end != ';')) {
-            *bad = p;
-            return -1;
-        }
-        if (*nv == 3) {
-            *bad = p;
-            return -2;
-        }
-        v[(*nv)++] = x;
-        p = end;
-    }
-    return 0;
-}
+static const char *const column_names[] = {"top", "area", "length"};
 
-/* A header: the column names top, area, length in some order. */
-static int header(char *line, int col[3], int *ncol)
+/* The separators of a rod file's fields: commas, semicolons, or blanks (runs of blanks are one
+ * separator, and blanks around a comma or semicolon belong to it). */
+#define FILE_SEPARATORS ",; "
+
+/* A header: the column names top, area and optionally length, each once, in any order: col[i]
+ * is the column (0 top, 1 area, 2 length) of field i. 0, or an error naming the column. */
+static int header(const char *line, int col[3], int *ncol, const char *shown, size_t lineno)
 {
-    static const char *const names[] = {"top", "area", "length"};
+    int field[3] = {0, 0, 0}; /* the field (1, 2, 3) that names each column, 0: none */
+    ct_list l;
+    const char *tok;
+    size_t n;
     *ncol = 0;
-    for (char *tok = strtok(line, ",; \t\r\n"); tok; tok = strtok(NULL, ",; \t\r\n")) {
+    ct_list_start(&l, line, FILE_SEPARATORS);
+    for (int i = 1; ct_list_next(&l, &tok, &n); i++) {
+        if (!n)
+            return ct_error_set(CT_EINVAL, "%s:%zu: header field %d is empty (%s)", shown, lineno,
+                                i, ct_list_empty_why());
         int k = 0;
-        while (k < 3 && strcmp(tok, names[k]))
+        while (k < 3 && !(strlen(column_names[k]) == n && !strncmp(tok, column_names[k], n)))
             k++;
-        if (k == 3 || *ncol == 3)
-            return -1;
+        if (k == 3)
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: header field %d is '%.*s': neither a number nor a "
+                                "column name (top, area, length)",
+                                shown, lineno, i, (int)(n < 40 ? n : 40), tok);
+        if (field[k])
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: header: column '%s' named twice (fields %d and %d)", shown,
+                                lineno, column_names[k], field[k], i);
+        field[k] = i;
         col[(*ncol)++] = k;
     }
-    int seen = 0;
-    for (int i = 0; i < *ncol; i++)
-        seen |= 1 << col[i];
-    return (seen & 3) == 3 ? 0 : -1;
+    for (int k = 0; k < 2; k++)
+        if (!field[k])
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: header: no column '%s' (a header names top, area and "
+                                "optionally length)",
+                                shown, lineno, column_names[k]);
+    return CT_OK;
 }
 
+/* 1 when a line is a header: its first field is there and is no number (a number that cannot
+ * be used, 1e-320 or nan, still makes a row). */
+static int is_header(const char *line)
+{
+    ct_list l;
+    const char *f;
+    size_t n;
+    double x;
+    ct_list_start(&l, line, FILE_SEPARATORS);
+    return ct_list_next(&l, &f, &n) && n && ct_number_parse(f, n, &x) == CT_NUMBER_NONE &&
+           !isdigit((unsigned char)f[0]) && f[0] != '.' && f[0] != '-' && f[0] != '+';
+}
+
+/* A row of numbers: *width of them (2 or 3, set by the first row without a header), field i
+ * the column col[i]. */
+static int read_row(rods_config *c, size_t *cap, const char *line, const int col[3], int *width,
+                    const char *shown, size_t lineno)
+{
+    double v[3];
+    int nv = 0;
+    ct_list l;
+    const char *f;
+    size_t n;
+    ct_list_start(&l, line, FILE_SEPARATORS);
+    while (ct_list_next(&l, &f, &n)) {
+        if (!n)
+            return ct_error_set(CT_EINVAL, "%s:%zu: field %d is empty (%s)", shown, lineno, nv + 1,
+                                ct_list_empty_why());
+        if (nv == 3 || (*width && nv == *width))
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: more than %d fields: expected %d numbers (top, area%s) "
+                                "on every row",
+                                shown, lineno, nv, *width ? *width : nv,
+                                (*width ? *width : nv) == 3 ? ", length" : "");
+        int st = ct_number_parse(f, n, &v[nv]);
+        if (st)
+            return ct_error_set(CT_EINVAL, "%s:%zu: field %d (%s) = %.*s: %s", shown, lineno,
+                                nv + 1, column_names[col[nv]], (int)(n < 40 ? n : 40), f,
+                                ct_number_why(st));
+        nv++;
+    }
+    if (!*width && nv >= 2)
+        *width = nv;
+    if (nv != *width)
+        return ct_error_set(CT_EINVAL, "%s:%zu: expected %d numbers (top, area%s) on every row",
+                            shown, lineno, *width ? *width : 2, *width == 3 ? ", length" : "");
+    /* every column once (the header's rule), so every field of row is written: a length only
+     * when a column holds it */
+    double row[3] = {NAN, NAN, NAN};
+    for (int i = 0; i < nv; i++)
+        row[col[i]] = v[i];
+    return push(c, cap, row, isnan(row[2]) ? 2 : 3);
+}
+
+/* The next line of f into line (MAX_LINE + 1 bytes), its end (\n, \r\n or a lone \r) dropped:
+ * its length, -1 at the end of the file, -2 when longer than MAX_LINE, -3 at a NUL byte. */
+static long next_line(FILE *f, char *line)
+{
+    size_t n = 0;
+    int ch;
+    while ((ch = getc_unlocked(f)) != EOF) {
+        if (ch == '\n')
+            break;
+        if (ch == '\r') {
+            const int d = getc_unlocked(f);
+            if (d != '\n' && d != EOF)
+                ungetc(d, f);
+            break;
+        }
+        if (ch == '\0')
+            return -3;
+        if (n == MAX_LINE)
+            return -2;
+        line[n++] = (char)ch;
+    }
+    if (ch == EOF && n == 0)
+        return -1;
+    line[n] = '\0';
+    return (long)n;
+}
+
+/* A rod file: text as the scenes and profiles are read (line ends \n, \r\n or a lone \r, a
+ * UTF-8 byte-order mark dropped, # or ; comments, no NUL byte), a header or rows of numbers. */
 static int read_file(rods_config *c, const char *path, const char *shown)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
         return ct_error_set(CT_EIO, "%s: cannot open: %s", shown, strerror(errno));
-    char *line = malloc(MAX_LINE + 2);
+    char *line = malloc(MAX_LINE + 1);
     if (!line) {
         fclose(f);
         return ct_error_set(CT_ENOMEM, "rods: out of memory");
     }
     size_t cap = 0, lineno = 0;
     int col[3] = {0, 1, 2}, width = 0, st = CT_OK; /* width: numbers per row, once known */
-    while (!st && fgets(line, MAX_LINE + 2, f)) {
+    long len;
+    while (!st && (len = next_line(f, line)) != -1) {
         lineno++;
-        if (strlen(line) > MAX_LINE) {
+        if (len == -2) {
             st = ct_error_set(CT_EINVAL, "%s:%zu: a line longer than %d bytes: not a rod file",
                               shown, lineno, MAX_LINE);
             break;
         }
+        if (len == -3) {
+            st = ct_error_set(CT_EINVAL,
+                              "%s:%zu: a NUL byte: not a text rod file (UTF-16 text? save it as "
+                              "UTF-8 or ASCII)",
+                              shown, lineno);
+            break;
+        }
         char *p = line;
+        if (lineno == 1 && !strncmp(p, "\xEF\xBB\xBF", 3)) /* a UTF-8 byte-order mark */
+            p += 3;
         while (isspace((unsigned char)*p))
             p++;
         if (!*p || *p == '#' || *p == ';')
             continue;
-        double v[3], row[3];
-        int nv;
-        char *bad, copy[MAX_LINE + 2];
-        snprintf(copy, sizeof copy, "%s", p);
-        int r = split_numbers(p, v, &nv, &bad);
-        if (r == -1 && !width && c->n == 0) { /* a header before the first rod */
-            if (header(copy, col, &width)) {
-                st = ct_error_set(CT_EINVAL,
-                                  "%s:%zu: neither rod numbers nor a header naming top, area "
-                                  "(and length)",
-                                  shown, lineno);
-                break;
-            }
-            continue;
-        }
-        if (!width && !r && (nv == 2 || nv == 3))
-            width = nv;
-        if (r || nv != width) {
-            st = ct_error_set(CT_EINVAL, "%s:%zu: expected %d numbers (top, area%s) on every row",
-                              shown, lineno, width ? width : 2, width == 3 ? ", length" : "");
-            break;
-        }
-        for (int i = 0; i < nv; i++)
-            row[col[i]] = v[i];
-        st = push(c, &cap, row, nv);
+        if (!width && c->n == 0 && is_header(p)) /* a header before the first rod */
+            st = header(p, col, &width, shown, lineno);
+        else
+            st = read_row(c, &cap, p, col, &width, shown, lineno);
     }
     if (!st && ferror(f))
         st = ct_error_set(CT_EIO, "%s: read error", shown);
@@ -240,49 +314,66 @@ static int read_file(rods_config *c, const char *path, const char *shown)
     return st;
 }
 
-static int read_inline(rods_config *c, const char *text)
+/* surface.rods = top:area[:length], ...: the same fields and numbers as a file's rows. */
+static int read_inline(const ct_surface *s, rods_config *c, const char *text)
 {
     size_t cap = 0, k = 0;
-    char *buf = strdup(text);
-    if (!buf)
-        return ct_error_set(CT_ENOMEM, "rods: out of memory");
     int st = CT_OK;
-    char *save = NULL;
-    for (char *item = strtok_r(buf, ",", &save); item && !st; item = strtok_r(NULL, ",", &save)) {
+    ct_list rods;
+    const char *item;
+    size_t len;
+    ct_list_start(&rods, text, ",");
+    while (!st && ct_list_next(&rods, &item, &len)) {
         k++;
-        double v[3];
+        if (!len)
+            return ct_surface_key_error(s, "surface", "rods", CT_EINVAL,
+                                        "rod %zu (field %zu of the list) is empty (%s)", k, k,
+                                        ct_list_empty_why());
+        char buf[MAX_LINE + 1];
+        if (len > MAX_LINE)
+            return ct_surface_key_error(s, "surface", "rods", CT_EINVAL,
+                                        "rod %zu: longer than %d characters", k, MAX_LINE);
+        memcpy(buf, item, len);
+        buf[len] = '\0';
+        double v[3] = {NAN, NAN, NAN};
         int nv = 0;
-        for (char *p = item;;) {
-            char *end;
-            errno = 0;
-            double x = strtod(p, &end);
-            while (isspace((unsigned char)*end))
-                end++;
-            if (end == p || errno == ERANGE || !isfinite(x) || nv == 3 || (*end && *end != ':')) {
-                nv = -1;
-                break;
-            }
-            v[nv++] = x;
-            if (!*end)
-                break;
-            p = end + 1;
+        ct_list fields;
+        const char *f;
+        size_t n;
+        ct_list_start(&fields, buf, ":");
+        while (ct_list_next(&fields, &f, &n)) {
+            if (!n)
+                return ct_surface_key_error(s, "surface", "rods", CT_EINVAL,
+                                            "rod %zu: field %d of top:area[:length] is empty "
+                                            "(%s)",
+                                            k, nv + 1, ct_list_empty_why());
+            if (nv == 3)
+                return ct_surface_key_error(s, "surface", "rods", CT_EINVAL,
+                                            "rod %zu: more than 3 fields: expected top:area or "
+                                            "top:area:length",
+                                            k);
+            const int r = ct_number_parse(f, n, &v[nv]);
+            if (r)
+                return ct_surface_key_error(
+                    s, "surface", "rods", CT_EINVAL, "rod %zu: field %d (%s) = %.*s: %s", k, nv + 1,
+                    column_names[nv], (int)(n < 40 ? n : 40), f, ct_number_why(r));
+            nv++;
         }
-        if (nv < 2 || (c->n && (nv == 3) != !isnan(c->length[0])))
-            st = ct_error_set(CT_EINVAL,
-                              "surface.rods: rod %zu: expected top:area or top:area:length "
-                              "(numbers; every rod with a length or none)",
-                              k);
-        else
-            st = push(c, &cap, v, nv);
+        if (nv < 2)
+            return ct_surface_key_error(s, "surface", "rods", CT_EINVAL,
+                                        "rod %zu: expected top:area or top:area:length", k);
+        if (c->n && (nv == 3) != !isnan(c->length[0]))
+            return ct_surface_key_error(
+                s, "surface", "rods", CT_EINVAL,
+                "rod %zu: %s and rod 1 %s (every rod with a length or none)", k,
+                nv == 3 ? "has a length" : "has no length", nv == 3 ? "has none" : "has one");
+        st = push(c, &cap, v, nv);
     }
-    free(buf);
-    if (!st && c->n == 0)
-        st = ct_error_set(CT_EINVAL, "surface.rods: no rods");
     return st;
 }
 
 /* The rods from arrays, a file or the inline list; *lengths: whether they give lengths. */
-static int read_rods(rods_config *c, const char *dir, int *lengths)
+static int read_rods(const ct_surface *s, rods_config *c, const char *dir, int *lengths)
 {
     int st = CT_OK;
     if (c->given_top) {
@@ -296,25 +387,46 @@ static int read_rods(rods_config *c, const char *dir, int *lengths)
         *lengths = c->given_length != NULL;
         return st;
     }
+    /* numbers in the C locale whatever the caller's (per thread), as scenes and profiles */
+    locale_t c_locale = newlocale(LC_ALL_MASK, "C", (locale_t)0);
+    locale_t before = c_locale ? uselocale(c_locale) : (locale_t)0;
     if (c->file) {
         char *path = ct_path_join(dir, c->file);
-        if (!path)
-            return ct_error_set(CT_ENOMEM, "out of memory");
-        st = read_file(c, path, c->file);
+        st = path ? read_file(c, path, c->file) : ct_error_set(CT_ENOMEM, "out of memory");
         free(path);
         snprintf(c->source, sizeof c->source, "%s", c->file);
     } else {
-        st = read_inline(c, c->rods);
+        st = read_inline(s, c, c->rods);
         snprintf(c->source, sizeof c->source, "surface.rods");
     }
-    *lengths = !st && !isnan(c->length[0]); /* read numbers are finite: NaN means none */
+    if (c_locale) {
+        uselocale(before);
+        freelocale(c_locale);
+    }
+    *lengths = !st && c->n && !isnan(c->length[0]); /* read numbers are finite: NaN means none */
     return st;
+}
+
+/* An error of rod k (from 0): named by the key and where it was set for inline rods, else by
+ * the file (or "arrays"). */
+static int rod_error(const ct_surface *s, const rods_config *c, size_t k, const char *fmt, ...)
+    CT_PRINTF(4, 5);
+static int rod_error(const ct_surface *s, const rods_config *c, size_t k, const char *fmt, ...)
+{
+    char why[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(why, sizeof why, fmt, ap);
+    va_end(ap);
+    if (!c->given_top && !c->file)
+        return ct_surface_key_error(s, "surface", "rods", CT_EINVAL, "rod %zu: %s", k + 1, why);
+    return ct_error_set(CT_EINVAL, "%s: rod %zu: %s", c->source, k + 1, why);
 }
 
 /* Every rod in the unit u [m per unit; 1: as given] and checked; the deepest top, the total
  * area and the shallowest bottom (top + length; infinite without lengths). */
-static int check_rods(rods_config *c, int lengths, double u, double *deepest, double *total,
-                      double *bottom)
+static int check_rods(const ct_surface *s, rods_config *c, int lengths, double u, double *deepest,
+                      double *total, double *bottom)
 {
     *deepest = *total = 0.0;
     *bottom = INFINITY;
@@ -322,16 +434,13 @@ static int check_rods(rods_config *c, int lengths, double u, double *deepest, do
         c->top[k] *= u;
         c->area[k] *= u;
         if (!(c->top[k] >= 0.0) || !isfinite(c->top[k]))
-            return ct_error_set(CT_EINVAL, "%s: rod %zu: top = %g: must be finite and >= 0",
-                                c->source, k + 1, c->top[k]);
+            return rod_error(s, c, k, "top = %g: must be finite and >= 0", c->top[k]);
         if (!(c->area[k] > 0.0) || !isfinite(c->area[k]))
-            return ct_error_set(CT_EINVAL, "%s: rod %zu: area = %g: must be finite and > 0",
-                                c->source, k + 1, c->area[k]);
+            return rod_error(s, c, k, "area = %g: must be finite and > 0", c->area[k]);
         if (lengths) {
             c->length[k] *= u;
             if (!(c->length[k] > 0.0) || !isfinite(c->length[k]))
-                return ct_error_set(CT_EINVAL, "%s: rod %zu: length = %g: must be finite and > 0",
-                                    c->source, k + 1, c->length[k]);
+                return rod_error(s, c, k, "length = %g: must be finite and > 0", c->length[k]);
             *bottom = fmin(*bottom, c->top[k] + c->length[k]);
         }
         *deepest = fmax(*deepest, c->top[k]);
@@ -344,7 +453,7 @@ static int rods_prepare(ct_surface *s, const char *dir)
 {
     rods_config *c = s->config;
     rods_prepared_release(c);
-    int lengths = 0, st = read_rods(c, dir, &lengths);
+    int lengths = 0, st = read_rods(s, c, dir, &lengths);
     if (!st && c->n == 0)
         st = ct_error_set(CT_EINVAL, "%s: no rods", c->source);
     if (st)
@@ -355,7 +464,7 @@ static int rods_prepare(ct_surface *s, const char *dir)
     }
     const double u = ct_surface_given(s, "surface", "unit") ? unit_metres[c->unit] : 1.0;
     double deepest, total, bottom;
-    if ((st = check_rods(c, lengths, u, &deepest, &total, &bottom)))
+    if ((st = check_rods(s, c, lengths, u, &deepest, &total, &bottom)))
         return st;
     const int given_H = ct_surface_given(s, "surface", "H"),
               given_Hstar = ct_surface_given(s, "surface", "Hstar");
@@ -379,10 +488,22 @@ static int rods_prepare(ct_surface *s, const char *dir)
     }
     if (given_H)
         Hstar = c->H * h0;
-    for (size_t k = 0; k < c->n; k++)
-        if (!(c->top[k] < Hstar))
-            return ct_error_set(CT_EINVAL, "%s: rod %zu: top = %g: must be < H* = %g", c->source,
-                                k + 1, c->top[k], Hstar);
+    /* Without lengths every rod reaches down to the layer's bottom H*, so it must start above
+     * it. With lengths a rod's top may lie at or below another's bottom (the crushed limit
+     * H*): it is reached only after the layer has crushed, so no impact within the model
+     * touches it, and it only counts in the scales (h0, l0), as docs/model.md §12 says. */
+    for (size_t k = 0; k < c->n && !lengths; k++)
+        if (!(c->top[k] < Hstar)) {
+            char from[96];
+            if (given_H)
+                snprintf(from, sizeof from, "surface.H = %g times h0 = %g", c->H, h0);
+            else
+                snprintf(from, sizeof from, "surface.Hstar");
+            return rod_error(s, c, k,
+                             "top = %g: must be < H* = %g (%s): a rod without a length reaches "
+                             "down to the layer's bottom H*",
+                             c->top[k], Hstar, from);
+        }
     c->layer = (ct_layer){.E = c->E, .sigma_y = c->sigma_y, .Hstar = Hstar, .l0 = l0, .h0 = h0};
     if ((st = ct_layer_validate(&c->layer)))
         return st;
