@@ -11,6 +11,9 @@
 #define CT_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define CT_PRINTF(a, b)
+/* CT_OK when the n speeds V are finite and > 0 (V may be NULL when n = 0). */
+int ct_check_speeds(const double *V, size_t n);
+
 #endif
 
 /* Records a detailed message for the calling thread and returns status, so that
@@ -161,7 +164,7 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
  * and keeps its own state, so the speeds of a sweep can be shared among threads. */
 int ct_dyn_work_fork(ct_dyn_work *parent, double m, ct_dyn_work **out);
 
-/* ---- measured surfaces (src/surface/profile.c), for the fit ---- */
+/* ---- measured surfaces (src/surface/profile/), shared by its files ---- */
 
 typedef struct {
     double t, w; /* a sample's top depth [length] and area */
@@ -207,5 +210,10 @@ int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u
 /* e and u_max [length] of one impact of energy W on the virgin surface under the asymptotic
  * law (Eqs. 33-34, 38, 39-40); p validated, W finite and > 0. For ct_law_impact. */
 int ct_asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e);
+/* The same under the series (Eqs. 12-24, breakpoint quadrature of its energies). */
+int ct_series_impact(const ct_params *p, double W, double *u_max, double *e);
+
+/* CT_OK when the n speeds V are finite and > 0 (V may be NULL when n = 0). */
+int ct_check_speeds(const double *V, size_t n);
 
 #endif

@@ -1,6 +1,6 @@
-/* Planning (which depth, which rods a scene can leave out) and sweeps over speeds x impacts.
- * Every front-end (the CLI, the drivers in tools/, the benchmarks, a Python binding) calls
- * these: the policy lives here once. */
+/* Sweeps over speeds x impacts of one bundle of rods: every front-end (the CLI, the drivers in
+ * tools/, the benchmarks, a Python binding) calls these, so the policy lives here once. A sweep
+ * knows only rods: planning which rods a scene needs is each kind's (src/surface/). */
 #include "internal.h"
 
 #include <float.h>
@@ -13,91 +13,13 @@
 #include <omp.h>
 #endif
 
-static int check_speeds(const double *V, size_t n)
+int ct_check_speeds(const double *V, size_t n)
 {
     if (n && !V)
         return ct_error_set(CT_EINVAL, "speeds: NULL array for %zu speeds", n);
     for (size_t k = 0; k < n; k++)
         if (!isfinite(V[k]) || !(V[k] > 0.0))
             return ct_error_set(CT_EINVAL, "V* = %g (speed %zu): must be finite and > 0", V[k], k);
-    return CT_OK;
-}
-
-int ct_cantor_plan_build(const ct_cantor_plan *plan, ct_bundle **out, ct_plan_info *info)
-{
-    CT_NEED(plan);
-    CT_NEED(out);
-    const ct_params *p = &plan->params;
-    int st;
-    *out = NULL;
-    if ((st = ct_params_validate(p)) || (st = check_speeds(plan->V_star, plan->nvel)))
-        return st;
-    if (plan->nvel == 0)
-        return ct_error_set(CT_EINVAL, "plan: no speeds");
-    if (plan->impacts < 1)
-        return ct_error_set(CT_EINVAL, "impacts = %ld: must be >= 1", plan->impacts);
-    double vmin = INFINITY, vmax = 0.0;
-    for (size_t k = 0; k < plan->nvel; k++) {
-        vmin = plan->V_star[k] < vmin ? plan->V_star[k] : vmin;
-        vmax = plan->V_star[k] > vmax ? plan->V_star[k] : vmax;
-    }
-    const double scale = ct_energy_scale(p);
-    long depth = plan->depth;
-    double bound = 0.0;
-    if (depth == CT_DEPTH_FRACTAL)
-        st = ct_fractal_depth(p, vmin * vmin * scale, &depth, &bound);
-    else if (depth == CT_DEPTH_AUTO)
-        st = ct_auto_depth(p, vmin * vmin * scale, plan->depth_tolerance, &depth, &bound);
-    else if (depth < 0)
-        st = ct_error_set(CT_EINVAL, "depth = %ld: must be >= 0, auto or fractal", depth);
-    if (st)
-        return st;
-
-    /* Rods deeper than every displacement the plan reaches can never be touched, and can be
-     * left out, provided none of them decides a reported number: the deepest u_max (the
-     * largest speed, on the cheap and exact stage rods, impacts carried over), and the first
-     * yield of the virgin surface, which fixes V*_c even when every impact is elastic. If
-     * the probe fails (a crushed layer), nothing is left out: the sweep reports that row. */
-    double u_reach = INFINITY;
-    if (!plan->keep_all_rods) {
-        ct_bundle *probe;
-        if ((st = ct_cantor_bundle(&probe, p, CT_REP_STAGES, depth, INFINITY)))
-            return st;
-        double reach = ct_bundle_first_yield(probe);
-        int ok = 1;
-        ct_sweep_row *rows = malloc((size_t)plan->impacts * sizeof *rows);
-        ct_sweep_spec spec = {.V_star = &vmax, .nvel = 1, .impacts = plan->impacts};
-        spec.opts = plan->opts;
-        spec.opts.rule = CT_QUAD_BREAKPOINTS; /* only u_max is needed: the exact rule */
-        spec.opts.check = 0;
-        st = rows ? ct_sweep(probe, &spec, rows) : ct_error_set(CT_ENOMEM, "plan: out of memory");
-        if (st) {
-            ct_bundle_free(probe);
-            free(rows);
-            return st;
-        }
-        for (long i = 0; i < plan->impacts && ok; i++) {
-            ok = rows[i].status == CT_OK;
-            if (ok && rows[i].r.u_max > reach)
-                reach = rows[i].r.u_max;
-        }
-        free(rows);
-        ct_bundle_free(probe);
-        if (ok)
-            u_reach = reach * (1.0 + 1e-9);
-    }
-    ct_bundle *b;
-    if ((st = ct_cantor_bundle(&b, p, plan->representation, depth, u_reach)))
-        return st;
-    ct_bundle_set_threads(b, plan->threads);
-    if (info) {
-        info->depth = depth;
-        info->bound = bound;
-        info->rods = ct_bundle_size(b);
-        info->omitted = ct_bundle_omitted(b);
-        info->u_reach = u_reach;
-    }
-    *out = b;
     return CT_OK;
 }
 
@@ -760,7 +682,7 @@ static int sweep_by_state(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_r
 static int sweep_valid(const ct_bundle *b, const ct_sweep_spec *s)
 {
     int st;
-    if ((st = check_speeds(s->V_star, s->nvel)))
+    if ((st = ct_check_speeds(s->V_star, s->nvel)))
         return st;
     if (s->impacts < 1)
         return ct_error_set(CT_EINVAL, "impacts = %ld: must be >= 1", s->impacts);

@@ -86,17 +86,6 @@ int ct_surface_kind_supports(size_t k, const char *output, const char **why)
     return 0;
 }
 
-const ct_key *ct_kind_key(const ct_kind *kind, const char *section, const char *name, size_t *k)
-{
-    for (size_t i = 0; i < kind->nkeys; i++)
-        if (!strcmp(kind->keys[i].section, section) && !strcmp(kind->keys[i].name, name)) {
-            if (k)
-                *k = i;
-            return &kind->keys[i];
-        }
-    return NULL;
-}
-
 int ct_surface_new(ct_surface **out, const char *kind)
 {
     CT_NEED(out);
@@ -189,12 +178,6 @@ static void kinds_with(const char *section, const char *name, char *buf, size_t 
         }
 }
 
-static void shown_value(const char *value, char *buf, size_t len)
-{
-    const size_t n = strlen(value);
-    snprintf(buf, len, "%.*s%s", (int)(n > 80 ? 72 : n), value, n > 80 ? "..." : "");
-}
-
 int ct_surface_set(ct_surface *s, const char *section, const char *name, const char *value,
                    const char *where)
 {
@@ -205,7 +188,7 @@ int ct_surface_set(ct_surface *s, const char *section, const char *name, const c
     const char *at = where && *where ? where : "";
     const char *colon = *at ? ": " : "";
     char shown[96];
-    shown_value(value, shown, sizeof shown);
+    ct_value_shown(value, shown, sizeof shown);
     size_t k;
     const ct_key *row = ct_kind_key(s->kind, section, name, &k);
     if (!row) {
@@ -271,42 +254,6 @@ int ct_surface_value(const ct_surface *s, const char *section, const char *name,
 int ct_surface_is_set(const ct_surface *s, const char *section, const char *name)
 {
     return ct_surface_given(s, section, name);
-}
-
-int ct_surface_given(const ct_surface *s, const char *section, const char *name)
-{
-    size_t k;
-    return ct_kind_key(s->kind, section, name, &k) && s->given[k];
-}
-
-int ct_surface_key_error(const ct_surface *s, const char *section, const char *name, int status,
-                         const char *fmt, ...)
-{
-    char why[400], shown[96] = "";
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(why, sizeof why, fmt, ap);
-    va_end(ap);
-    size_t k;
-    const char *at = "";
-    int given = ct_kind_key(s->kind, section, name, &k) && s->given[k];
-    if (given) {
-        at = s->where[k];
-        shown_value(s->given[k], shown, sizeof shown);
-    }
-    return ct_error_set(status, "%s%s%s.%s%s%s: %s", at, *at ? ": " : "", section, name,
-                        given ? " = " : "", shown, why);
-}
-
-void ct_surface_note_set(ct_surface *s, const char *fmt, ...)
-{
-    char text[sizeof s->note];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(text, sizeof text, fmt, ap);
-    va_end(ap);
-    size_t n = strlen(s->note);
-    snprintf(s->note + n, sizeof s->note - n, "%s%s", n ? "\n" : "", text);
 }
 
 const char *ct_surface_note(ct_surface *s)
@@ -377,33 +324,6 @@ static int need_prepared(const ct_surface *s)
 void ct_surface_scales(const ct_surface *s, ct_scales *out)
 {
     *out = s->scales;
-}
-
-void ct_scales_of(ct_scales *sc, const ct_layer *built, const ct_layer *physical)
-{
-    sc->layer = *built;
-    sc->physical = *physical;
-    sc->force_unit = built->sigma_y * built->l0;
-    sc->energy_unit = built->sigma_y * built->l0 * built->h0;
-    sc->energy_scale = built->l0 * built->E * built->h0;
-    sc->physical_energy_scale = physical->l0 * physical->E * physical->h0;
-}
-
-double ct_V_star_of(double m, double v, double l0, double E, double h0)
-{
-    return sqrt(m / (2.0 * (l0 * E * h0))) * v;
-}
-
-double ct_speed_to_V_star(const ct_scales *sc, double m, double v)
-{
-    const ct_layer *p = &sc->physical;
-    return ct_V_star_of(m, v, p->l0, p->E, p->h0);
-}
-
-double ct_time_scale(const ct_scales *sc, double m)
-{
-    const ct_layer *p = &sc->physical;
-    return sqrt(m * p->h0 / (p->E * p->l0));
 }
 
 int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
@@ -525,18 +445,3 @@ int ct_surface_write_fit(ct_surface *s, FILE *f)
     return s->kind->write_fit ? s->kind->write_fit(s, f) : refused(s, "fit");
 }
 
-char *ct_path_join(const char *dir, const char *path)
-{
-    if (path[0] == '/' || !dir || !*dir)
-        return strdup(path);
-    size_t n = strlen(dir), m = strlen(path);
-    char *out = malloc(n + m + 2);
-    if (!out)
-        return NULL;
-    memcpy(out, dir, n);
-    size_t k = n;
-    if (out[k - 1] != '/')
-        out[k++] = '/';
-    memcpy(out + k, path, m + 1);
-    return out;
-}

@@ -115,6 +115,8 @@ int ct_surface_key_error(const ct_surface *s, const char *section, const char *n
 int ct_surface_given(const ct_surface *s, const char *section, const char *name);
 /* Sets the front-end's note (appends with "; " when one is there). */
 void ct_surface_note_set(ct_surface *s, const char *fmt, ...) CT_PRINTF(2, 3);
+/* value as a message shows it: at most 80 characters, longer ones cut with "...". */
+void ct_value_shown(const char *value, char *buf, size_t len);
 /* A relative path joined to dir (malloc'ed; NULL on failure). */
 char *ct_path_join(const char *dir, const char *path);
 /* Fills scales from a layer as built and the layer as given. */

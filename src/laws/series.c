@@ -1,22 +1,9 @@
 /* The paper's series (docs/model.md §5, Eqs. 12-24) for the infinite fractal, and the impact
- * energy balance (Eqs. 39-41) under the series and asymptotic laws. */
+ * energy balance (Eqs. 39-41) under it (src/laws/law.c chooses among the laws). */
 #include "internal.h"
 
 #include <math.h>
 #include <stdlib.h>
-
-const char *ct_law_name(ct_law law)
-{
-    switch (law) {
-    case CT_LAW_SERIES:
-        return "series";
-    case CT_LAW_ASYMPTOTIC:
-        return "asymptotic";
-    case CT_LAW_ASYMPTOTIC_CONSISTENT:
-        return "asymptotic_consistent";
-    }
-    return NULL;
-}
 
 static double lfz(const ct_params *p)
 {
@@ -193,7 +180,7 @@ static size_t series_load_points(const ct_params *p, double hi, double *pts)
     return ct_sort_unique(pts, n);
 }
 
-static int series_impact(const ct_params *p, double W, double *u_max, double *e)
+int ct_series_impact(const ct_params *p, double W, double *u_max, double *e)
 {
     long M = series_stages(p);
     double eps_y = p->sigma_y / p->E;
@@ -254,41 +241,4 @@ static int series_impact(const ct_params *p, double W, double *u_max, double *e)
     }
     free(pts);
     return st;
-}
-
-int ct_law_impact(const ct_params *p, ct_law law, double W, double *u_max, double *e)
-{
-    CT_NEED(u_max);
-    CT_NEED(e);
-    int st;
-    if ((st = ct_params_validate(p)))
-        return st;
-    if (!isfinite(W) || !(W > 0.0))
-        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and > 0", W);
-    switch (law) {
-    case CT_LAW_SERIES:
-        st = series_impact(p, W, u_max, e);
-        break;
-    case CT_LAW_ASYMPTOTIC:
-        st = ct_asym_impact(p, 0, W, u_max, e);
-        break;
-    case CT_LAW_ASYMPTOTIC_CONSISTENT:
-        st = ct_asym_impact(p, 1, W, u_max, e);
-        break;
-    default:
-        return ct_error_set(CT_EINVAL, "law %d: unknown", (int)law);
-    }
-    if (st)
-        return st;
-    /* The laws' unloading is not the loading's exact elastic part (h_i << H* in the elastic
-     * terms, Eq. 38's branches): where that approximation breaks, W_unload can exceed W_load.
-     * Such an e is not a coefficient of restitution: refuse it rather than print it. */
-    if (!(*e <= 1.0 + 1e-12))
-        return ct_error_set(CT_ERANGE,
-                            "the %s law gives W_unload > W_load (e = %.6g) at H*/h0 = %g, "
-                            "E/sigma_y = %g: its approximations do not hold here",
-                            ct_law_name(law), *e, p->Hstar / p->h0, p->E / p->sigma_y);
-    if (*e > 1.0)
-        *e = 1.0; /* rounding of two equal energies */
-    return CT_OK;
 }

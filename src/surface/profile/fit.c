@@ -8,7 +8,8 @@
  * C(q) ~ q^-(5 - 2D) as a cross-check (GSL's mixed-radix real FFT of each row, a Hann window,
  * the periodogram averaged over rows, then averaged in log-spaced bins of q). Eq. 3 inverted
  * with alpha and D: ln fz = ln 2 (2 - D) / (1 + alpha (D - 1)), ln fx = alpha ln fz. */
-#include "internal.h"
+#include "profile.h"
+#include "number.h"
 
 #include <gsl/gsl_fft_real.h>
 #include <gsl/gsl_statistics_double.h>
@@ -457,5 +458,159 @@ int ct_profile_fit_bearing(const ct_profile *p, double d_lo, double d_hi, ct_pro
         return st;
     fit_eq3(p, &f);
     *fit = f;
+    return CT_OK;
+}
+
+int ct_profile_fit_on_reach(const ct_profile *p, const ct_profile_fit *fit, const double *u_max,
+                            size_t n, ct_profile_fit *out)
+{
+    CT_NEED(p);
+    CT_NEED(fit);
+    CT_NEED(out);
+    if (n && !u_max)
+        return ct_error_set(CT_EINVAL, "ct_profile_fit_on_reach: u_max is NULL");
+    double lo = INFINITY, hi = 0.0;
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(u_max[k])) {
+            lo = fmin(lo, u_max[k]);
+            hi = fmax(hi, u_max[k]);
+        }
+    /* from the shallowest reach (not above the default band's start, the 20th highest
+     * point: above it the curve is a few samples) to the deepest (not below Rt) */
+    lo = fmax(lo, fit->bearing.lo);
+    hi = fmin(hi, fit->stats.Rt);
+    if (!(hi > lo))
+        return ct_error_set(CT_EINVAL,
+                            "the depths the impacts reach, %.4g .. %.4g m, give no bearing fit "
+                            "(an empty band)",
+                            lo, hi);
+    ct_profile_fit f = *fit;
+    int st = ct_profile_fit_bearing(p, lo, hi, &f);
+    if (st) {
+        char why[400];
+        snprintf(why, sizeof why, "%s", ct_error_message());
+        return ct_error_set(st,
+                            "the depths the impacts reach, %.4g .. %.4g m, give no bearing fit "
+                            "(%s)",
+                            lo, hi, why);
+    }
+    *out = f;
+    return CT_OK;
+}
+
+int ct_profile_fitted_e(const ct_profile *p, const ct_profile_fit *fit, const ct_layer *layer,
+                        const double *W, size_t n, int threads, double *e_fit, double *e_asym,
+                        double *V_fit)
+{
+    CT_NEED(p);
+    CT_NEED(fit);
+    CT_NEED(layer);
+    if (n && (!W || !e_fit || !e_asym || !V_fit))
+        return ct_error_set(CT_EINVAL, "ct_profile_fitted_e: NULL arrays for %zu impacts", n);
+    for (size_t k = 0; k < n; k++)
+        e_fit[k] = e_asym[k] = V_fit[k] = NAN;
+    /* the fitted Cantor surface in dimensionless form with the layer: H* / h0_fit, E/sigma_y */
+    ct_params c = {.fx = fit->fx,
+                   .fz = fit->fz,
+                   .l0 = 1.0,
+                   .h0 = 1.0,
+                   .Hstar = layer->Hstar / fit->h0,
+                   .E = layer->E / layer->sigma_y,
+                   .sigma_y = 1.0};
+    if (ct_params_validate(&c)) {
+        char why[400];
+        snprintf(why, sizeof why, "%s", ct_error_message());
+        return ct_error_set(CT_ERANGE,
+                            "the fitted Cantor surface (fx %g, fz %g, H*/h0 %g) is outside the "
+                            "model's ranges: %s",
+                            fit->fx, fit->fz, c.Hstar, why);
+    }
+    /* the impact energy per unit depth (a grid's over its extent in y) in the fitted surface's
+     * units: W / (sigma_y l0_fit h0_fit), so V*_fit = sqrt(W / (l0_fit E h0_fit)) */
+    const double depth = p->ny > 1 ? (double)p->ny * p->dy : 1.0;
+    const double scale = fit->l0 * layer->E * fit->h0;
+    double *V = malloc((n ? n : 1) * sizeof(double));
+    ct_sweep_row *cr = malloc((n ? n : 1) * sizeof *cr);
+    size_t m = 0;
+    int st = CT_OK;
+    if (!V || !cr) {
+        free(V);
+        free(cr);
+        return ct_error_set(CT_ENOMEM, "compare: out of memory");
+    }
+    for (size_t k = 0; k < n; k++)
+        if (isfinite(W[k]))
+            V[m++] = sqrt(W[k] / depth / scale);
+    if (m) {
+        ct_cantor_plan plan = {.params = c,
+                               .depth = CT_DEPTH_FRACTAL,
+                               .representation = CT_REP_STAGES,
+                               .depth_tolerance = 1e-12,
+                               .V_star = V,
+                               .nvel = m,
+                               .impacts = 1,
+                               .threads = threads};
+        ct_impact_opts_default(&plan.opts);
+        ct_bundle *b;
+        ct_plan_info info;
+        if (!(st = ct_cantor_plan_build(&plan, &b, &info))) {
+            ct_sweep_spec spec = {.V_star = V, .nvel = m, .impacts = 1, .opts = plan.opts};
+            st = ct_sweep(b, &spec, cr);
+            ct_bundle_free(b);
+        }
+    }
+    for (size_t k = 0, q = 0; k < n && !st; k++) {
+        if (!isfinite(W[k]))
+            continue;
+        V_fit[k] = V[q];
+        if (!cr[q].status)
+            e_fit[k] = cr[q].r.e;
+        double um, e;
+        if (ct_law_impact(&c, CT_LAW_ASYMPTOTIC, V[q] * V[q] * c.E, &um, &e) == CT_OK)
+            e_asym[k] = e;
+        q++;
+    }
+    free(V);
+    free(cr);
+    return st;
+}
+
+static void fit_row(FILE *f, const char *name, double value, const ct_fit_line *l)
+{
+    fprintf(f, "%s,", name);
+    ct_put_double(f, value);
+    if (l)
+        fprintf(f, ",%.6g,%.6g,%zu,%.6f,%.4g\n", l->lo, l->hi, l->n, l->r2, l->residual);
+    else
+        fputs(",,,,,\n", f);
+}
+
+int ct_profile_fit_write(FILE *f, const ct_profile_fit *fit, const char *source, size_t n)
+{
+    CT_NEED(f);
+    CT_NEED(fit);
+    CT_NEED(source);
+    static const char *const names[] = {"variation", "structure", "spectrum"};
+    const ct_fit_line *used = fit->dimension == CT_DIM_STRUCTURE  ? &fit->structure
+                              : fit->dimension == CT_DIM_SPECTRUM ? &fit->spectrum
+                                                                  : &fit->variation;
+    fprintf(f,
+            "# %s: %zu points; bands: bearing depths [m], variation window widths and "
+            "structure-function lags [m], spectrum wavenumbers [1/m]; D (into Eq. 3) from the "
+            "%s estimate\n",
+            source, n, names[fit->dimension - CT_DIM_VARIATION]);
+    fputs("quantity,value,band_lo,band_hi,points,r2,rms_residual_ln\n", f);
+    fit_row(f, "Rq_m", fit->stats.Rq, NULL);
+    fit_row(f, "Ra_m", fit->stats.Ra, NULL);
+    fit_row(f, "Rt_m", fit->stats.Rt, NULL);
+    fit_row(f, "alpha", fit->alpha, &fit->bearing);
+    fit_row(f, "h0_m", fit->h0, &fit->bearing);
+    fit_row(f, "D_variation", fit->D_variation, &fit->variation);
+    fit_row(f, "D_structure", fit->D_structure, &fit->structure);
+    fit_row(f, "D_spectrum", fit->D_spectrum, &fit->spectrum);
+    fit_row(f, "D", fit->D, used);
+    fit_row(f, "fx", fit->fx, NULL);
+    fit_row(f, "fz", fit->fz, NULL);
+    fit_row(f, "l0_m", fit->l0, NULL);
     return CT_OK;
 }

@@ -1,0 +1,167 @@
+/* Measured surfaces (docs/model.md §9): a line profile z(x_j) or a grid z(x_i, y_j) as rods.
+ *
+ * After levelling, the plane touches the highest point; sample j is a rod with top depth
+ * t_j = max z - z_j and length H* - t_j. Its area: on a line, its share of the x-axis (the
+ * half-distances to its two neighbours; an end sample the distance to its one neighbour, so
+ * that uniform sampling gives every sample dx); on a grid, the pixel dx dy. Invalid grid
+ * points (NaN) are left out. The x-order of the rods does not matter to P(u) (a Winkler
+ * bundle): only the bearing-area curve does. */
+#include "profile.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct {
+    ct_profile *p; /* a copy of the positions (for rod info) */
+    size_t *index; /* rod k is sample index[k] (NULL: sample k, every sample valid) */
+} profile_meta;
+
+static void profile_meta_free(void *m)
+{
+    profile_meta *pm = m;
+    if (!pm)
+        return;
+    ct_profile_free(pm->p);
+    free(pm->index);
+    free(pm);
+}
+
+/* The metadata: the profile's positions (no heights) and each rod's sample; with_index: an
+ * index (copied from index when not NULL), else rod k is sample k. */
+static profile_meta *meta_new(const ct_profile *p, int with_index, const size_t *index)
+{
+    profile_meta *pm = calloc(1, sizeof *pm);
+    if (!pm || (with_index && !(pm->index = malloc((p->n ? p->n : 1) * sizeof(size_t)))) ||
+        !(pm->p = calloc(1, sizeof *pm->p))) {
+        profile_meta_free(pm);
+        return NULL;
+    }
+    *pm->p = *p;
+    pm->p->z = NULL;
+    pm->p->x = NULL;
+    if (p->x && !(pm->p->x = malloc(p->nx * sizeof(double)))) {
+        profile_meta_free(pm);
+        return NULL;
+    }
+    if (p->x)
+        memcpy(pm->p->x, p->x, p->nx * sizeof(double));
+    if (with_index && index)
+        memcpy(pm->index, index, p->n * sizeof(size_t));
+    return pm;
+}
+
+static void *profile_meta_clone(const void *m)
+{
+    const profile_meta *src = m;
+    return meta_new(src->p, src->index != NULL, src->index);
+}
+
+static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
+{
+    const profile_meta *pm = m;
+    const ct_profile *p = pm->p;
+    const size_t j = pm->index ? pm->index[k] : k;
+    info->stage = -1;
+    if (p->ny > 1) { /* a pixel: its x; the extent in x of its column */
+        double x = (double)(j % p->nx) * p->dx;
+        info->x_left = x - 0.5 * p->dx;
+        info->x_right = x + 0.5 * p->dx;
+        return;
+    }
+    double x = p->x ? p->x[j] : (double)j * p->dx;
+    double left = j == 0 ? ct_profile_share(p, 0) : (p->x ? 0.5 * (x - p->x[j - 1]) : 0.5 * p->dx);
+    double right = j == p->nx - 1 ? 0.0 : (p->x ? 0.5 * (p->x[j + 1] - x) : 0.5 * p->dx);
+    if (j == p->nx - 1)
+        right = ct_profile_share(p, j) - (p->x ? 0.5 * (x - p->x[j - 1]) : 0.5 * p->dx);
+    if (j == 0)
+        left = ct_profile_share(p, 0) - right;
+    info->x_left = x - left;
+    info->x_right = x + right;
+}
+
+static const ct_rod_meta_kind profile_kind = {"profile", profile_rod_info, profile_meta_clone,
+                                              profile_meta_free};
+
+int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sigma_y, double Hstar)
+{
+    CT_NEED(out);
+    CT_NEED(p);
+    *out = NULL;
+    ct_profile_stats s;
+    int st = ct_profile_stats_of(p, &s);
+    if (st)
+        return st;
+    return ct_profile_bundle_of(out, p, &s, E, sigma_y, Hstar, 0);
+}
+
+/* Rod k of sample j: its top below the highest point, its length, its area, no plastic strain. */
+static inline void rod_of(const ct_profile *p, size_t j, double zmax, double Hstar, size_t k,
+                          double *top, double *length, double *area, double *eps_p)
+{
+    top[k] = zmax - p->z[j];
+    length[k] = Hstar - top[k];
+    area[k] = ct_profile_share(p, j);
+    eps_p[k] = 0.0;
+}
+
+int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
+                         double E, double sigma_y, double Hstar, int threads)
+{
+    const ct_profile_stats s = *sp;
+    int st;
+    if (!(s.Rt > 0.0))
+        return ct_error_set(CT_EINVAL, "profile: all heights are equal (peak to valley 0): a "
+                                       "flat surface has no asperities to model");
+    if (!isfinite(Hstar) || !(Hstar > s.Rt))
+        return ct_error_set(CT_EINVAL,
+                            "H* = %g: must exceed the profile's peak-to-valley depth Rt = %g "
+                            "(the deepest rod needs a length)",
+                            Hstar, s.Rt);
+    ct_layer L = {.E = E, .sigma_y = sigma_y, .Hstar = Hstar, .l0 = s.length, .h0 = s.Rt};
+    if ((st = ct_layer_validate(&L)))
+        return st;
+    const size_t total = p->nx * p->ny;
+    double zmax = -INFINITY;
+    for (size_t j = 0; j < total; j++)
+        if (!isnan(p->z[j]) && p->z[j] > zmax)
+            zmax = p->z[j];
+    profile_meta *pm = meta_new(p, p->n < total, NULL); /* no index when every sample is valid */
+    if (!pm)
+        return ct_error_set(CT_ENOMEM, "profile rods: out of memory");
+    ct_bundle *b;
+    if ((st = ct_bundle_create(&b, &L, p->n, "profile rods"))) {
+        profile_meta_free(pm);
+        return st;
+    }
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays(b, &top, &length, &area, &eps_p);
+    if (!pm->index) { /* every sample a rod, rod k sample k: the arrays' first touch (the
+                         kernel's clearing of their pages) shared among threads */
+        const int team = total < LEVEL_TEAM_MIN ? 1 : threads > 0 ? threads : ct_default_threads();
+        (void)team;
+#pragma omp parallel for schedule(static) num_threads(team) if (team > 1)
+        for (size_t c = 0; c < (total + LEVEL_CHUNK - 1) / LEVEL_CHUNK; c++) {
+            const size_t j1 = (c + 1) * LEVEL_CHUNK < total ? (c + 1) * LEVEL_CHUNK : total;
+            for (size_t j = c * LEVEL_CHUNK; j < j1; j++)
+                rod_of(p, j, zmax, Hstar, j, top, length, area, eps_p);
+        }
+        ct_bundle_set_surface(b, &profile_kind, pm, p->invalid);
+        *out = b;
+        return CT_OK;
+    }
+    size_t k = 0;
+    for (size_t j = 0; j < total; j++) {
+        if (isnan(p->z[j]))
+            continue;
+        rod_of(p, j, zmax, Hstar, k, top, length, area, eps_p);
+        if (pm->index)
+            pm->index[k] = j;
+        k++;
+    }
+    ct_bundle_set_surface(b, &profile_kind, pm, p->invalid);
+    *out = b;
+    return CT_OK;
+}
