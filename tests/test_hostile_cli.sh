@@ -446,5 +446,44 @@ printf '[surface]\ntype = profile\nfile = span.txt\nunit = m\nH = 10\ndetrend = 
 refused "heights spanning beyond doubles" "span.txt: the heights span more than doubles hold" -- \
     "$ct" run -q "$tmp/span.ini"
 
+# hostile pass, round five
+# 7. signals: every signal whose default action ends the process removes the temporary file
+# (SIGQUIT, SIGXCPU, SIGUSR1, ... left 204 MB); SIGXFSZ (ulimit -f) is ignored: the write fails,
+# exit 2 with one line, no file
+printf '[surface]\nfx = 1.5\nfz = 1.3\nH = 10\ndepth = fractal\n[material]\nE = 500\n[impact]\nV_star = 1e-4:1e-2:1000000:log\nimpacts = 4\n' >"$tmp/long.ini"
+mkdir "$tmp/sig"
+# a background job of a script starts with SIGINT and SIGQUIT ignored: env restores them
+defaults=()
+env --default-signal true 2>/dev/null && defaults=(env --default-signal)
+for sig in QUIT XCPU USR1 USR2 ALRM PIPE VTALRM PROF; do
+    [ $sig = QUIT ] && [ ${#defaults[@]} -eq 0 ] && continue
+    "${defaults[@]}" "$ct" run -q "$tmp/long.ini" -o "$tmp/sig/k.csv" &
+    pid=$!
+    for i in $(seq 1 200); do
+        ls "$tmp/sig" | grep -q 'k.csv.tmp' && break
+        sleep 0.05
+    done
+    kill -$sig $pid
+    wait $pid
+    rc=$?
+    [ $rc -eq $((128 + $(kill -l $sig))) ] && [ -z "$(ls -A "$tmp/sig")" ] && ok ||
+        bad "SIG$sig: exit $rc, left: $(ls -A "$tmp/sig")"
+    rm -f "$tmp/sig/"*
+done
+(
+    ulimit -f 200
+    "$ct" run -q "$def" --set impact.V_star=1e-5:1e-2:20000:log -o "$tmp/sig/big.csv"
+) 2>"$tmp/err"
+rc=$?
+[ $rc -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "big.csv: cannot write: File too large" "$tmp/err" &&
+    [ -z "$(ls -A "$tmp/sig")" ] && ok || bad "ulimit -f: exit $rc: $(cat "$tmp/err"); left: $(ls -A "$tmp/sig")"
+(
+    ulimit -f 200
+    "$ct" run -q "$def" --set impact.V_star=1e-5:1e-2:20000:log >/dev/null
+) 2>"$tmp/err"
+rc=$?
+[ $rc -eq 2 ] && grep -qx "cantact: standard output: cannot write: File too large" "$tmp/err" && ok ||
+    bad "ulimit -f to standard output: exit $rc: $(cat "$tmp/err")"
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -28,12 +28,54 @@ static void on_signal(int sig)
 {
     remove_live();
     signal(sig, SIG_DFL);
-    raise(sig);
+    raise(sig); /* delivered when the handler returns (a fault: when it recurs), by default */
 }
 
-/* The handlers, once: SIGINT, SIGTERM, SIGHUP unlink what is live, then die of the signal as
- * before; exit() (also libgomp's, when it cannot create a thread) unlinks it too. Signals the
- * caller ignores stay ignored. */
+/* Every signal whose default action ends the process (SIGKILL and SIGSTOP aside, which no
+ * handler sees), the real-time ones too; SIGXFSZ is not among them: it is ignored instead. */
+static const int fatal_signals[] = {
+    SIGHUP,    SIGINT,  SIGQUIT, SIGILL,  SIGTRAP, SIGABRT, SIGBUS, SIGFPE,    SIGSEGV,
+    SIGUSR1,   SIGUSR2, SIGPIPE, SIGALRM, SIGTERM, SIGXCPU, SIGSYS, SIGVTALRM, SIGPROF,
+#ifdef SIGSTKFLT
+    SIGSTKFLT,
+#endif
+#ifdef SIGIO
+    SIGIO,
+#endif
+#ifdef SIGPWR
+    SIGPWR,
+#endif
+#ifdef SIGEMT
+    SIGEMT,
+#endif
+#ifdef SIGLOST
+    SIGLOST,
+#endif
+};
+#define NFATAL (sizeof fatal_signals / sizeof fatal_signals[0])
+
+/* The signals the handler was installed for (those at their default action then). */
+static sigset_t handled;
+
+static void handle(int sig)
+{
+    struct sigaction old, sa;
+    /* ignored, or handled by someone else (a sanitizer, an MPI runtime): left as it is */
+    if (sigaction(sig, NULL, &old) != 0 || (old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL)
+        return;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    if (sigaction(sig, &sa, NULL) == 0)
+        sigaddset(&handled, sig);
+}
+
+/* The handlers, once, before the first output is opened: every signal that would end the
+ * process at its default action unlinks what is live, then ends it as before (a killed run
+ * leaves no temporary file); exit() (also libgomp's, when it cannot create a thread) unlinks
+ * it too. SIGXFSZ (a file beyond ulimit -f) is ignored, so that the write fails with EFBIG and
+ * the run says so (exit 2) rather than die without a word. Signals the caller ignores stay
+ * ignored. */
 static void install_cleanup(void)
 {
     static int done;
@@ -41,21 +83,34 @@ static void install_cleanup(void)
         return;
     done = 1;
     atexit(remove_live);
-    const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
-    for (int k = 0; k < 3; k++) {
-        struct sigaction old, sa;
-        if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
-            continue;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sigaction(sigs[k], &sa, NULL);
-    }
+    sigemptyset(&handled);
+    for (size_t k = 0; k < NFATAL; k++)
+        handle(fatal_signals[k]);
+#if defined(SIGRTMIN) && defined(SIGRTMAX)
+    for (int sig = SIGRTMIN; sig <= SIGRTMAX; sig++)
+        handle(sig);
+#endif
+    struct sigaction old;
+    if (sigaction(SIGXFSZ, NULL, &old) == 0 && !(old.sa_flags & SA_SIGINFO) &&
+        old.sa_handler == SIG_DFL)
+        signal(SIGXFSZ, SIG_IGN);
+}
+
+/* Holds the handled signals back while files are created or renamed, so that a signal
+ * between two steps (a temporary file made but not yet registered, one output renamed and
+ * the next not) finds everything either before or after: delivered at release. */
+static void hold_signals(sigset_t *old)
+{
+    sigprocmask(SIG_BLOCK, &handled, old);
+}
+
+static void release_signals(const sigset_t *old)
+{
+    sigprocmask(SIG_SETMASK, old, NULL);
 }
 
 static void live_add(char *path)
 {
-    install_cleanup();
     for (int k = 0; k < CT_MAX_LIVE; k++)
         if (!live[k]) {
             live[k] = path;
@@ -146,6 +201,7 @@ void ct_out_guard_std(void)
 int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
+    install_cleanup();
     if (!(o->shown = strdup(path)))
         return fail(o, err, errlen, "out of memory", 0);
     if (!strcmp(path, "-") && stdout_closed)
@@ -202,14 +258,18 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
     if (!(o->tmp_path = malloc(n)))
         return fail(o, err, errlen, "out of memory", 0);
     snprintf(o->tmp_path, n, "%s.tmpXXXXXX", o->path);
+    sigset_t held;
+    hold_signals(&held);
     int fd = mkstemp(o->tmp_path);
+    if (fd >= 0)
+        live_add(o->tmp_path);
+    release_signals(&held);
     if (fd < 0) {
         int e = errno;
         free(o->tmp_path);
         o->tmp_path = NULL;
         return fail(o, err, errlen, NULL, e);
     }
-    live_add(o->tmp_path);
     if (fchmod(fd, o->mode) != 0 || !(o->f = fdopen(fd, "w"))) {
         int e = errno;
         close(fd);
@@ -224,18 +284,22 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 /* Phase 1: everything written and closed (regular files) or flushed (spools). */
 static int finish(ct_out *o, char *err, size_t errlen)
 {
-    int bad = fflush(o->f) != 0 || ferror(o->f);
+    errno = 0;
+    int bad = fflush(o->f) != 0 || ferror(o->f), e = errno;
     if (!o->spooled) {
         if (!bad && fsync(fileno(o->f)) != 0 && errno != EINVAL)
-            bad = 1;
-        if (fclose(o->f) != 0)
-            bad = 1;
+            bad = 1, e = errno;
+        if (fclose(o->f) != 0 && !bad)
+            bad = 1, e = errno;
         o->f = NULL;
         free(o->buf);
         o->buf = NULL;
     }
+    /* an earlier write failed and the last flush had nothing left to say why */
     if (bad)
-        snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
+        snprintf(err, errlen, "%s: cannot write: %s",
+                 o->spooled && !o->path ? "standard output" : o->shown,
+                 e ? strerror(e) : "a write failed (disk full, or a file size limit)");
     return bad ? -1 : 0;
 }
 

@@ -5,7 +5,8 @@
  * 0666 less the umask. Standard output ("-") and paths that are no regular file (a device, a
  * FIFO) are spooled to an unlinked temporary file and copied there at commit: memory does not
  * grow with the output, and nothing reaches them from a failed run. Temporary files are
- * removed on abort, on SIGINT, SIGTERM and SIGHUP, and at exit. */
+ * removed on abort, at exit and on every signal whose default action ends the process;
+ * SIGXFSZ is ignored (a write beyond ulimit -f fails, and is said). */
 #ifndef CT_CLI_OUTPUT_H
 #define CT_CLI_OUTPUT_H
 
