@@ -485,5 +485,35 @@ rc=$?
 [ $rc -eq 2 ] && grep -qx "cantact: standard output: cannot write: File too large" "$tmp/err" && ok ||
     bad "ulimit -f to standard output: exit $rc: $(cat "$tmp/err")"
 
+# 10. a legal name is written: 255 bytes (its temporary name beside it passed 255), also
+# cut between UTF-8 characters (2-byte é), and derived outputs replaced (their backups too)
+mkdir "$tmp/names"
+n255=$(printf 'a%.0s' $(seq 1 251)).csv
+nutf=$(printf 'é%.0s' $(seq 1 125)).csv
+n245=$(printf 'b%.0s' $(seq 1 241)).csv
+for name in "$n255" "$nutf"; do
+    "$ct" run -q "$def" --set impact.V_star=1e-3,1e-2 -o "$tmp/names/$name" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && [ "$(wc -l <"$tmp/names/$name")" -eq 3 ] && [ "$(ls -A "$tmp/names" | wc -l)" -eq 1 ] &&
+        ok || bad "a $(printf %s "$name" | wc -c)-byte name: exit $rc: $(cat "$tmp/err")"
+    rm -f "$tmp/names/"*
+done
+for round in new replaced; do
+    "$ct" run -q "$def" --set impact.V_star=1e-3,1e-2 --set output.what=e,curve -o "$tmp/names/$n245" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && [ "$(ls -A "$tmp/names" | wc -l)" -eq 2 ] && ok ||
+        bad "a 245-byte name with its _curve ($round): exit $rc: $(cat "$tmp/err"); $(ls -A "$tmp/names" | wc -l) files"
+done
+# a path of 4095 bytes (PATH_MAX less its NUL) whose name is short: its temporary name was
+# over PATH_MAX
+deep=$tmp/names
+while [ $((${#deep} + 251)) -lt 4070 ]; do deep=$deep/$(printf 'd%.0s' $(seq 1 250)); done
+mkdir -p "$deep"
+deep=$deep/$(printf 'x%.0s' $(seq 1 $((4095 - ${#deep} - 5)))).csv
+"$ct" run -q "$def" --set impact.V_star=1e-3 -o "$deep" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && [ ${#deep} -eq 4095 ] && [ "$(wc -l <"$deep")" -eq 2 ] && [ "$(ls -A "$(dirname "$deep")" | wc -l)" -eq 1 ] &&
+    ok || bad "a ${#deep}-byte path: exit $rc: $(cat "$tmp/err")"
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

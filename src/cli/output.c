@@ -182,6 +182,41 @@ static void big_buffer(ct_out *o)
     }
 }
 
+/* A name for mkstemp in path's directory (a rename stays in one filesystem): path's own name,
+ * cut where needed so that with `tag` and six random characters it stays within the
+ * directory's longest name (a 250-byte name has room for the output but not for
+ * NAME.tmpXXXXXX) and the whole within PATH_MAX, never inside a UTF-8 character. malloc'ed;
+ * NULL when out of memory. */
+static char *name_beside(const char *path, const char *tag)
+{
+    const char *slash = strrchr(path, '/');
+    const size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0, tail = strlen(tag) + 6;
+    const char *base = path + dirlen;
+    char *dir = dirlen ? strndup(path, dirlen) : strdup(".");
+    if (!dir)
+        return NULL;
+    long name_max = 255;
+    errno = 0;
+    const long m = pathconf(dir, _PC_NAME_MAX);
+    free(dir);
+    if (m > (long)tail && m < name_max)
+        name_max = m;
+    /* and the whole path within PATH_MAX (a legal path of a short name near it) */
+    size_t room = (size_t)name_max - tail;
+    if (dirlen + tail < PATH_MAX && PATH_MAX - 1 - dirlen - tail < room)
+        room = PATH_MAX - 1 - dirlen - tail;
+    size_t keep = strlen(base);
+    if (keep > room) {
+        keep = room;
+        while (keep > 0 && ((unsigned char)base[keep] & 0xC0) == 0x80)
+            keep--; /* base[keep] continues a character: cut before it */
+    }
+    char *name = malloc(dirlen + keep + tail + 1);
+    if (name)
+        sprintf(name, "%.*s%.*s%sXXXXXX", (int)dirlen, path, (int)keep, base, tag);
+    return name;
+}
+
 static int stdout_closed;
 
 void ct_out_guard_std(void)
@@ -254,10 +289,8 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
         umask(mask);
         o->mode = 0666 & ~mask;
     }
-    size_t n = strlen(o->path) + 16;
-    if (!(o->tmp_path = malloc(n)))
+    if (!(o->tmp_path = name_beside(o->path, ".tmp")))
         return fail(o, err, errlen, "out of memory", 0);
-    snprintf(o->tmp_path, n, "%s.tmpXXXXXX", o->path);
     sigset_t held;
     hold_signals(&held);
     int fd = mkstemp(o->tmp_path);
