@@ -485,6 +485,39 @@ rc=$?
 [ $rc -eq 2 ] && grep -qx "cantact: standard output: cannot write: File too large" "$tmp/err" && ok ||
     bad "ulimit -f to standard output: exit $rc: $(cat "$tmp/err")"
 
+# 8. all outputs land or none, even when a target changes during the run: the profile goes to
+# a FIFO, which holds the run at its commit until read; meanwhile out_curve.csv becomes a
+# directory, or its temporary file is removed. out.csv (written first) keeps its bytes.
+mkdir "$tmp/race"
+for how in directory removed; do
+    rm -rf "$tmp/race/"*
+    echo "a good old table" >"$tmp/race/out.csv"
+    cp "$tmp/race/out.csv" "$tmp/good.csv"
+    [ $how = removed ] && echo "a good old curve" >"$tmp/race/out_curve.csv"
+    mkfifo "$tmp/race/out_profile.csv"
+    "$ct" run -q "$def" --set surface.depth=5 --set impact.V_star=1e-3 \
+        --set output.what=e,curve,profile -o "$tmp/race/out.csv" 2>"$tmp/err" &
+    pid=$!
+    for i in $(seq 1 200); do
+        [ "$(ls "$tmp/race" | grep -c '\.tmp')" -ge 2 ] && break
+        sleep 0.05
+    done
+    if [ $how = directory ]; then
+        rm -f "$tmp/race/out_curve.csv"
+        mkdir "$tmp/race/out_curve.csv"
+    else
+        rm -f "$tmp/race/out_curve.csv.tmp"*
+    fi
+    cat "$tmp/race/out_profile.csv" >/dev/null
+    wait $pid
+    rc=$?
+    left=$(ls -A "$tmp/race" | tr '\n' ' ')
+    [ $rc -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "out_curve.csv: cannot write" "$tmp/err" &&
+        cmp -s "$tmp/race/out.csv" "$tmp/good.csv" &&
+        [ "$left" = "out.csv out_curve.csv out_profile.csv " ] && ok ||
+        bad "out_curve.csv $how during the run: exit $rc: $(cat "$tmp/err"); out.csv: $(head -c 80 "$tmp/race/out.csv"); left: $left"
+done
+
 # 10. a legal name is written: 255 bytes (its temporary name beside it passed 255), also
 # cut between UTF-8 characters (2-byte é), and derived outputs replaced (their backups too)
 mkdir "$tmp/names"

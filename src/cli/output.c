@@ -368,6 +368,111 @@ static int copy_spool(ct_out *o, char *err, size_t errlen)
     return bad ? -1 : 0;
 }
 
+/* A second name (a hard link) for the file at path, beside it: what a rename over path would
+ * drop, kept until every output has landed. NULL when the file system gives none (no hard
+ * links there, or path is no longer a file). */
+static char *backup_of(const char *path)
+{
+    for (int tries = 0; tries < 16; tries++) {
+        char *name = name_beside(path, ".old");
+        int fd = name ? mkstemp(name) : -1; /* a fresh name, then the link takes it */
+        if (fd < 0) {
+            free(name);
+            return NULL;
+        }
+        close(fd);
+        unlink(name);
+        if (link(path, name) == 0)
+            return name;
+        const int e = errno;
+        free(name);
+        if (e != EEXIST)
+            return NULL;
+    }
+    return NULL;
+}
+
+/* Phase 3: the regular outputs renamed into place, all or none. With several, each existing
+ * file gets a backup link first; should a rename fail (a directory made where an output
+ * goes, a temporary file removed), the outputs already renamed are put back: the old file
+ * from its backup, a new one removed. A file that has no backup (a file system without hard
+ * links) is renamed last, where no later failure can leave it replaced. */
+static int rename_all(ct_out *const *outs, size_t n, char *err, size_t errlen)
+{
+    size_t regular = 0;
+    for (size_t k = 0; k < n; k++)
+        regular += !outs[k]->spooled;
+    char **bak = calloc(n ? n : 1, sizeof *bak);
+    unsigned char *state = calloc(n ? n : 1, 1); /* 1: existed, 2: renamed */
+    if (!bak || !state) {
+        free(bak);
+        free(state);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    sigset_t held;
+    hold_signals(&held);
+    struct stat st;
+    for (size_t k = 0; k < n && regular > 1; k++)
+        if (!outs[k]->spooled && lstat(outs[k]->path, &st) == 0) {
+            state[k] = 1;
+            bak[k] = backup_of(outs[k]->path);
+        }
+    int bad = 0;
+    for (int last = 0; last < 2 && !bad; last++)
+        for (size_t k = 0; k < n && !bad; k++) {
+            ct_out *o = outs[k];
+            if (o->spooled || (state[k] == 1 && !bak[k]) != last)
+                continue;
+            if (rename(o->tmp_path, o->path) != 0) {
+                snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
+                bad = 1;
+                break;
+            }
+            state[k] |= 2;
+            live_remove(o->tmp_path);
+            free(o->tmp_path);
+            o->tmp_path = NULL;
+        }
+    size_t lost = n; /* an output replaced that could not be put back */
+    for (size_t k = 0; k < n && bad; k++) {
+        if (!(state[k] & 2))
+            continue;
+        int back;
+        if (bak[k])
+            back = rename(bak[k], outs[k]->path) == 0;
+        else if (state[k] & 1)
+            back = 0; /* an old file without a backup: renamed last, so only before another */
+        else
+            back = unlink(outs[k]->path) == 0;
+        if (!back)
+            lost = k;
+        else if (bak[k]) {
+            free(bak[k]);
+            bak[k] = NULL;
+        }
+    }
+    if (bad && regular > 1) {
+        size_t len = strlen(err);
+        if (lost == n)
+            snprintf(err + len, errlen - len, " (no output was replaced)");
+        else if (bak[lost])
+            snprintf(err + len, errlen - len, " (%s was replaced; its old content is in %s)",
+                     outs[lost]->shown, bak[lost]);
+        else
+            snprintf(err + len, errlen - len, " (%s was replaced)", outs[lost]->shown);
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (bak[k] && !(bad && k == lost))
+            unlink(bak[k]);
+        free(bak[k]);
+    }
+    release_signals(&held);
+    free(bak);
+    free(state);
+    return bad ? -1 : 0;
+}
+
 int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen)
 {
     int bad = 0;
@@ -378,19 +483,8 @@ int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen)
     for (size_t k = 0; k < n && !bad; k++)
         if (outs[k]->spooled)
             bad = copy_spool(outs[k], err, errlen) != 0;
-    for (size_t k = 0; k < n && !bad; k++) {
-        ct_out *o = outs[k];
-        if (o->spooled)
-            continue;
-        if (rename(o->tmp_path, o->path) != 0) {
-            snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
-            bad = 1;
-            break;
-        }
-        live_remove(o->tmp_path);
-        free(o->tmp_path);
-        o->tmp_path = NULL;
-    }
+    if (!bad)
+        bad = rename_all(outs, n, err, errlen) != 0;
     for (size_t k = 0; k < n; k++)
         ct_out_abort(outs[k]); /* frees; what was published stays */
     return bad ? -1 : 0;
