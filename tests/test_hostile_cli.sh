@@ -447,6 +447,53 @@ refused "heights spanning beyond doubles" "span.txt: the heights span more than 
     "$ct" run -q "$tmp/span.ini"
 
 # hostile pass, round five
+# 1. after a failed impact (solver.on_error = skip) every output says what it holds: the
+# profile shows the last state computed of the last speed (it was 0 bytes, exit 0), the curve
+# and history hold the impacts computed, each said in a note. Default scene at depth 5: its 63
+# pieces (2^6 - 1); V* = 1 crushes the layer at impact 1, so the last speed's surface is the
+# virgin one (residual top = top on every piece), on every path
+for path in curve lean rods auto; do
+    "$ct" run "$def" --set surface.depth=5 --set impact.V_star=1e-3,1 --set solver.on_error=skip \
+        --set output.what=e,profile --set solver.path=$path -o "$tmp/cp.csv" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && head -1 "$tmp/cp_profile.csv" | grep -qx 'stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0' &&
+        awk -F, 'NR > 1 { n++; ok = ok && $4 == $5 } NR == 1 { ok = 1 } END { exit !(ok && n == 63) }' "$tmp/cp_profile.csv" &&
+        grep -q "profile: the surface before any impact (impact 1 of V\* = 1, the last speed, failed)" "$tmp/err" &&
+        ok || bad "path $path: a failed last impact: exit $rc, profile of $(wc -l <"$tmp/cp_profile.csv") lines: $(tail -1 "$tmp/err")"
+done
+# one rod (top 0, area l0, L = H* = 10 h0, eps_y = 1/500) struck three times at V* = 0.03:
+# W = V*^2 E l0 h0 = 4.5; the rod yields at u = eps_y L = 0.02 with 0.01 stored, so
+# u1 = 0.02 + 4.49 = 4.51, the second impact reloads elastically (0.01) then u2 = u1 + 4.49 =
+# 9.0, and the third would reach 13.49 > H* = 10 (crushed). The profile is the rod after
+# impact 2: residual top u2 - eps_y L = 8.98, 0.898 h0
+printf '[surface]\ntype = rods\nrods = 0:1\nHstar = 10\n[material]\nE = 500\nsigma_y = 1\n[impact]\nV_star = 0.03\nimpacts = 3\n[solver]\non_error = skip\n[output]\nwhat = e,profile\n' >"$tmp/rod3.ini"
+for path in curve lean rods auto; do
+    "$ct" run "$tmp/rod3.ini" --set solver.path=$path -o "$tmp/rod3.csv" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && awk -F, 'NR == 2 { r = $5 } END { exit !(NR == 2 && r - 0.898 < 1e-12 && 0.898 - r < 1e-12) }' "$tmp/rod3_profile.csv" &&
+        grep -q "profile: the surface after impact 2 of V\* = 0.03, the last computed (impact 3 failed)" "$tmp/err" &&
+        ok || bad "path $path: one rod after 2 of 3 impacts: exit $rc: $(cat "$tmp/rod3_profile.csv") $(tail -1 "$tmp/err")"
+done
+# the curve and history hold the impacts computed (V* = 1e-3's), and say so; none computed:
+# the header only, said
+"$ct" run "$def" --set surface.depth=5 --set impact.V_star=1e-3,1 --set solver.on_error=skip \
+    --set output.what=e,curve,history -o "$tmp/ch.csv" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && grep -q "curve, history: rows of the computed impacts only (1 of 2)" "$tmp/err" &&
+    awk -F, 'NR > 1 { n++; ok = ok && $1 == 0.001 } NR == 1 { ok = 1 } END { exit !(ok && n > 0) }' "$tmp/ch_curve.csv" &&
+    ok || bad "curve and history after a failed impact: exit $rc: $(tail -1 "$tmp/err")"
+"$ct" run "$def" --set surface.depth=5 --set impact.V_star=1 --set solver.on_error=skip --set output.what=curve \
+    -o "$tmp/c0.csv" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && [ "$(wc -l <"$tmp/c0.csv")" -eq 1 ] && grep -q "curve: no impact computed: the header only" "$tmp/err" &&
+    ok || bad "a curve of no impact: exit $rc, no note: $(cat "$tmp/err")"
+# an ensemble whose deterministic reference fails at a speed: its empty field is said
+"$ct" run "$tmp/r.ini" --set solver.on_error=skip --set impact.V_star=1e-3,1.2 \
+    --set output.what=ensemble -o "$tmp/ens.csv" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && grep -q "e_deterministic empty in 1 of 2 rows" "$tmp/err" && ok ||
+    bad "an empty e_deterministic not said: exit $rc: $(cat "$tmp/err")"
+
 # 7. signals: every signal whose default action ends the process removes the temporary file
 # (SIGQUIT, SIGXCPU, SIGUSR1, ... left 204 MB); SIGXFSZ (ulimit -f) is ignored: the write fails,
 # exit 2 with one line, no file

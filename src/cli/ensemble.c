@@ -286,13 +286,18 @@ static int write_outputs(outputs *o, const ct_scene *sc, const table *t, int qui
         write_realisations(o->real.f, sc, t);
     }
     double sem_max = NAN;
-    size_t at = 0;
+    size_t at = 0, det_empty = 0;
+    char det_why[300] = "";
     if (o->opened_ens) {
         double *e_det = malloc(t->nrows * sizeof(double));
         int st = e_det ? deterministic_e(sc, e_det) : CT_ENOMEM;
-        if (e_det && st) /* the reference failed as a whole: its column stays empty */
+        if (e_det && st) { /* the reference failed as a whole: its column stays empty */
+            snprintf(det_why, sizeof det_why, "%s", ct_error_message());
             for (size_t q = 0; q < t->nrows; q++)
                 e_det[q] = NAN;
+        }
+        for (size_t q = 0; e_det && q < t->nrows; q++)
+            det_empty += isnan(e_det[q]);
         write_ensemble_header(o->ens.f);
         st = e_det ? write_ensemble(o->ens.f, sc, t, e_det, &sem_max, &at) : CT_ENOMEM;
         free(e_det);
@@ -340,6 +345,13 @@ static int write_outputs(outputs *o, const ct_scene *sc, const table *t, int qui
                     "cantact: %zu of %zu impacts failed or not run (left out of the "
                     "statistics)\n",
                     failed, (size_t)t->count * t->nrows);
+        if (det_why[0])
+            fprintf(stderr, "cantact: ensemble: e_deterministic left empty: %s\n", det_why);
+        else if (det_empty)
+            fprintf(stderr,
+                    "cantact: ensemble: e_deterministic empty in %zu of %zu rows (the "
+                    "deterministic surface's impact failed or was not run)\n",
+                    det_empty, t->nrows);
     }
     return EXIT_DONE;
 }
