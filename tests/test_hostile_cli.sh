@@ -595,5 +595,37 @@ rc=$?
 [ $rc -eq 0 ] && [ ${#deep} -eq 4095 ] && [ "$(wc -l <"$deep")" -eq 2 ] && [ "$(ls -A "$(dirname "$deep")" | wc -l)" -eq 1 ] &&
     ok || bad "a ${#deep}-byte path: exit $rc: $(cat "$tmp/err")"
 
+# 13. merge: a file that is no part says so (the scene gave "40.45 realisations"); a part
+# after a UTF-8 byte order mark merges to the same bytes; UTF-16, a directory, a NUL byte are
+# named; a part of another scene shows where its identity differs
+refused "merge of the scene as a part" "r.ini: not a part of an ensemble run" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/r.ini" "$tmp/p1.csv" -o "$tmp/x.csv"
+printf '\xef\xbb\xbf' | cat - "$tmp/p0.csv" >"$tmp/bom.csv"
+"$ct" merge -q "$tmp/r.ini" "$tmp/bom.csv" "$tmp/p1.csv" -o "$tmp/m3.csv" 2>"$tmp/err" &&
+    cmp -s "$tmp/m3.csv" "$tmp/whole.csv" && ok || bad "a part after a BOM: $(cat "$tmp/err")"
+/usr/bin/python3 -c "import sys; open(sys.argv[1], 'w', encoding='utf-16').write(open(sys.argv[2]).read())" \
+    "$tmp/u16.csv" "$tmp/p0.csv"
+refused "merge of a UTF-16 part" "u16.csv: UTF-16 text" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/u16.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+refused "merge of a directory" "race: cannot read: Is a directory" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/race" "$tmp/p1.csv" -o "$tmp/x.csv"
+(head -2 "$tmp/p0.csv"; printf '0,1,0.001\0,1,2\n'; tail -n +4 "$tmp/p0.csv") >"$tmp/nul.csv"
+refused "merge of a part with a NUL byte" "nul.csv:3: a NUL byte" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/nul.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+refused "merge of a part of seed 2" "seed 2, realisation 0, sp...', expected '...th 4, 31 rods, seed 1" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/s2.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+# empty lines at the end of a part (an editor's) are harmless; one among the rows is named; a
+# part cut short is not "4.5 realisations"
+(cat "$tmp/p0.csv"; printf '\n\r\n') >"$tmp/blank.csv"
+"$ct" merge -q "$tmp/r.ini" "$tmp/blank.csv" "$tmp/p1.csv" -o "$tmp/m4.csv" 2>"$tmp/err" &&
+    cmp -s "$tmp/m4.csv" "$tmp/whole.csv" && ok || bad "a part with empty lines at its end: $(cat "$tmp/err")"
+(head -4 "$tmp/p0.csv"; echo; tail -n +5 "$tmp/p0.csv") >"$tmp/blank_in.csv"
+refused "merge of a part with an empty line among its rows" "blank_in.csv:5: an empty line among the rows" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/blank_in.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+head -5 "$tmp/p0.csv" >"$tmp/short.csv"
+refused "merge of a part cut short" "the parts hold 7 rows, not whole realisations of 2 rows" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/short.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+[ -e "$tmp/x.csv" ] && bad "a refused merge wrote its output" || ok
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]
