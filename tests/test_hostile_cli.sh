@@ -446,5 +446,186 @@ printf '[surface]\ntype = profile\nfile = span.txt\nunit = m\nH = 10\ndetrend = 
 refused "heights spanning beyond doubles" "span.txt: the heights span more than doubles hold" -- \
     "$ct" run -q "$tmp/span.ini"
 
+# hostile pass, round five
+# 1. after a failed impact (solver.on_error = skip) every output says what it holds: the
+# profile shows the last state computed of the last speed (it was 0 bytes, exit 0), the curve
+# and history hold the impacts computed, each said in a note. Default scene at depth 5: its 63
+# pieces (2^6 - 1); V* = 1 crushes the layer at impact 1, so the last speed's surface is the
+# virgin one (residual top = top on every piece), on every path
+for path in curve lean rods auto; do
+    "$ct" run "$def" --set surface.depth=5 --set impact.V_star=1e-3,1 --set solver.on_error=skip \
+        --set output.what=e,profile --set solver.path=$path -o "$tmp/cp.csv" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && head -1 "$tmp/cp_profile.csv" | grep -qx 'stage,x_left_over_l0,x_right_over_l0,top_over_h0,residual_top_over_h0' &&
+        awk -F, 'NR > 1 { n++; ok = ok && $4 == $5 } NR == 1 { ok = 1 } END { exit !(ok && n == 63) }' "$tmp/cp_profile.csv" &&
+        grep -q "profile: the surface before any impact (impact 1 of V\* = 1, the last speed, failed)" "$tmp/err" &&
+        ok || bad "path $path: a failed last impact: exit $rc, profile of $(wc -l <"$tmp/cp_profile.csv") lines: $(tail -1 "$tmp/err")"
+done
+# one rod (top 0, area l0, L = H* = 10 h0, eps_y = 1/500) struck three times at V* = 0.03:
+# W = V*^2 E l0 h0 = 4.5; the rod yields at u = eps_y L = 0.02 with 0.01 stored, so
+# u1 = 0.02 + 4.49 = 4.51, the second impact reloads elastically (0.01) then u2 = u1 + 4.49 =
+# 9.0, and the third would reach 13.49 > H* = 10 (crushed). The profile is the rod after
+# impact 2: residual top u2 - eps_y L = 8.98, 0.898 h0
+printf '[surface]\ntype = rods\nrods = 0:1\nHstar = 10\n[material]\nE = 500\nsigma_y = 1\n[impact]\nV_star = 0.03\nimpacts = 3\n[solver]\non_error = skip\n[output]\nwhat = e,profile\n' >"$tmp/rod3.ini"
+for path in curve lean rods auto; do
+    "$ct" run "$tmp/rod3.ini" --set solver.path=$path -o "$tmp/rod3.csv" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && awk -F, 'NR == 2 { r = $5 } END { exit !(NR == 2 && r - 0.898 < 1e-12 && 0.898 - r < 1e-12) }' "$tmp/rod3_profile.csv" &&
+        grep -q "profile: the surface after impact 2 of V\* = 0.03, the last computed (impact 3 failed)" "$tmp/err" &&
+        ok || bad "path $path: one rod after 2 of 3 impacts: exit $rc: $(cat "$tmp/rod3_profile.csv") $(tail -1 "$tmp/err")"
+done
+# the curve and history hold the impacts computed (V* = 1e-3's), and say so; none computed:
+# the header only, said
+"$ct" run "$def" --set surface.depth=5 --set impact.V_star=1e-3,1 --set solver.on_error=skip \
+    --set output.what=e,curve,history -o "$tmp/ch.csv" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && grep -q "curve, history: rows of the computed impacts only (1 of 2)" "$tmp/err" &&
+    awk -F, 'NR > 1 { n++; ok = ok && $1 == 0.001 } NR == 1 { ok = 1 } END { exit !(ok && n > 0) }' "$tmp/ch_curve.csv" &&
+    ok || bad "curve and history after a failed impact: exit $rc: $(tail -1 "$tmp/err")"
+"$ct" run "$def" --set surface.depth=5 --set impact.V_star=1 --set solver.on_error=skip --set output.what=curve \
+    -o "$tmp/c0.csv" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && [ "$(wc -l <"$tmp/c0.csv")" -eq 1 ] && grep -q "curve: no impact computed: the header only" "$tmp/err" &&
+    ok || bad "a curve of no impact: exit $rc, no note: $(cat "$tmp/err")"
+# an ensemble whose deterministic reference fails at a speed: its empty field is said
+"$ct" run "$tmp/r.ini" --set solver.on_error=skip --set impact.V_star=1e-3,1.2 \
+    --set output.what=ensemble -o "$tmp/ens.csv" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && grep -q "e_deterministic empty in 1 of 2 rows" "$tmp/err" && ok ||
+    bad "an empty e_deterministic not said: exit $rc: $(cat "$tmp/err")"
+
+# 7. signals: every signal whose default action ends the process removes the temporary file
+# (SIGQUIT, SIGXCPU, SIGUSR1, ... left 204 MB); SIGXFSZ (ulimit -f) is ignored: the write fails,
+# exit 2 with one line, no file
+printf '[surface]\nfx = 1.5\nfz = 1.3\nH = 10\ndepth = fractal\n[material]\nE = 500\n[impact]\nV_star = 1e-4:1e-2:1000000:log\nimpacts = 4\n' >"$tmp/long.ini"
+mkdir "$tmp/sig"
+# a background job of a script starts with SIGINT and SIGQUIT ignored: env restores them
+defaults=()
+env --default-signal true 2>/dev/null && defaults=(env --default-signal)
+for sig in QUIT XCPU USR1 USR2 ALRM PIPE VTALRM PROF; do
+    [ $sig = QUIT ] && [ ${#defaults[@]} -eq 0 ] && continue
+    "${defaults[@]}" "$ct" run -q "$tmp/long.ini" -o "$tmp/sig/k.csv" &
+    pid=$!
+    for i in $(seq 1 200); do
+        ls "$tmp/sig" | grep -q 'k.csv.tmp' && break
+        sleep 0.05
+    done
+    kill -$sig $pid
+    wait $pid
+    rc=$?
+    [ $rc -eq $((128 + $(kill -l $sig))) ] && [ -z "$(ls -A "$tmp/sig")" ] && ok ||
+        bad "SIG$sig: exit $rc, left: $(ls -A "$tmp/sig")"
+    rm -f "$tmp/sig/"*
+done
+(
+    ulimit -f 200
+    "$ct" run -q "$def" --set impact.V_star=1e-5:1e-2:20000:log -o "$tmp/sig/big.csv"
+) 2>"$tmp/err"
+rc=$?
+[ $rc -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "big.csv: cannot write: File too large" "$tmp/err" &&
+    [ -z "$(ls -A "$tmp/sig")" ] && ok || bad "ulimit -f: exit $rc: $(cat "$tmp/err"); left: $(ls -A "$tmp/sig")"
+(
+    ulimit -f 200
+    "$ct" run -q "$def" --set impact.V_star=1e-5:1e-2:20000:log >/dev/null
+) 2>"$tmp/err"
+rc=$?
+[ $rc -eq 2 ] && grep -qx "cantact: standard output: cannot write: File too large" "$tmp/err" && ok ||
+    bad "ulimit -f to standard output: exit $rc: $(cat "$tmp/err")"
+
+# 8. all outputs land or none, even when a target changes during the run: the profile goes to
+# a FIFO, which holds the run at its commit until read; meanwhile out_curve.csv becomes a
+# directory, or its temporary file is removed. out.csv (written first) keeps its bytes.
+mkdir "$tmp/race"
+for how in directory removed; do
+    rm -rf "$tmp/race/"*
+    echo "a good old table" >"$tmp/race/out.csv"
+    cp "$tmp/race/out.csv" "$tmp/good.csv"
+    [ $how = removed ] && echo "a good old curve" >"$tmp/race/out_curve.csv"
+    mkfifo "$tmp/race/out_profile.csv"
+    "$ct" run -q "$def" --set surface.depth=5 --set impact.V_star=1e-3 \
+        --set output.what=e,curve,profile -o "$tmp/race/out.csv" 2>"$tmp/err" &
+    pid=$!
+    for i in $(seq 1 200); do
+        [ "$(ls "$tmp/race" | grep -c '\.tmp')" -ge 2 ] && break
+        sleep 0.05
+    done
+    if [ $how = directory ]; then
+        rm -f "$tmp/race/out_curve.csv"
+        mkdir "$tmp/race/out_curve.csv"
+    else
+        rm -f "$tmp/race/out_curve.csv.tmp"*
+    fi
+    cat "$tmp/race/out_profile.csv" >/dev/null
+    wait $pid
+    rc=$?
+    left=$(ls -A "$tmp/race" | tr '\n' ' ')
+    [ $rc -eq 2 ] && [ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "out_curve.csv: cannot write" "$tmp/err" &&
+        cmp -s "$tmp/race/out.csv" "$tmp/good.csv" &&
+        [ "$left" = "out.csv out_curve.csv out_profile.csv " ] && ok ||
+        bad "out_curve.csv $how during the run: exit $rc: $(cat "$tmp/err"); out.csv: $(head -c 80 "$tmp/race/out.csv"); left: $left"
+done
+
+# 10. a legal name is written: 255 bytes (its temporary name beside it passed 255), also
+# cut between UTF-8 characters (2-byte é), and derived outputs replaced (their backups too)
+mkdir "$tmp/names"
+n255=$(printf 'a%.0s' $(seq 1 251)).csv
+nutf=$(printf 'é%.0s' $(seq 1 125)).csv
+n245=$(printf 'b%.0s' $(seq 1 241)).csv
+for name in "$n255" "$nutf"; do
+    "$ct" run -q "$def" --set impact.V_star=1e-3,1e-2 -o "$tmp/names/$name" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && [ "$(wc -l <"$tmp/names/$name")" -eq 3 ] && [ "$(ls -A "$tmp/names" | wc -l)" -eq 1 ] &&
+        ok || bad "a $(printf %s "$name" | wc -c)-byte name: exit $rc: $(cat "$tmp/err")"
+    rm -f "$tmp/names/"*
+done
+for round in new replaced; do
+    "$ct" run -q "$def" --set impact.V_star=1e-3,1e-2 --set output.what=e,curve -o "$tmp/names/$n245" 2>"$tmp/err"
+    rc=$?
+    [ $rc -eq 0 ] && [ "$(ls -A "$tmp/names" | wc -l)" -eq 2 ] && ok ||
+        bad "a 245-byte name with its _curve ($round): exit $rc: $(cat "$tmp/err"); $(ls -A "$tmp/names" | wc -l) files"
+done
+# a path of 4095 bytes (PATH_MAX less its NUL) whose name is short: its temporary name was
+# over PATH_MAX
+deep=$tmp/names
+while [ $((${#deep} + 251)) -lt 4070 ]; do deep=$deep/$(printf 'd%.0s' $(seq 1 250)); done
+mkdir -p "$deep"
+deep=$deep/$(printf 'x%.0s' $(seq 1 $((4095 - ${#deep} - 5)))).csv
+"$ct" run -q "$def" --set impact.V_star=1e-3 -o "$deep" 2>"$tmp/err"
+rc=$?
+[ $rc -eq 0 ] && [ ${#deep} -eq 4095 ] && [ "$(wc -l <"$deep")" -eq 2 ] && [ "$(ls -A "$(dirname "$deep")" | wc -l)" -eq 1 ] &&
+    ok || bad "a ${#deep}-byte path: exit $rc: $(cat "$tmp/err")"
+
+# 13. merge: a file that is no part says so (the scene gave "40.45 realisations"); a part
+# after a UTF-8 byte order mark merges to the same bytes; UTF-16, a directory, a NUL byte are
+# named; a part of another scene shows where its identity differs
+refused "merge of the scene as a part" "r.ini: not a part of an ensemble run" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/r.ini" "$tmp/p1.csv" -o "$tmp/x.csv"
+printf '\xef\xbb\xbf' | cat - "$tmp/p0.csv" >"$tmp/bom.csv"
+"$ct" merge -q "$tmp/r.ini" "$tmp/bom.csv" "$tmp/p1.csv" -o "$tmp/m3.csv" 2>"$tmp/err" &&
+    cmp -s "$tmp/m3.csv" "$tmp/whole.csv" && ok || bad "a part after a BOM: $(cat "$tmp/err")"
+/usr/bin/python3 -c "import sys; open(sys.argv[1], 'w', encoding='utf-16').write(open(sys.argv[2]).read())" \
+    "$tmp/u16.csv" "$tmp/p0.csv"
+refused "merge of a UTF-16 part" "u16.csv: UTF-16 text" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/u16.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+refused "merge of a directory" "race: cannot read: Is a directory" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/race" "$tmp/p1.csv" -o "$tmp/x.csv"
+(head -2 "$tmp/p0.csv"; printf '0,1,0.001\0,1,2\n'; tail -n +4 "$tmp/p0.csv") >"$tmp/nul.csv"
+refused "merge of a part with a NUL byte" "nul.csv:3: a NUL byte" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/nul.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+refused "merge of a part of seed 2" "seed 2, realisation 0, sp...', expected '...th 4, 31 rods, seed 1" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/s2.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+# empty lines at the end of a part (an editor's) are harmless; one among the rows is named; a
+# part cut short is not "4.5 realisations"
+(cat "$tmp/p0.csv"; printf '\n\r\n') >"$tmp/blank.csv"
+"$ct" merge -q "$tmp/r.ini" "$tmp/blank.csv" "$tmp/p1.csv" -o "$tmp/m4.csv" 2>"$tmp/err" &&
+    cmp -s "$tmp/m4.csv" "$tmp/whole.csv" && ok || bad "a part with empty lines at its end: $(cat "$tmp/err")"
+(head -4 "$tmp/p0.csv"; echo; tail -n +5 "$tmp/p0.csv") >"$tmp/blank_in.csv"
+refused "merge of a part with an empty line among its rows" "blank_in.csv:5: an empty line among the rows" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/blank_in.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+head -5 "$tmp/p0.csv" >"$tmp/short.csv"
+refused "merge of a part cut short" "the parts hold 7 rows, not whole realisations of 2 rows" -- \
+    "$ct" merge -q "$tmp/r.ini" "$tmp/short.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
+[ -e "$tmp/x.csv" ] && bad "a refused merge wrote its output" || ok
+
 echo "hostile-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

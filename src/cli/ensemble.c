@@ -286,13 +286,18 @@ static int write_outputs(outputs *o, const ct_scene *sc, const table *t, int qui
         write_realisations(o->real.f, sc, t);
     }
     double sem_max = NAN;
-    size_t at = 0;
+    size_t at = 0, det_empty = 0;
+    char det_why[300] = "";
     if (o->opened_ens) {
         double *e_det = malloc(t->nrows * sizeof(double));
         int st = e_det ? deterministic_e(sc, e_det) : CT_ENOMEM;
-        if (e_det && st) /* the reference failed as a whole: its column stays empty */
+        if (e_det && st) { /* the reference failed as a whole: its column stays empty */
+            snprintf(det_why, sizeof det_why, "%s", ct_error_message());
             for (size_t q = 0; q < t->nrows; q++)
                 e_det[q] = NAN;
+        }
+        for (size_t q = 0; e_det && q < t->nrows; q++)
+            det_empty += isnan(e_det[q]);
         write_ensemble_header(o->ens.f);
         st = e_det ? write_ensemble(o->ens.f, sc, t, e_det, &sem_max, &at) : CT_ENOMEM;
         free(e_det);
@@ -340,6 +345,13 @@ static int write_outputs(outputs *o, const ct_scene *sc, const table *t, int qui
                     "cantact: %zu of %zu impacts failed or not run (left out of the "
                     "statistics)\n",
                     failed, (size_t)t->count * t->nrows);
+        if (det_why[0])
+            fprintf(stderr, "cantact: ensemble: e_deterministic left empty: %s\n", det_why);
+        else if (det_empty)
+            fprintf(stderr,
+                    "cantact: ensemble: e_deterministic empty in %zu of %zu rows (the "
+                    "deterministic surface's impact failed or was not run)\n",
+                    det_empty, t->nrows);
     }
     return EXIT_DONE;
 }
@@ -591,20 +603,113 @@ static int read_u64(const char *s, uint64_t *x)
 /* A row of a realisations CSV is a few numbers and an error message: longer is no part. */
 #define PART_LINE_MAX 4096
 
-/* The next line of f into buf without its line end (\n or \r\n): 1, 0 at the end, -1 when
- * longer than PART_LINE_MAX (the rest of it is not read). */
+/* The next line of f into buf (PART_LINE_MAX + 1 bytes) without its line end (\n or \r\n):
+ * 1, 0 at the end, -1 when longer than PART_LINE_MAX (the rest of it is not read), -2 at a
+ * NUL byte (no text cantact writes has one; read as a string, the line would end there). */
 static int part_line(FILE *f, char *buf)
 {
-    if (!fgets(buf, PART_LINE_MAX + 2, f))
+    size_t n = 0;
+    int c;
+    while ((c = getc_unlocked(f)) != EOF && c != '\n') {
+        if (c == '\0') {
+            buf[n] = '\0';
+            return -2;
+        }
+        if (n == PART_LINE_MAX)
+            return -1;
+        buf[n++] = (char)c;
+    }
+    if (c == EOF && n == 0)
         return 0;
-    size_t n = strlen(buf);
-    if (n > PART_LINE_MAX)
-        return -1;
-    if (n && buf[n - 1] == '\n')
-        buf[--n] = '\0';
     if (n && buf[n - 1] == '\r')
-        buf[--n] = '\0';
+        n--;
+    buf[n] = '\0';
     return 1;
+}
+
+/* The identity line of a part begins so (identity()). */
+#define PART_ID_HEAD "# realisations of surface = "
+
+/* Up to 40 bytes of s from byte `from` on, for a message: bytes a terminal does not show
+ * (a BOM, a tab, control characters) as \xHH, "..." where cut. */
+static void excerpt(char *buf, size_t len, const char *s, size_t from)
+{
+    size_t n = 0, k = 0;
+    if (from > 0)
+        n += (size_t)snprintf(buf, len, "...");
+    for (; s[from + k] && k < 40 && n + 8 < len; k++) {
+        const unsigned char c = (unsigned char)s[from + k];
+        n += (size_t)snprintf(buf + n, len - n, c >= 0x20 && c < 0x7f ? "%c" : "\\x%02X", c);
+    }
+    if (s[from + k] && n + 4 < len)
+        snprintf(buf + n, len - n, "...");
+    else if (n == 0 && len)
+        buf[0] = '\0';
+}
+
+/* A line that is not the expected one, in one line: where they part and what follows in
+ * each (two texts that look alike, or differ past what a message shows, are told apart). */
+static void mismatch(char *err, size_t errlen, const char *where, const char *what,
+                     const char *line, const char *want)
+{
+    size_t at = 0;
+    while (line[at] && line[at] == want[at])
+        at++;
+    const size_t from = at > 20 ? at - 20 : 0;
+    char got[150], exp[150];
+    excerpt(got, sizeof got, line, from);
+    excerpt(exp, sizeof exp, want, from);
+    snprintf(err, errlen, "%.160s: %.60s: from byte %zu it says '%s', expected '%s'", where, what,
+             at + 1, got, exp);
+}
+
+/* Reads and checks a part's first two lines (into line): this scene's identity, after a
+ * UTF-8 byte order mark if one comes first (an editor's), then the header. 0, or -1 with
+ * the message in err. */
+static int part_head(FILE *f, const char *path, const ct_scene *sc, char *line, char *err,
+                     size_t errlen)
+{
+    char id[800], where[300];
+    identity(sc, id, sizeof id);
+    for (long lineno = 1; lineno <= 2; lineno++) {
+        const int got = part_line(f, line);
+        snprintf(where, sizeof where, "%s:%ld", path, lineno);
+        if (got == 0 && ferror(f))
+            snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
+        else if (got == 0)
+            snprintf(err, errlen, "%s: %s: not a realisations CSV", path,
+                     lineno == 1 ? "empty" : "no header");
+        else if (got == -1)
+            snprintf(err, errlen, "%s: a line longer than %d bytes: not a realisations CSV", where,
+                     PART_LINE_MAX);
+        else if (got == -2 && lineno == 1 &&
+                 ((line[0] == '\xFF' && line[1] == '\xFE') ||
+                  (line[0] == '\xFE' && line[1] == '\xFF')))
+            snprintf(err, errlen, "%s: UTF-16 text: a part is the UTF-8 that cantact writes", path);
+        else if (got == -2)
+            snprintf(err, errlen, "%s: a NUL byte: not a realisations CSV", where);
+        if (got <= 0)
+            return -1;
+        const char *text = line;
+        if (lineno == 1 && !strncmp(text, "\xEF\xBB\xBF", 3))
+            text += 3;
+        if (lineno == 1 && !strcmp(text, id))
+            continue;
+        if (lineno == 2 && !strcmp(text, realisations_header(sc->skip_failed)))
+            return 0;
+        if (lineno == 1 && strncmp(text, PART_ID_HEAD, strlen(PART_ID_HEAD)))
+            snprintf(err, errlen,
+                     "%s: not a part of an ensemble run (its first line is not '" PART_ID_HEAD
+                     "...', which cantact run --realisations a:b writes first)",
+                     path);
+        else if (lineno == 1)
+            mismatch(err, errlen, where, "not a part of this scene", text, id);
+        else
+            mismatch(err, errlen, where, "not a realisations CSV of this scene", text,
+                     realisations_header(sc->skip_failed));
+        return -1;
+    }
+    return 0;
 }
 
 /* The values of one row as the run would have written them: e in [0, 1], u_max and V*_c
@@ -635,20 +740,43 @@ static const char *row_values(const ct_scene *sc, double u, double e, double vc,
     return NULL;
 }
 
-/* The data rows of a part (its lines after the identity and the header), -1 when it cannot
- * be read or a line is too long (the reading that follows says why). */
-static long long part_rows(const char *path)
+/* The data rows of a part (its lines after the identity and the header), its head checked:
+ * -1 with the message in err when it is no part of this scene, cannot be read or has a line
+ * that no part has (too long, a NUL byte). */
+static long long part_rows(const char *path, const ct_scene *sc, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
-    char *line = malloc(PART_LINE_MAX + 2);
-    long long n = -2;
-    int got = 1;
-    while (f && line && (got = part_line(f, line)) > 0)
-        n++;
-    if (f)
-        fclose(f);
+    if (!f) {
+        snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
+        return -1;
+    }
+    char *line = malloc(PART_LINE_MAX + 1);
+    long long n = -1,
+              blank = 0; /* empty lines: harmless at the end (an editor's), not among rows */
+    int got = 0;
+    if (!line)
+        snprintf(err, errlen, "out of memory");
+    else if (!part_head(f, path, sc, line, err, errlen)) {
+        n = 0;
+        while ((got = part_line(f, line)) > 0 && !(line[0] && blank))
+            line[0] ? n++ : blank++;
+        const long long lineno = n + blank + 3;
+        if (got > 0)
+            snprintf(err, errlen, "%s:%lld: an empty line among the rows: not a realisations CSV",
+                     path, lineno - 1);
+        else if (got == -1)
+            snprintf(err, errlen, "%s:%lld: a line longer than %d bytes: not a realisations CSV",
+                     path, lineno, PART_LINE_MAX);
+        else if (got == -2)
+            snprintf(err, errlen, "%s:%lld: a NUL byte: not a realisations CSV", path, lineno);
+        else if (ferror(f))
+            snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
+        if (got != 0 || ferror(f))
+            n = -1;
+    }
+    fclose(f);
     free(line);
-    return !f || !line || got < 0 ? -1 : n < 0 ? 0 : n;
+    return n;
 }
 
 /* Reads one part into t; seen[r] marks the realisations read. Returns 0 or -1 (err set). */
@@ -662,9 +790,8 @@ static int read_part(const char *path, const ct_scene *sc, table *t, unsigned ch
     }
     const size_t impacts = (size_t)sc->impacts, nrows = t->nrows;
     const int nf = sc->skip_failed ? 9 : 8;
-    char *line = malloc(PART_LINE_MAX + 2), id[800];
-    identity(sc, id, sizeof id);
-    long lineno = 0;
+    char *line = malloc(PART_LINE_MAX + 1);
+    long lineno = 2;
     int rc = -1, got;
     uint64_t r_cur = UINT64_MAX;
     size_t q_next = 0;
@@ -672,32 +799,20 @@ static int read_part(const char *path, const ct_scene *sc, table *t, unsigned ch
         snprintf(err, errlen, "out of memory");
         goto done;
     }
+    if (part_head(f, path, sc, line, err, errlen))
+        goto done;
     while ((got = part_line(f, line)) != 0) {
         lineno++;
         if (got < 0) {
-            snprintf(err, errlen, "%s:%ld: a line longer than %d bytes: not a realisations CSV",
-                     path, lineno, PART_LINE_MAX);
+            if (got == -1)
+                snprintf(err, errlen, "%s:%ld: a line longer than %d bytes: not a realisations CSV",
+                         path, lineno, PART_LINE_MAX);
+            else
+                snprintf(err, errlen, "%s:%ld: a NUL byte: not a realisations CSV", path, lineno);
             goto done;
         }
-        if (lineno == 1) {
-            if (strcmp(line, id)) {
-                snprintf(err, errlen,
-                         "%s:1: not a part of this scene: it says '%.200s', the scene '%.200s'",
-                         path, line, id);
-                goto done;
-            }
+        if (!line[0]) /* at the end: part_rows refused one among the rows */
             continue;
-        }
-        if (lineno == 2) {
-            if (strcmp(line, realisations_header(sc->skip_failed))) {
-                snprintf(err, errlen,
-                         "%s:2: not a realisations CSV of this scene (header '%.80s'; expected "
-                         "'%s')",
-                         path, line, realisations_header(sc->skip_failed));
-                goto done;
-            }
-            continue;
-        }
         char *fields[9];
         uint64_t r, impact, cx, cz;
         double V, u, e, vc;
@@ -754,11 +869,6 @@ static int read_part(const char *path, const ct_scene *sc, table *t, unsigned ch
             goto done;
         }
     }
-    if (lineno < 2) {
-        snprintf(err, errlen, "%s: %s: not a realisations CSV", path,
-                 lineno ? "no header" : "empty");
-        goto done;
-    }
     if (r_cur != UINT64_MAX && q_next != nrows) {
         snprintf(err, errlen, "%s: realisation %llu has %zu rows, the scene %zu", path,
                  (unsigned long long)r_cur, q_next, nrows);
@@ -813,15 +923,28 @@ int ct_cli_merge(int argc, char **argv)
     const size_t nrows = sc.nvel * (size_t)sc.impacts;
     /* the table is sized by what the parts hold: they must hold every realisation once */
     long long rows = 0;
-    for (size_t p = 1; p < a.npos && rows >= 0; p++) {
-        long long n = part_rows(a.positional[p]);
-        rows = n < 0 ? -1 : rows + n;
+    for (size_t p = 1; p < a.npos; p++) {
+        long long n = part_rows(a.positional[p], &sc, err, sizeof err);
+        if (n < 0) {
+            fail_line(err);
+            goto done;
+        }
+        rows += n;
     }
-    if (rows >= 0 && (unsigned long long)rows != (unsigned long long)sc.realisations * nrows) {
-        snprintf(err, sizeof err,
-                 "merge: the parts hold %lld rows, %.6g realisations of %zu rows; the scene has "
-                 "ensemble.realisations = %llu (every realisation must be in exactly one part)",
-                 rows, (double)rows / (double)nrows, nrows, (unsigned long long)sc.realisations);
+    if ((unsigned long long)rows != (unsigned long long)sc.realisations * nrows) {
+        if (rows % (long long)nrows == 0)
+            snprintf(err, sizeof err,
+                     "merge: the parts hold %lld rows, %lld realisations of %zu rows; the scene "
+                     "has ensemble.realisations = %llu (every realisation must be in exactly one "
+                     "part)",
+                     rows, rows / (long long)nrows, nrows, (unsigned long long)sc.realisations);
+        else
+            snprintf(err, sizeof err,
+                     "merge: the parts hold %lld rows, not whole realisations of %zu rows (the "
+                     "scene's %zu speeds x %ld impacts); ensemble.realisations = %llu needs %llu "
+                     "(every realisation must be in exactly one part)",
+                     rows, nrows, sc.nvel, sc.impacts, (unsigned long long)sc.realisations,
+                     (unsigned long long)sc.realisations * nrows);
         fail_line(err);
         goto done;
     }

@@ -28,12 +28,54 @@ static void on_signal(int sig)
 {
     remove_live();
     signal(sig, SIG_DFL);
-    raise(sig);
+    raise(sig); /* delivered when the handler returns (a fault: when it recurs), by default */
 }
 
-/* The handlers, once: SIGINT, SIGTERM, SIGHUP unlink what is live, then die of the signal as
- * before; exit() (also libgomp's, when it cannot create a thread) unlinks it too. Signals the
- * caller ignores stay ignored. */
+/* Every signal whose default action ends the process (SIGKILL and SIGSTOP aside, which no
+ * handler sees), the real-time ones too; SIGXFSZ is not among them: it is ignored instead. */
+static const int fatal_signals[] = {
+    SIGHUP,    SIGINT,  SIGQUIT, SIGILL,  SIGTRAP, SIGABRT, SIGBUS, SIGFPE,    SIGSEGV,
+    SIGUSR1,   SIGUSR2, SIGPIPE, SIGALRM, SIGTERM, SIGXCPU, SIGSYS, SIGVTALRM, SIGPROF,
+#ifdef SIGSTKFLT
+    SIGSTKFLT,
+#endif
+#ifdef SIGIO
+    SIGIO,
+#endif
+#ifdef SIGPWR
+    SIGPWR,
+#endif
+#ifdef SIGEMT
+    SIGEMT,
+#endif
+#ifdef SIGLOST
+    SIGLOST,
+#endif
+};
+#define NFATAL (sizeof fatal_signals / sizeof fatal_signals[0])
+
+/* The signals the handler was installed for (those at their default action then). */
+static sigset_t handled;
+
+static void handle(int sig)
+{
+    struct sigaction old, sa;
+    /* ignored, or handled by someone else (a sanitizer, an MPI runtime): left as it is */
+    if (sigaction(sig, NULL, &old) != 0 || (old.sa_flags & SA_SIGINFO) || old.sa_handler != SIG_DFL)
+        return;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    if (sigaction(sig, &sa, NULL) == 0)
+        sigaddset(&handled, sig);
+}
+
+/* The handlers, once, before the first output is opened: every signal that would end the
+ * process at its default action unlinks what is live, then ends it as before (a killed run
+ * leaves no temporary file); exit() (also libgomp's, when it cannot create a thread) unlinks
+ * it too. SIGXFSZ (a file beyond ulimit -f) is ignored, so that the write fails with EFBIG and
+ * the run says so (exit 2) rather than die without a word. Signals the caller ignores stay
+ * ignored. */
 static void install_cleanup(void)
 {
     static int done;
@@ -41,21 +83,34 @@ static void install_cleanup(void)
         return;
     done = 1;
     atexit(remove_live);
-    const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
-    for (int k = 0; k < 3; k++) {
-        struct sigaction old, sa;
-        if (sigaction(sigs[k], NULL, &old) == 0 && old.sa_handler == SIG_IGN)
-            continue;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sigaction(sigs[k], &sa, NULL);
-    }
+    sigemptyset(&handled);
+    for (size_t k = 0; k < NFATAL; k++)
+        handle(fatal_signals[k]);
+#if defined(SIGRTMIN) && defined(SIGRTMAX)
+    for (int sig = SIGRTMIN; sig <= SIGRTMAX; sig++)
+        handle(sig);
+#endif
+    struct sigaction old;
+    if (sigaction(SIGXFSZ, NULL, &old) == 0 && !(old.sa_flags & SA_SIGINFO) &&
+        old.sa_handler == SIG_DFL)
+        signal(SIGXFSZ, SIG_IGN);
+}
+
+/* Holds the handled signals back while files are created or renamed, so that a signal
+ * between two steps (a temporary file made but not yet registered, one output renamed and
+ * the next not) finds everything either before or after: delivered at release. */
+static void hold_signals(sigset_t *old)
+{
+    sigprocmask(SIG_BLOCK, &handled, old);
+}
+
+static void release_signals(const sigset_t *old)
+{
+    sigprocmask(SIG_SETMASK, old, NULL);
 }
 
 static void live_add(char *path)
 {
-    install_cleanup();
     for (int k = 0; k < CT_MAX_LIVE; k++)
         if (!live[k]) {
             live[k] = path;
@@ -127,6 +182,41 @@ static void big_buffer(ct_out *o)
     }
 }
 
+/* A name for mkstemp in path's directory (a rename stays in one filesystem): path's own name,
+ * cut where needed so that with `tag` and six random characters it stays within the
+ * directory's longest name (a 250-byte name has room for the output but not for
+ * NAME.tmpXXXXXX) and the whole within PATH_MAX, never inside a UTF-8 character. malloc'ed;
+ * NULL when out of memory. */
+static char *name_beside(const char *path, const char *tag)
+{
+    const char *slash = strrchr(path, '/');
+    const size_t dirlen = slash ? (size_t)(slash - path) + 1 : 0, tail = strlen(tag) + 6;
+    const char *base = path + dirlen;
+    char *dir = dirlen ? strndup(path, dirlen) : strdup(".");
+    if (!dir)
+        return NULL;
+    long name_max = 255;
+    errno = 0;
+    const long m = pathconf(dir, _PC_NAME_MAX);
+    free(dir);
+    if (m > (long)tail && m < name_max)
+        name_max = m;
+    /* and the whole path within PATH_MAX (a legal path of a short name near it) */
+    size_t room = (size_t)name_max - tail;
+    if (dirlen + tail < PATH_MAX && PATH_MAX - 1 - dirlen - tail < room)
+        room = PATH_MAX - 1 - dirlen - tail;
+    size_t keep = strlen(base);
+    if (keep > room) {
+        keep = room;
+        while (keep > 0 && ((unsigned char)base[keep] & 0xC0) == 0x80)
+            keep--; /* base[keep] continues a character: cut before it */
+    }
+    char *name = malloc(dirlen + keep + tail + 1);
+    if (name)
+        sprintf(name, "%.*s%.*s%sXXXXXX", (int)dirlen, path, (int)keep, base, tag);
+    return name;
+}
+
 static int stdout_closed;
 
 void ct_out_guard_std(void)
@@ -146,6 +236,7 @@ void ct_out_guard_std(void)
 int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
+    install_cleanup();
     if (!(o->shown = strdup(path)))
         return fail(o, err, errlen, "out of memory", 0);
     if (!strcmp(path, "-") && stdout_closed)
@@ -198,18 +289,20 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
         umask(mask);
         o->mode = 0666 & ~mask;
     }
-    size_t n = strlen(o->path) + 16;
-    if (!(o->tmp_path = malloc(n)))
+    if (!(o->tmp_path = name_beside(o->path, ".tmp")))
         return fail(o, err, errlen, "out of memory", 0);
-    snprintf(o->tmp_path, n, "%s.tmpXXXXXX", o->path);
+    sigset_t held;
+    hold_signals(&held);
     int fd = mkstemp(o->tmp_path);
+    if (fd >= 0)
+        live_add(o->tmp_path);
+    release_signals(&held);
     if (fd < 0) {
         int e = errno;
         free(o->tmp_path);
         o->tmp_path = NULL;
         return fail(o, err, errlen, NULL, e);
     }
-    live_add(o->tmp_path);
     if (fchmod(fd, o->mode) != 0 || !(o->f = fdopen(fd, "w"))) {
         int e = errno;
         close(fd);
@@ -224,18 +317,22 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen)
 /* Phase 1: everything written and closed (regular files) or flushed (spools). */
 static int finish(ct_out *o, char *err, size_t errlen)
 {
-    int bad = fflush(o->f) != 0 || ferror(o->f);
+    errno = 0;
+    int bad = fflush(o->f) != 0 || ferror(o->f), e = errno;
     if (!o->spooled) {
         if (!bad && fsync(fileno(o->f)) != 0 && errno != EINVAL)
-            bad = 1;
-        if (fclose(o->f) != 0)
-            bad = 1;
+            bad = 1, e = errno;
+        if (fclose(o->f) != 0 && !bad)
+            bad = 1, e = errno;
         o->f = NULL;
         free(o->buf);
         o->buf = NULL;
     }
+    /* an earlier write failed and the last flush had nothing left to say why */
     if (bad)
-        snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
+        snprintf(err, errlen, "%s: cannot write: %s",
+                 o->spooled && !o->path ? "standard output" : o->shown,
+                 e ? strerror(e) : "a write failed (disk full, or a file size limit)");
     return bad ? -1 : 0;
 }
 
@@ -271,6 +368,111 @@ static int copy_spool(ct_out *o, char *err, size_t errlen)
     return bad ? -1 : 0;
 }
 
+/* A second name (a hard link) for the file at path, beside it: what a rename over path would
+ * drop, kept until every output has landed. NULL when the file system gives none (no hard
+ * links there, or path is no longer a file). */
+static char *backup_of(const char *path)
+{
+    for (int tries = 0; tries < 16; tries++) {
+        char *name = name_beside(path, ".old");
+        int fd = name ? mkstemp(name) : -1; /* a fresh name, then the link takes it */
+        if (fd < 0) {
+            free(name);
+            return NULL;
+        }
+        close(fd);
+        unlink(name);
+        if (link(path, name) == 0)
+            return name;
+        const int e = errno;
+        free(name);
+        if (e != EEXIST)
+            return NULL;
+    }
+    return NULL;
+}
+
+/* Phase 3: the regular outputs renamed into place, all or none. With several, each existing
+ * file gets a backup link first; should a rename fail (a directory made where an output
+ * goes, a temporary file removed), the outputs already renamed are put back: the old file
+ * from its backup, a new one removed. A file that has no backup (a file system without hard
+ * links) is renamed last, where no later failure can leave it replaced. */
+static int rename_all(ct_out *const *outs, size_t n, char *err, size_t errlen)
+{
+    size_t regular = 0;
+    for (size_t k = 0; k < n; k++)
+        regular += !outs[k]->spooled;
+    char **bak = calloc(n ? n : 1, sizeof *bak);
+    unsigned char *state = calloc(n ? n : 1, 1); /* 1: existed, 2: renamed */
+    if (!bak || !state) {
+        free(bak);
+        free(state);
+        snprintf(err, errlen, "out of memory");
+        return -1;
+    }
+    sigset_t held;
+    hold_signals(&held);
+    struct stat st;
+    for (size_t k = 0; k < n && regular > 1; k++)
+        if (!outs[k]->spooled && lstat(outs[k]->path, &st) == 0) {
+            state[k] = 1;
+            bak[k] = backup_of(outs[k]->path);
+        }
+    int bad = 0;
+    for (int last = 0; last < 2 && !bad; last++)
+        for (size_t k = 0; k < n && !bad; k++) {
+            ct_out *o = outs[k];
+            if (o->spooled || (state[k] == 1 && !bak[k]) != last)
+                continue;
+            if (rename(o->tmp_path, o->path) != 0) {
+                snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
+                bad = 1;
+                break;
+            }
+            state[k] |= 2;
+            live_remove(o->tmp_path);
+            free(o->tmp_path);
+            o->tmp_path = NULL;
+        }
+    size_t lost = n; /* an output replaced that could not be put back */
+    for (size_t k = 0; k < n && bad; k++) {
+        if (!(state[k] & 2))
+            continue;
+        int back;
+        if (bak[k])
+            back = rename(bak[k], outs[k]->path) == 0;
+        else if (state[k] & 1)
+            back = 0; /* an old file without a backup: renamed last, so only before another */
+        else
+            back = unlink(outs[k]->path) == 0;
+        if (!back)
+            lost = k;
+        else if (bak[k]) {
+            free(bak[k]);
+            bak[k] = NULL;
+        }
+    }
+    if (bad && regular > 1) {
+        size_t len = strlen(err);
+        if (lost == n)
+            snprintf(err + len, errlen - len, " (no output was replaced)");
+        else if (bak[lost])
+            snprintf(err + len, errlen - len, " (%s was replaced; its old content is in %s)",
+                     outs[lost]->shown, bak[lost]);
+        else
+            snprintf(err + len, errlen - len, " (%s was replaced)", outs[lost]->shown);
+    }
+    for (size_t k = 0; k < n; k++) {
+        if (bak[k] && !(bad && k == lost))
+            unlink(bak[k]);
+        free(bak[k]);
+    }
+    release_signals(&held);
+    free(bak);
+    free(state);
+    return bad ? -1 : 0;
+}
+
 int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen)
 {
     int bad = 0;
@@ -281,19 +483,8 @@ int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen)
     for (size_t k = 0; k < n && !bad; k++)
         if (outs[k]->spooled)
             bad = copy_spool(outs[k], err, errlen) != 0;
-    for (size_t k = 0; k < n && !bad; k++) {
-        ct_out *o = outs[k];
-        if (o->spooled)
-            continue;
-        if (rename(o->tmp_path, o->path) != 0) {
-            snprintf(err, errlen, "%s: cannot write: %s", o->shown, strerror(errno));
-            bad = 1;
-            break;
-        }
-        live_remove(o->tmp_path);
-        free(o->tmp_path);
-        o->tmp_path = NULL;
-    }
+    if (!bad)
+        bad = rename_all(outs, n, err, errlen) != 0;
     for (size_t k = 0; k < n; k++)
         ct_out_abort(outs[k]); /* frees; what was published stays */
     return bad ? -1 : 0;

@@ -5,7 +5,8 @@
  * 0666 less the umask. Standard output ("-") and paths that are no regular file (a device, a
  * FIFO) are spooled to an unlinked temporary file and copied there at commit: memory does not
  * grow with the output, and nothing reaches them from a failed run. Temporary files are
- * removed on abort, on SIGINT, SIGTERM and SIGHUP, and at exit. */
+ * removed on abort, at exit and on every signal whose default action ends the process;
+ * SIGXFSZ is ignored (a write beyond ulimit -f fails, and is said). */
 #ifndef CT_CLI_OUTPUT_H
 #define CT_CLI_OUTPUT_H
 
@@ -36,8 +37,9 @@ int ct_out_open(ct_out *o, const char *path, char *err, size_t errlen);
 /* Publishes one output: ct_out_commit_all of one. */
 int ct_out_commit(ct_out *o, char *err, size_t errlen);
 /* Publishes several outputs together: every one is written and checked first, and only if
- * all succeeded are they renamed into place (or copied to their special file); otherwise all
- * are dropped. Returns 0 or -1 with a message in err. */
+ * all succeeded are they copied to their special files, then renamed into place; a rename
+ * that fails puts back the files the earlier ones replaced (kept as hard links until all
+ * landed). Otherwise all are dropped. Returns 0 or -1 with a message in err. */
 int ct_out_commit_all(ct_out *const *outs, size_t n, char *err, size_t errlen);
 /* Drops everything written: no file is left behind. */
 void ct_out_abort(ct_out *o);

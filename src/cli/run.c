@@ -41,7 +41,7 @@ static const struct {
                     {CT_OUT_BEARING, "bearing"}};
 #define NOUTPUTS (sizeof output_kinds / sizeof output_kinds[0])
 
-static FILE *output_file(output_list *l, unsigned bit)
+static FILE *output_file(const output_list *l, unsigned bit)
 {
     for (size_t k = 0; k < l->n; k++)
         if (l->o[k].bit == bit && l->o[k].opened)
@@ -112,11 +112,11 @@ static void close_outputs(output_list *l)
 
 /* ---- the curve output ---- */
 
-/* What the run writes while the sweep goes: curve branches, histories and, after the last
- * impact of the last speed, the profile of the surface in that state. */
+/* What the run writes while the sweep goes: curve branches and histories, of the impacts
+ * that computed. */
 typedef struct {
     const ct_scene *sc;
-    FILE *curve, *profile, *history;
+    FILE *curve, *history;
     int compare;
     ct_curve *post; /* the post-impact state's curve (the unloading branch) */
 } run_observer;
@@ -191,8 +191,6 @@ static int observe(const ct_sweep_row *row, int phase, const ct_bundle *b, const
     if (phase == 1 && o->curve && !(st = ct_curve_build(o->post, b)))
         st = write_branch(o->curve, o, o->post, L, row->V_star, row->impact, row->r.u_release,
                           row->r.u_max, 1);
-    if (phase == 1 && o->profile && row->speed + 1 == sc->nvel && row->impact == sc->impacts)
-        st = ct_surface_write_profile(sc->surface, b, o->profile);
     return st;
 }
 
@@ -421,15 +419,57 @@ static double *compare_columns(ct_scene *sc, const ct_sweep_row *rows, size_t nr
     return cmp;
 }
 
+/* The state what = profile shows: the last speed's impacts replayed on b (the virgin state)
+ * as the sweep took them (an impact that yields advances the rods to its u_max), up to the
+ * first that failed. Returns how many were replayed. */
+static size_t last_speed_state(ct_bundle *b, const ct_scene *sc, const ct_sweep_row *rows)
+{
+    const size_t impacts = (size_t)sc->impacts;
+    const ct_sweep_row *last = rows + (sc->nvel - 1) * impacts;
+    size_t done = 0;
+    for (; done < impacts && last[done].status == CT_OK; done++)
+        if (!last[done].r.elastic)
+            ct_bundle_advance(b, last[done].r.u_max);
+    return done;
+}
+
+/* After failed impacts (solver.on_error = skip) the outputs that follow impacts say what they
+ * hold: the curve and history rows of the impacts that computed; the profile the last state
+ * computed of the last speed (profiled: the impacts replayed; all of them when none failed or
+ * no profile is written). */
+static void partial_notes(const row_tally *t, const ct_scene *sc, const output_list *outs,
+                          const ct_sweep_row *rows, size_t profiled, int quiet)
+{
+    if (quiet || !t->failed)
+        return;
+    const int curve = output_file(outs, CT_OUT_CURVE) != NULL,
+              history = output_file(outs, CT_OUT_HISTORY) != NULL;
+    const char *which = curve && history ? "curve, history" : curve ? "curve" : "history";
+    if ((curve || history) && !t->ok)
+        fprintf(stderr, "cantact: %s: no impact computed: the header only\n", which);
+    else if (curve || history)
+        fprintf(stderr, "cantact: %s: rows of the computed impacts only (%zu of %zu)\n", which,
+                t->ok, t->rows);
+    const size_t impacts = (size_t)sc->impacts;
+    const ct_sweep_row *last = rows + (sc->nvel - 1) * impacts;
+    if (profiled == 0)
+        fprintf(stderr,
+                "cantact: profile: the surface before any impact (impact 1 of V* = %g, the last "
+                "speed, failed)\n",
+                last->V_star);
+    else if (profiled < impacts)
+        fprintf(stderr,
+                "cantact: profile: the surface after impact %zu of V* = %g, the last computed "
+                "(impact %zu failed)\n",
+                profiled, last->V_star, profiled + 1);
+}
+
 /* The sweep with its observer, then the outputs written after it. */
-static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, int quiet)
+static int sweep_and_write(ct_scene *sc, output_list *outs, ct_bundle *b, int quiet)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
-    const int state_profile =
-        (sc->what & CT_OUT_PROFILE) && ct_surface_profile_shows_state(sc->surface);
     run_observer obs = {.sc = sc,
                         .curve = output_file(outs, CT_OUT_CURVE),
-                        .profile = state_profile ? output_file(outs, CT_OUT_PROFILE) : NULL,
                         .history = output_file(outs, CT_OUT_HISTORY),
                         .compare = !!(sc->what & CT_OUT_COMPARE)};
     int st, rc = EXIT_DONE, oom;
@@ -456,7 +496,7 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, 
     ct_progress prog;
     ct_progress_start(&prog, sc->nvel);
     ct_sweep_spec spec = spec_of(sc, &prog);
-    spec.observe = (obs.curve || obs.profile || obs.history) ? observe : NULL;
+    spec.observe = (obs.curve || obs.history) ? observe : NULL;
     spec.observe_ctx = &obs;
     st = ct_sweep(b, &spec, rows);
     ct_progress_end(&prog);
@@ -467,7 +507,12 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, 
     ct_cli_notes(sc->surface, quiet);
     if (!st && fb)
         st = ct_surface_write_bearing(sc->surface, fb);
-    if (!st && fp && !state_profile)
+    /* the profile: the last speed's surface after its impacts (a kind whose profile shows no
+     * state: as read); after a failed impact, the last state computed, which a note names */
+    size_t profiled = (size_t)sc->impacts;
+    if (!st && fp && ct_surface_profile_shows_state(sc->surface))
+        profiled = last_speed_state(b, sc, rows);
+    if (!st && fp)
         st = ct_surface_write_profile(sc->surface, b, fp);
     if (st) {
         ct_cli_fail("%s", ct_error_message());
@@ -481,8 +526,10 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, const ct_bundle *b, 
         ct_cli_fail("compare: out of memory");
     else
         rc = write_e_rows(output_file(outs, CT_OUT_E), sc, rows, nrows, cmp, ncmp, &t);
-    if (rc == EXIT_DONE && !oom)
+    if (rc == EXIT_DONE && !oom) {
         tally_notes(&t, sc, ct_bundle_size(b), quiet);
+        partial_notes(&t, sc, outs, rows, profiled, quiet);
+    }
     free(cmp);
     free(rows);
     return oom ? EXIT_FAILED : rc;
