@@ -5,7 +5,8 @@ set -euo pipefail
 CT_ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 CT_PACKAGES=(gcc binutils meson ninja-build pkg-config libcmocka-dev libinih-dev libgsl-dev gnuplot-nox
     locales librandom123-dev libopenmpi-dev openmpi-bin libzip-dev libxml2-dev
-    python3 python3-numpy python3-cffi python3-pytest python3-matplotlib python3-scipy)
+    python3 python3-numpy python3-cffi python3-pytest python3-matplotlib python3-scipy
+    python3-mesonpy python3-venv python3-pip)
 
 ct_need_packages() {
     local missing=() p

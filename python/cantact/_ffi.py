@@ -460,16 +460,22 @@ CT_MAX_THREADS = 1024
 
 def _candidates():
     """Where libcantact.so.0 may be, in order: $CANTACT_LIBRARY (a path: the build tree's
-    tests set it), the path meson wrote at install time, then the dynamic loader's search."""
+    tests set it); installed, the path meson wrote in _config (relative to this package: the
+    prefix's libdir, or the library inside the package of a pip install); in the source tree
+    (no _config), the build directory build/ beside python/; then the dynamic loader's search."""
     env = os.environ.get("CANTACT_LIBRARY")
     if env:
         yield env
+    here = os.path.dirname(os.path.abspath(__file__))
     try:
         from . import _config  # written by meson at install time
     except ImportError:
         _config = None
-    if _config is not None and _config.LIBRARY:
-        yield _config.LIBRARY
+    if _config is not None:
+        if _config.LIBRARY:
+            yield os.path.normpath(os.path.join(here, _config.LIBRARY))
+    else:
+        yield os.path.join(os.path.dirname(os.path.dirname(here)), "build", "libcantact.so.0")
     yield "libcantact.so.0"
 
 
@@ -492,7 +498,7 @@ def _load():
             break  # an explicit path that fails is an error, not a hint
     raise ImportError(
         "cantact: libcantact.so.0 not found (set CANTACT_LIBRARY to its path, or install "
-        "cantact with meson install): " + "; ".join(errors)
+        "cantact: pip install . or meson install): " + "; ".join(errors)
     )
 
 
