@@ -18,7 +18,8 @@
  *       linear:          e = e_i + (e_i+1 - e_i) t
  *       monotone_cubic:  e = e_i + (e_i+1 - e_i) t^2 (3 - 2t) + h t (1 - t) ((1 - t) d_i - t d_i+1)
  *     (the cubic Hermite form with the file's slopes; they obey the Fritsch-Carlson
- *     monotonicity conditions, so e stays between e_i and e_i+1 on every interval);
+ *     monotonicity conditions, so e stays between e_i and e_i+1 on every interval), and e is
+ *     then kept between e_i and e_i+1 (and in [0, 1]) so that rounding cannot leave them;
  *   - outside [V*_0, V*_(n-1)] and above V*_c: the nearest end's e (the table does not know
  *     it there: ct_tab_covers() says so).
  *
@@ -123,6 +124,19 @@ static inline size_t ct_tab_interval(size_t n, const double *ln_V, double x)
     return lo;
 }
 
+/* v kept between the interval's node values a and b, and in [0, 1]: the interpolant's promise.
+ * Exact arithmetic keeps a monotone cubic there (Fritsch-Carlson), rounding does not: slopes at
+ * the limit of three secants give 1 + 2^-52 above a node e = 1 and -2e-36 below a node e = 0,
+ * where e = 1 or 0 is approached as a cubic in t, and a slope ratio within 1e-12 of 3 (what the
+ * reader accepts) overshoots by that much times the rise. A NaN (from nodes no reader accepts)
+ * stays NaN. */
+static inline double ct_tab_clamp(double v, double a, double b)
+{
+    const double lo = a < b ? a : b, hi = a < b ? b : a;
+    v = v < lo ? lo : (v > hi ? hi : v);
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
+}
+
 /* e at V_star from nodes (ln_V, e, slope) under `rule`: the rule stated at the top of this
  * file. NaN for a V_star that is NaN or not > 0. */
 static inline double ct_tab_interp(size_t n, const double *ln_V, const double *e,
@@ -140,11 +154,13 @@ static inline double ct_tab_interp(size_t n, const double *ln_V, const double *e
     const size_t i = ct_tab_interval(n, ln_V, x);
     const double h = ln_V[i + 1] - ln_V[i], t = (x - ln_V[i]) / h;
     const double rise = e[i + 1] - e[i];
+    double v;
     if (rule == CT_TAB_LINEAR)
-        return e[i] + rise * t;
-    /* cubic Hermite: equal ends with zero slopes give e[i] exactly (a flat interval) */
-    return e[i] + rise * (t * t * (3.0 - 2.0 * t)) +
-           h * t * (1.0 - t) * ((1.0 - t) * slope[i] - t * slope[i + 1]);
+        v = e[i] + rise * t;
+    else /* cubic Hermite: equal ends with zero slopes give e[i] exactly (a flat interval) */
+        v = e[i] + rise * (t * t * (3.0 - 2.0 * t)) +
+            h * t * (1.0 - t) * ((1.0 - t) * slope[i] - t * slope[i + 1]);
+    return ct_tab_clamp(v, e[i], e[i + 1]);
 }
 
 /* e at V_star (dimensionless) from a loaded table. */

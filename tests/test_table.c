@@ -464,6 +464,102 @@ static void rule_from_the_basis(void **state)
     }
 }
 
+/* The rule's promise at the edge of what the reader accepts: slopes of three secants (and
+ * within 1e-12 of that) are monotone in exact arithmetic, and e = 1 or 0 at a node is then
+ * approached as a cubic in t, whose rounding gave e = 1 + 2^-52 and e = -1.9e-36 (and e a few
+ * ulps beyond the other node). Every evaluation must lie between the interval's two node values
+ * (so in [0, 1]) and give a damping ratio that is not NaN: through the header on nodes, the
+ * library on nodes, and the reader on a file holding the same bits. */
+static double between_nodes(const double V[2], const double e[2], const double d[2], int rule,
+                            size_t m, const double *at)
+{
+    const double ln[2] = {log(V[0]), log(V[1])};
+    ct_table *t;
+    assert_int_equal(ct_table_from_nodes(&t, 2, V, e, d, (ct_interp)rule, 0.0), CT_OK);
+    char path[] = "/tmp/ct_table_edge_XXXXXX", err[512];
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    fprintf(f, "# interpolation = %s\n# V_star_crit = 0\n# nodes = 2\nV_star,e,de_dlnV_star\n",
+            rule == CT_TAB_LINEAR ? "linear" : "monotone_cubic");
+    for (int i = 0; i < 2; i++)
+        fprintf(f, "%a,%a,%a\n", V[i], e[i], d[i]);
+    fclose(f);
+    ct_tab r;
+    if (ct_tab_load(&r, path, err, sizeof err))
+        fail_msg("%s", err);
+    unlink(path);
+    const double lo = fmin(e[0], e[1]), hi = fmax(e[0], e[1]);
+    double last = NAN;
+    for (size_t k = 0; k < m; k++) {
+        const double a = ct_tab_interp(2, ln, e, d, rule, 0.0, at[k]);
+        const double b = ct_table_eval(t, at[k]), c = ct_tab_eval(&r, at[k]);
+        if (!(a == b && b == c))
+            fail_msg("header %a, library %a, file %a", a, b, c);
+        if (!(a >= lo && a <= hi))
+            fail_msg("nodes e = %a, %a, slopes %a, %a: e(%a) = %a (%.3g beyond)", e[0], e[1], d[0],
+                     d[1], at[k], a, a < lo ? lo - a : a - hi);
+        for (int law = CT_TAB_TENSION; law <= CT_TAB_CLIPPED; law++)
+            assert_false(isnan(ct_tab_zeta_of_e(a, law)));
+        last = a;
+    }
+    ct_tab_free(&r);
+    ct_table_free(t);
+    return last;
+}
+
+static void slope_limit_stays_between_nodes(void **state)
+{
+    (void)state;
+    /* e = 1 + 2^-52 near a node e = 1 (slopes 3 secants and 0) */
+    const double V1[2] = {0x1.9c8e04684ee68p+13, 0x1.dbb99bf374519p+13},
+                 e1[2] = {0x1.5d329019adbap-4, 1.0}, d1[2] = {0x1.34300e2ce7ed1p+4, 0.0};
+    assert_true(between_nodes(V1, e1, d1, CT_TAB_MONOTONE_CUBIC, 1,
+                              (double[]){0x1.dbb99250668a4p+13}) <= 1.0);
+    /* e = -1.9e-36 near a node e = 0 (slopes 0 and 3 secants) */
+    const double V2[2] = {0x1.321ef3714ab3ap-11, 0x1.384ba71aa2c6ap-11},
+                 e2[2] = {0.0, 0x1.f815c6869f114p-2}, d2[2] = {0.0, 0x1.27cf29891fc47p+6};
+    assert_true(between_nodes(V2, e2, d2, CT_TAB_MONOTONE_CUBIC, 1,
+                              (double[]){0x1.321ef3714abfep-11}) >= 0.0);
+    /* an ulp below the lower node, inside [0, 1] */
+    const double V3[2] = {0x1.be8f22efe8da4p+10, 0x1.9f42cf59f30f1p+11},
+                 e3[2] = {0x1.e7f7d30ae7102p-1, 0x1.690f1ed1a1668p-3},
+                 d3[2] = {-0x1.e0b7f334ac982p+1, 0.0};
+    assert_true(between_nodes(V3, e3, d3, CT_TAB_MONOTONE_CUBIC, 1,
+                              (double[]){0x1.9f42cf49d8775p+11}) == e3[1]);
+    /* random intervals at the limit: slopes of 0, 3 and 3 (1 + 1e-12) secants, nodes at 0, 1
+     * and between, evaluated at 2^-k of the interval from either end and at random points */
+    uint64_t r = 88172645463325252ull;
+#define NEXT_U (r ^= r << 13, r ^= r >> 7, r ^= r << 17, (double)(r >> 11) / 9007199254740992.0)
+    const double ratio[3] = {0.0, 3.0, 3.0 * (1.0 + 1e-12)};
+    size_t tried = 0;
+    for (int trial = 0; trial < 3000; trial++) {
+        const double V0 = exp((NEXT_U - 0.5) * 20.0);
+        const double V[2] = {V0, V0 * exp(NEXT_U * 3.0 + 1e-6)};
+        double e[2] = {NEXT_U, NEXT_U};
+        const int m = trial % 5;
+        if (m)
+            e[(m - 1) % 2] = m <= 2 ? 1.0 : 0.0;
+        const double secant = (e[1] - e[0]) / (log(V[1]) - log(V[0]));
+        const double d[2] = {ratio[trial / 5 % 3] * secant, ratio[trial / 15 % 3] * secant};
+        ct_tab view = {.n = 2, .V_star = (double *)V, .e = e, .slope = (double *)d};
+        double ln[2] = {log(V[0]), log(V[1])};
+        view.ln_V_star = ln;
+        size_t bad;
+        if (ct_tab_check_slopes(&view, &bad))
+            continue; /* 3 (1 + 1e-12) rounded beyond the reader's limit */
+        double at[120];
+        for (int k = 0; k < 120; k++) {
+            const double s = k < 100 ? ldexp(1.0, -(k / 2) - 1) : NEXT_U;
+            at[k] = exp(k % 2 ? ln[1] - (ln[1] - ln[0]) * s : ln[0] + (ln[1] - ln[0]) * s);
+        }
+        between_nodes(V, e, d, trial % 7 ? CT_TAB_MONOTONE_CUBIC : CT_TAB_LINEAR, 120, at);
+        tried += 120;
+    }
+#undef NEXT_U
+    assert_true(tried > 50000);
+}
+
 static void bad_input(void **state)
 {
     (void)state;
@@ -528,6 +624,7 @@ int main(void)
         cmocka_unit_test(reader_refuses_foreign_slopes),
         cmocka_unit_test(default_cantor),
         cmocka_unit_test(rule_from_the_basis),
+        cmocka_unit_test(slope_limit_stays_between_nodes),
         cmocka_unit_test(bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
