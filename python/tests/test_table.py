@@ -260,3 +260,51 @@ def test_damping_relations_values_and_refusals():
             cantact.zeta_of_e(0.5, law=law)
     with pytest.raises(TypeError):
         cantact.zeta_of_e(0.5)  # the law must be named: the two relations differ by far
+
+
+def test_save_on_a_full_disk_keeps_the_old_table(run_cli, source, tmp_path):
+    """Table.save on a full disk (a file size limit, RLIMIT_FSIZE: writes past it fail with
+    EFBIG as on a full file system): IOFailure, and the good table is as it was, no temporary
+    file left; saving to a new path leaves no file. Before, save wrote in place: the good table
+    was cut to the limit."""
+    import os
+    import resource
+    import subprocess
+    import sys
+    good = run_cli("table", f"{source}/scripts/scenes/dem_table.ini")
+    before = good.read_bytes()
+    assert len(before) > 60000
+    script = ("import sys, cantact\nt = cantact.read_table(sys.argv[1])\ntry:\n"
+              "    t.save(sys.argv[2])\nexcept cantact.IOFailure as exc:\n"
+              "    print(exc.message)\n    sys.exit(3)\n")
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (30000, 30000))
+
+    for target in (good, tmp_path / "new.csv"):
+        r = subprocess.run([sys.executable, "-c", script, str(good), str(target)],
+                           preexec_fn=limit, capture_output=True, text=True)
+        assert r.returncode == 3, r.stderr
+        assert r.stdout == f"{target}: cannot write: File too large\n"
+        assert good.read_bytes() == before
+        assert sorted(os.listdir(tmp_path)) == [good.name]
+    # without the limit it is written whole, with the file's permissions kept, through a
+    # symbolic link to its target, and a new file gets 0666 less the umask
+    t = cantact.read_table(good)
+    os.chmod(good, 0o640)
+    t.save(good)
+    assert good.read_bytes() == before and (os.stat(good).st_mode & 0o777) == 0o640
+    link = tmp_path / "link.csv"
+    link.symlink_to(good.name)
+    t.save(link)
+    assert link.is_symlink() and good.read_bytes() == before
+    mask = os.umask(0o022)
+    try:
+        t.save(tmp_path / "fresh.csv")
+    finally:
+        os.umask(mask)
+    assert (os.stat(tmp_path / "fresh.csv").st_mode & 0o777) == 0o644
+    assert sorted(os.listdir(tmp_path)) == sorted([good.name, "link.csv", "fresh.csv"])
+    with pytest.raises(cantact.IOFailure, match="is a directory"):
+        t.save(tmp_path)
+    t.save("/dev/null")  # a device: written in place, never replaced
