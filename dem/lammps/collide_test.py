@@ -367,7 +367,7 @@ def main():
     flat = os.path.join(work, "flat_e0.5.csv")
     with open(flat, "w") as f:
         f.write("# a flat table: e = 0.5 at every speed\n# interpolation = monotone_cubic\n"
-                "# V_star_crit = 0\n# v_per_V_star = 1\nV_star,e,de_dlnV_star\n"
+                "# V_star_crit = 0\n# v_per_V_star = 1\n# nodes = 2\nV_star,e,de_dlnV_star\n"
                 "1e-30,0.5,0\n1e30,0.5,0\n")
     print("\nbit for bit against stock gran/hooke/history (dumps of x, v, omega every 200 steps, "
           "%.17g):")
