@@ -757,3 +757,30 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
     }
     return ferror(f) ? ct_error_set(CT_EIO, "table: write error") : CT_OK;
 }
+
+int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file)
+{
+    CT_NEED(out);
+    *out = NULL;
+    CT_NEED(path);
+    ct_tab tab;
+    char err[700];
+    const int why = ct_tab_read(&tab, path, err, sizeof err);
+    if (why)
+        return ct_error_set(why == CT_TAB_IO_ERROR    ? CT_EIO
+                            : why == CT_TAB_NO_MEMORY ? CT_ENOMEM
+                                                      : CT_EINVAL,
+                            "%s", err);
+    /* the reader has checked what ct_table_from_nodes checks (and more) */
+    const int st = ct_table_from_nodes(
+        out, tab.n, tab.V_star, tab.e, tab.slope,
+        tab.rule == CT_TAB_LINEAR ? CT_INTERP_LINEAR : CT_INTERP_MONOTONE_CUBIC, tab.V_star_crit);
+    if (!st && file) {
+        file->tolerance = tab.tolerance;
+        file->worst_error = tab.worst_error;
+        file->worst_V_star = tab.worst_V_star;
+        file->v_per_V_star = tab.v_per_V_star;
+    }
+    ct_tab_free(&tab);
+    return st;
+}

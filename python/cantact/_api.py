@@ -764,80 +764,50 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
 
 
 def read_table(path):
-    """A table written by `cantact table` (the format include/cantact_table.h reads), as a
-    Table evaluated by the library: the same numbers as the C reader's."""
-    name = chk.path("path", path).decode(errors="replace")  # a file name, never a descriptor
-    keys = {}
-    rows = []
-    header = False
-    try:
-        f = open(chk.path("path", path), encoding="utf-8")
-    except OSError as exc:
-        raise error(lib.CT_EIO, f"{name}: cannot open: {exc.strerror}") from None
-    meta = {"version": None, "scene": None, "surface": None, "check_points": None}
-    info = {}
-    with f:
-        for lineno, line in enumerate(f, 1):
-            if line.startswith("#"):
-                m = _HEADER_LINE.match(line.rstrip("\r\n"))
-                if m:
-                    d = {k: v for k, v in m.groupdict().items() if v is not None}
-                    for k in ("version", "scene", "surface"):
-                        if k in d:
-                            meta[k] = d[k]
-                    if "checked" in d:
-                        info["checked"] = int(d["checked"])
-                        meta["check_points"] = int(d["points_each"])
-                    if "kinks" in d:
-                        info["kinks"] = int(d["kinks"])
-                if "=" in line:
-                    k, v = line[1:].split("=", 1)
-                    keys[k.strip()] = v.split()[0] if v.split() else ""
-                continue
-            if not header:
-                if not line.startswith("V_star,e,de_dlnV_star"):
-                    raise invalid(f"{name}:{lineno}: expected the header V_star,e,de_dlnV_star")
-                header = True
-                continue
-            if not line.strip():
-                continue
-            fields = line.strip().split(",")
-            try:
-                if len(fields) != 3:
-                    raise ValueError
-                rows.append([float(x) for x in fields])
-            except ValueError:
-                raise invalid(f"{name}:{lineno}: expected three numbers V_star,e,de_dlnV_star")
-    if "interpolation" not in keys or "V_star_crit" not in keys:
-        raise invalid(f"{name}: missing # interpolation = ... or # V_star_crit = ... (not a "
-                      "cantact table)")
-    rule = chk.choice("interpolation", keys["interpolation"], INTERPOLATIONS)
-    try:
-        Vc = float(keys["V_star_crit"])
-    except ValueError:
-        raise invalid(f"{name}: V_star_crit = {keys['V_star_crit']!r}: not a number")
-    a = np.array(rows, dtype=np.float64).reshape(-1, 3)
-    V, e, d = (np.ascontiguousarray(a[:, k]) for k in range(3))
+    """A table file (written by `cantact table` or Table.save) as a Table evaluated by the
+    library. The file is read by include/cantact_table.h's reader itself (ct_table_read), so
+    read_table accepts exactly the files the C reader accepts, to the same numbers: InvalidInput
+    (its one-line message naming file:line) for any other, IOFailure when the file cannot be
+    opened or read."""
+    name = chk.path("path", path)  # a file name, never a descriptor
     out = ffi.new("ct_table **")
-    _ok(lib.ct_table_from_nodes(out, V.size, ffi.from_buffer("double[]", V),
-                                  ffi.from_buffer("double[]", e), ffi.from_buffer("double[]", d),
-                                  rule, Vc))
-    t = Table(ffi.gc(out[0], lib.ct_table_free),
-              float(keys["tolerance"]) if "tolerance" in keys else None)
+    file = ffi.new("ct_table_file_info *")
+    _ok(lib.ct_table_read(out, name, file))
+
+    def given(x):
+        return x if math.isfinite(x) else None
+
+    t = Table(ffi.gc(out[0], lib.ct_table_free), given(file.tolerance))
     # what the build found, as far as the file tells it (None: not in the file)
     for k in ("worst_error", "worst_V_star", "checked", "kinks", "rounds", "evaluations"):
         t.info[k] = None
-    for k in ("worst_error", "v_per_V_star"):
-        if k in keys:
-            t.info[k] = float(keys[k])
-    if "worst_error_at_V_star" in keys:
-        try:
-            t.info["worst_V_star"] = float(keys["worst_error_at_V_star"])
-        except ValueError:  # "none (no point above V_star_crit in the range)"
-            meta["worst_at_none"] = True
-    if "v_per_V_star" in keys:
-        t.v_per_V_star = float(keys["v_per_V_star"])
-    t.info.update(info)
+    t.info["worst_error"] = given(file.worst_error)
+    t.info["worst_V_star"] = given(file.worst_V_star)
+    t.v_per_V_star = given(file.v_per_V_star)
+    # the header's prose, which the reader skips, for save(): the version, scene and surface
+    # text, the points checked and the nodes at kinks
+    meta = {"version": None, "scene": None, "surface": None, "check_points": None}
+    try:
+        with open(name, "rb") as f:
+            for raw in f:
+                if not raw.startswith(b"#"):
+                    break  # the column header: the rows follow
+                m = _HEADER_LINE.match(raw.rstrip(b"\r\n").decode("utf-8", "surrogateescape"))
+                if not m:
+                    continue
+                d = {k: v for k, v in m.groupdict().items() if v is not None}
+                for k in ("version", "scene", "surface"):
+                    if k in d:
+                        meta[k] = d[k]
+                if "checked" in d:
+                    t.info["checked"] = int(d["checked"])
+                    meta["check_points"] = int(d["points_each"])
+                if "kinks" in d:
+                    t.info["kinks"] = int(d["kinks"])
+                if "none" in d:
+                    meta["worst_at_none"] = True
+    except OSError as exc:
+        raise error(lib.CT_EIO, f"{os.fsdecode(name)}: cannot read: {exc.strerror}") from None
     t.header = meta
     return t
 
@@ -919,4 +889,5 @@ _HEADER_LINE = re.compile(
     r"|# surface = (?P<surface>.*)$"
     r"|# checked = (?P<checked>[0-9]+) points against the exact model \((?P<points_each>[0-9]+) "
     r"equally spaced"
-    r"|# nodes = [0-9]+ \((?P<kinks>[0-9]+) at kinks")
+    r"|# nodes = [0-9]+ \((?P<kinks>[0-9]+) at kinks"
+    r"|# worst_error_at_V_star = (?P<none>none)\b")
