@@ -556,6 +556,64 @@ static void reader_refuses_cut_tables(void **state)
     ct_bundle_free(b);
 }
 
+/* ct_table_read (the library's reader, which Python's read_table calls) is ct_tab_read: the
+ * nodes of the file ct_table_write wrote, bit for bit, and the header's numbers; the reader's
+ * refusals as CT_EINVAL with its message, a missing file as CT_EIO. */
+static void library_reads_with_the_header(void **state)
+{
+    (void)state;
+    ct_bundle *b = two_rods();
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = 0.01;
+    spec.V_max = 0.5;
+    spec.tolerance = 1e-6;
+    ct_table *t, *r;
+    assert_int_equal(ct_table_build(&t, b, &spec), CT_OK);
+    ct_table_info in;
+    ct_table_get_info(t, &in);
+    char path[] = "/tmp/ct_table_lib_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    ct_table_meta meta = {
+        .version = "", .tolerance = 1e-6, .check_points = 16, .v_per_V_star = 3.0};
+    assert_int_equal(ct_table_write(f, t, &meta), CT_OK);
+    fclose(f);
+    ct_table_file_info file;
+    assert_int_equal(ct_table_read(&r, path, &file), CT_OK);
+    const size_t n = ct_table_size(t);
+    assert_int_equal(ct_table_size(r), n);
+    assert_memory_equal(ct_table_V_star(r), ct_table_V_star(t), n * sizeof(double));
+    assert_memory_equal(ct_table_e(r), ct_table_e(t), n * sizeof(double));
+    assert_memory_equal(ct_table_slope(r), ct_table_slope(t), n * sizeof(double));
+    assert_int_equal(ct_table_interpolation(r), ct_table_interpolation(t));
+    assert_true(file.tolerance == 1e-6 && file.worst_error == in.worst_error &&
+                file.worst_V_star == in.worst_V_star && file.v_per_V_star == 3.0);
+    for (int k = 0; k <= 400; k++) {
+        const double V = 0.005 * pow(0.6 / 0.005, k / 400.0), a = ct_table_eval(r, V),
+                     c = ct_table_eval(t, V);
+        assert_memory_equal(&a, &c, sizeof a);
+    }
+    ct_table_free(r);
+    size_t len;
+    char *text = slurp(path, &len);
+    put_bytes(path, text, len - 40, NULL, 0); /* cut inside its last rows */
+    r = (ct_table *)&file;
+    assert_int_equal(ct_table_read(&r, path, NULL), CT_EINVAL);
+    assert_null(r);
+    assert_non_null(strstr(ct_error_message(), path));
+    assert_non_null(strstr(ct_error_message(), "the file is cut"));
+    unlink(path);
+    assert_int_equal(ct_table_read(&r, path, NULL), CT_EIO);
+    assert_non_null(strstr(ct_error_message(), "cannot open"));
+    assert_int_equal(ct_table_read(&r, NULL, NULL), CT_EINVAL);
+    assert_int_equal(ct_table_read(NULL, path, NULL), CT_EINVAL);
+    free(text);
+    ct_table_free(t);
+    ct_bundle_free(b);
+}
+
 /* The default Cantor surface: a table at 1e-6 checked against sweeps at points between the
  * build's check points (3 per interval, none of them the build's). */
 static void default_cantor(void **state)
@@ -810,6 +868,7 @@ int main(void)
         cmocka_unit_test(reader_round_trip),
         cmocka_unit_test(reader_refuses_foreign_slopes),
         cmocka_unit_test(reader_refuses_cut_tables),
+        cmocka_unit_test(library_reads_with_the_header),
         cmocka_unit_test(default_cantor),
         cmocka_unit_test(rule_from_the_basis),
         cmocka_unit_test(slope_limit_stays_between_nodes),
