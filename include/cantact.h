@@ -765,6 +765,18 @@ typedef struct {
 /* Writes the table file include/cantact_table.h reads: "# key = value" lines, then
  * V_star,e,de_dlnV_star rows (round-trip digits). CT_EIO on a write error. */
 int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta);
+/* What a table file's header says that ct_table_read reads (NaN: the file does not say). */
+typedef struct {
+    double tolerance;    /* |e_table - e_model| the table was built for, dimensionless */
+    double worst_error;  /* the largest |e_table - e_model| found when it was checked */
+    double worst_V_star; /* where (NaN also for "none": no point above V*_c was checked) */
+    double v_per_V_star; /* impact speed per unit V* in the scene's units */
+} ct_table_file_info;
+/* Reads a table file with include/cantact_table.h's reader (ct_tab_read: its acceptance rule,
+ * one for every reader) into a table evaluated as ct_table_eval; file (may be NULL) gets the
+ * header's numbers. CT_EINVAL for a file the reader refuses (the message names file:line),
+ * CT_EIO when it cannot be opened or read, CT_ENOMEM. */
+int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file);
 
 /* ---- measured surfaces (docs/model.md §9, src/surface/profile.c, profile_read.c, fit.c) --- */
 /* A measured line profile z(x_j) or areal topography z(x_i, y_j) is a rod set directly: after

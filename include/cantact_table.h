@@ -18,7 +18,8 @@
  *       linear:          e = e_i + (e_i+1 - e_i) t
  *       monotone_cubic:  e = e_i + (e_i+1 - e_i) t^2 (3 - 2t) + h t (1 - t) ((1 - t) d_i - t d_i+1)
  *     (the cubic Hermite form with the file's slopes; they obey the Fritsch-Carlson
- *     monotonicity conditions, so e stays between e_i and e_i+1 on every interval);
+ *     monotonicity conditions, so e stays between e_i and e_i+1 on every interval), and e is
+ *     then kept between e_i and e_i+1 (and in [0, 1]) so that rounding cannot leave them;
  *   - outside [V*_0, V*_(n-1)] and above V*_c: the nearest end's e (the table does not know
  *     it there: ct_tab_covers() says so).
  *
@@ -106,6 +107,7 @@ typedef struct {
     double tolerance;    /* |e_table - e_model| the table was built for (NaN: not given) */
     double worst_error;  /* the largest |e_table - e_model| found when checked (NaN: none) */
     double v_per_V_star; /* impact speed per unit V* in the scene's units (NaN: no mass given) */
+    double worst_V_star; /* where worst_error was found (NaN: not given, or none) */
 } ct_tab;
 
 /* The interval i with ln_V[i] <= x < ln_V[i + 1] (0 <= i <= n - 2), for ln_V[0] <= x <
@@ -121,6 +123,19 @@ static inline size_t ct_tab_interval(size_t n, const double *ln_V, double x)
             hi = mid;
     }
     return lo;
+}
+
+/* v kept between the interval's node values a and b, and in [0, 1]: the interpolant's promise.
+ * Exact arithmetic keeps a monotone cubic there (Fritsch-Carlson), rounding does not: slopes at
+ * the limit of three secants give 1 + 2^-52 above a node e = 1 and -2e-36 below a node e = 0,
+ * where e = 1 or 0 is approached as a cubic in t, and a slope ratio within 1e-12 of 3 (what the
+ * reader accepts) overshoots by that much times the rise. A NaN (from nodes no reader accepts)
+ * stays NaN. */
+static inline double ct_tab_clamp(double v, double a, double b)
+{
+    const double lo = a < b ? a : b, hi = a < b ? b : a;
+    v = v < lo ? lo : (v > hi ? hi : v);
+    return v < 0.0 ? 0.0 : (v > 1.0 ? 1.0 : v);
 }
 
 /* e at V_star from nodes (ln_V, e, slope) under `rule`: the rule stated at the top of this
@@ -140,11 +155,13 @@ static inline double ct_tab_interp(size_t n, const double *ln_V, const double *e
     const size_t i = ct_tab_interval(n, ln_V, x);
     const double h = ln_V[i + 1] - ln_V[i], t = (x - ln_V[i]) / h;
     const double rise = e[i + 1] - e[i];
+    double v;
     if (rule == CT_TAB_LINEAR)
-        return e[i] + rise * t;
-    /* cubic Hermite: equal ends with zero slopes give e[i] exactly (a flat interval) */
-    return e[i] + rise * (t * t * (3.0 - 2.0 * t)) +
-           h * t * (1.0 - t) * ((1.0 - t) * slope[i] - t * slope[i + 1]);
+        v = e[i] + rise * t;
+    else /* cubic Hermite: equal ends with zero slopes give e[i] exactly (a flat interval) */
+        v = e[i] + rise * (t * t * (3.0 - 2.0 * t)) +
+            h * t * (1.0 - t) * ((1.0 - t) * slope[i] - t * slope[i + 1]);
+    return ct_tab_clamp(v, e[i], e[i + 1]);
 }
 
 /* e at V_star (dimensionless) from a loaded table. */
@@ -215,20 +232,49 @@ static inline int ct_tab_number(const char *text, double *out)
     return 1;
 }
 
+/* The keys the loader reads, in the order of the bits of its record of which it has seen. */
+static const char *const ct_tab_keys[] = {"interpolation",        "V_star_crit",  "tolerance",
+                                          "worst_error",          "v_per_V_star", "nodes",
+                                          "worst_error_at_V_star"};
+enum { CT_TAB_NKEYS = sizeof ct_tab_keys / sizeof ct_tab_keys[0] };
+
+/* The index in ct_tab_keys of the key of a "# key = value" line (the text between '#' and the
+ * first '=', spaces around it dropped), or -1 when it has none the loader reads (prose). */
+static inline int ct_tab_key_index(const char *line)
+{
+    const char *k = line + 1, *eq = strchr(line, '=');
+    while (*k == ' ')
+        k++;
+    if (!eq || eq < k)
+        return -1;
+    size_t n = (size_t)(eq - k);
+    while (n && k[n - 1] == ' ')
+        n--;
+    for (int i = 0; i < CT_TAB_NKEYS; i++)
+        if (strlen(ct_tab_keys[i]) == n && !strncmp(k, ct_tab_keys[i], n))
+            return i;
+    return -1;
+}
+
 /* 1 when a "# key = value" line names a key the loader reads. */
 static inline int ct_tab_key_used(const char *line)
 {
-    static const char *const used[] = {"interpolation", "V_star_crit", "tolerance", "worst_error",
-                                       "v_per_V_star"};
-    const char *k = line + 1;
-    while (*k == ' ')
-        k++;
-    for (size_t i = 0; i < sizeof used / sizeof used[0]; i++) {
-        size_t n = strlen(used[i]);
-        if (!strncmp(k, used[i], n) && (k[n] == ' ' || k[n] == '='))
-            return 1;
+    return ct_tab_key_index(line) >= 0;
+}
+
+/* A count in decimal digits only (no sign, no exponent), without overflow. */
+static inline int ct_tab_count(const char *text, size_t *out)
+{
+    size_t v = 0;
+    if (!*text)
+        return 0;
+    for (; *text; text++) {
+        if (*text < '0' || *text > '9' || v > ((size_t)-1 - 9) / 10)
+            return 0;
+        v = 10 * v + (size_t)(*text - '0');
     }
-    return 0;
+    *out = v;
+    return 1;
 }
 
 /* What a monotone cubic table promises, checked on its nodes: every slope finite; on every
@@ -264,20 +310,29 @@ static inline int ct_tab_check_slopes(const ct_tab *t, size_t *bad)
     return 0;
 }
 
-/* Reads "# key = value" header lines and the rows "V_star,e,de_dlnV_star" of a table file.
- * Returns 0, or -1 with a one-line message naming file:line in err (the table is then empty
- * and needs no ct_tab_free). */
-static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t errlen)
+/* Why ct_tab_read failed. */
+enum { CT_TAB_BAD_FILE = 1, CT_TAB_IO_ERROR = 2, CT_TAB_NO_MEMORY = 3 };
+
+/* Reads a table file: "# key = value" header lines (the keys ct_tab_keys, each at most once,
+ * all before the column header; other '#' lines are prose), the column header
+ * V_star,e,de_dlnV_star, then exactly `# nodes` rows V_star,e,de_dlnV_star, every line ended by
+ * a line break. So a file cut anywhere is refused: at a line break it has fewer rows than
+ * `# nodes` says (and a table without `# nodes` cannot tell), inside a row its last line has
+ * no line break. Returns 0, or CT_TAB_BAD_FILE (not a table this reader accepts),
+ * CT_TAB_IO_ERROR (the file cannot be opened or read) or CT_TAB_NO_MEMORY, with a one-line
+ * message naming file:line in err (the table is then empty and needs no ct_tab_free). */
+static inline int ct_tab_read(ct_tab *t, const char *path, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
     char line[1024];
-    size_t cap = 0, lineno = 0;
-    int have_rule = 0, have_crit = 0, have_header = 0;
+    size_t cap = 0, lineno = 0, nodes = 0;
+    unsigned seen = 0; /* bit k: ct_tab_keys[k] given */
+    int have_header = 0, why = CT_TAB_BAD_FILE;
     memset(t, 0, sizeof *t);
-    t->tolerance = t->worst_error = t->v_per_V_star = NAN;
+    t->tolerance = t->worst_error = t->v_per_V_star = t->worst_V_star = NAN;
     if (!f) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
-        return -1;
+        return CT_TAB_IO_ERROR;
     }
 #define CT_TAB_FAIL(...)                                                                           \
     do {                                                                                           \
@@ -296,53 +351,86 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
             if (line[0] != '#' || ct_tab_key_used(line))
                 CT_TAB_FAIL("line longer than %d characters", (int)sizeof line - 2);
             while ((c = fgetc(f)) != EOF && c != '\n')
-                ;
+                if (!c)
+                    CT_TAB_FAIL("a NUL byte: not a text file");
+            if (c == EOF && !ferror(f) && memchr(line, '\r', len))
+                CT_TAB_FAIL("lines end in a carriage return alone: not read");
+            if (c == EOF && !ferror(f))
+                CT_TAB_FAIL("the last line has no line break: the file is cut");
             continue;
         }
+        if (!len || line[len - 1] != '\n') {
+            /* fgets stops after a line break, at the end of the file, or with its buffer full
+             * (above): this line is the last and has no break, or it holds a NUL byte */
+            if (ferror(f))
+                break;
+            if (feof(f) && memchr(line, '\r', len))
+                CT_TAB_FAIL("lines end in a carriage return alone: not read");
+            if (feof(f))
+                CT_TAB_FAIL("the last line has no line break: the file is cut");
+            CT_TAB_FAIL("a NUL byte: not a text file");
+        }
         if (line[0] == '#') {
-            char key[64];
-            const char *eq = strchr(line, '=');
-            const char *k = line + 1;
-            while (*k == ' ')
-                k++;
-            if (!eq || (size_t)(eq - k) >= sizeof key)
+            const int key = ct_tab_key_index(line);
+            if (key < 0)
                 continue; /* prose */
-            size_t kl = (size_t)(eq - k);
-            memcpy(key, k, kl);
-            while (kl && key[kl - 1] == ' ')
-                kl--;
-            key[kl] = '\0';
+            if (seen & (1u << key))
+                CT_TAB_FAIL("# %s given twice", ct_tab_keys[key]);
+            if (have_header)
+                CT_TAB_FAIL("# %s after the column header: header keys come first",
+                            ct_tab_keys[key]);
+            seen |= 1u << key;
             char v[64]; /* the value's first word: a comment may follow it */
-            const char *w = eq + 1;
+            const char *w = strchr(line, '=') + 1;
             size_t vl = 0;
             while (*w == ' ')
                 w++;
-            while (w[vl] && w[vl] != ' ' && w[vl] != '\t' && w[vl] != '\n' && w[vl] != '\r' &&
-                   vl + 1 < sizeof v)
-                vl++;
+            while (w[vl] && w[vl] != ' ' && w[vl] != '\t' && w[vl] != '\n' && w[vl] != '\r')
+                if (++vl >= sizeof v)
+                    CT_TAB_FAIL("%s: value longer than %d characters", ct_tab_keys[key],
+                                (int)sizeof v - 1);
             memcpy(v, w, vl);
             v[vl] = '\0';
-            if (!strcmp(key, "interpolation")) {
+            /* a number is the whole word: strtod's ',' ends a row's field, not a value */
+            double x = NAN;
+            const int number = key != 0 && key != 5 && !strchr(v, ',') && ct_tab_number(v, &x);
+            switch (key) {
+            case 0:
                 if (!strcmp(v, "monotone_cubic"))
                     t->rule = CT_TAB_MONOTONE_CUBIC;
                 else if (!strcmp(v, "linear"))
                     t->rule = CT_TAB_LINEAR;
                 else
-                    CT_TAB_FAIL("interpolation: must be monotone_cubic or linear");
-                have_rule = 1;
-            } else if (!strcmp(key, "V_star_crit")) {
-                if (!ct_tab_number(v, &t->V_star_crit) || !(t->V_star_crit >= 0.0))
-                    CT_TAB_FAIL("V_star_crit: not a number >= 0");
-                have_crit = 1;
-            } else if (!strcmp(key, "tolerance")) {
-                if (!ct_tab_number(v, &t->tolerance))
-                    CT_TAB_FAIL("tolerance: not a number");
-            } else if (!strcmp(key, "worst_error")) {
-                if (!ct_tab_number(v, &t->worst_error))
-                    CT_TAB_FAIL("worst_error: not a number");
-            } else if (!strcmp(key, "v_per_V_star")) {
-                if (!ct_tab_number(v, &t->v_per_V_star) || !(t->v_per_V_star > 0.0))
-                    CT_TAB_FAIL("v_per_V_star: not a number > 0");
+                    CT_TAB_FAIL("interpolation = %s: must be monotone_cubic or linear", v);
+                break;
+            case 1:
+                if (!number || !(x >= 0.0))
+                    CT_TAB_FAIL("V_star_crit = %s: not a number >= 0", v);
+                t->V_star_crit = x;
+                break;
+            case 2:
+                if (!number || !(x > 0.0))
+                    CT_TAB_FAIL("tolerance = %s: not a number > 0", v);
+                t->tolerance = x;
+                break;
+            case 3:
+                if (!number || !(x >= 0.0))
+                    CT_TAB_FAIL("worst_error = %s: not a number >= 0", v);
+                t->worst_error = x;
+                break;
+            case 4:
+                if (!number || !(x > 0.0))
+                    CT_TAB_FAIL("v_per_V_star = %s: not a number > 0", v);
+                t->v_per_V_star = x;
+                break;
+            case 5:
+                if (!ct_tab_count(v, &nodes) || nodes < 2)
+                    CT_TAB_FAIL("nodes = %s: not a count >= 2 (the number of rows)", v);
+                break;
+            default: /* where worst_error was found, or none when no point was checked */
+                if (strcmp(v, "none") && (!number || !(x > 0.0)))
+                    CT_TAB_FAIL("worst_error_at_V_star = %s: not a number > 0 or none", v);
+                t->worst_V_star = x;
             }
             continue;
         }
@@ -354,6 +442,8 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
         }
         if (line[0] == '\n' || (line[0] == '\r' && line[1] == '\n'))
             continue;
+        if (nodes && t->n == nodes)
+            CT_TAB_FAIL("a row beyond the %lu of # nodes", (unsigned long)nodes);
         if (t->n == cap) {
             size_t ncap = cap ? 2 * cap : 256;
             double *a = (double *)realloc(t->V_star, ncap * sizeof(double));
@@ -365,8 +455,10 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
             double *c = b ? (double *)realloc(t->slope, ncap * sizeof(double)) : NULL;
             if (c)
                 t->slope = c;
-            if (!c)
+            if (!c) {
+                why = CT_TAB_NO_MEMORY;
                 CT_TAB_FAIL("out of memory");
+            }
             cap = ncap;
         }
         const char *c1 = strchr(line, ','), *c2 = c1 ? strchr(c1 + 1, ',') : NULL;
@@ -383,14 +475,22 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
         t->slope[t->n] = d;
         t->n++;
     }
-    if (ferror(f))
+    if (ferror(f)) {
+        why = CT_TAB_IO_ERROR;
         CT_TAB_FAIL("read error");
-    if (!have_rule || !have_crit)
+    }
+    if (!(seen & 1u) || !(seen & 2u))
         CT_TAB_FAIL("missing # interpolation = ... or # V_star_crit = ... (not a cantact table)");
-    if (t->n < 2)
-        CT_TAB_FAIL("%lu nodes: a table needs at least 2", (unsigned long)t->n);
-    if (!(t->ln_V_star = (double *)malloc(t->n * sizeof(double))))
+    if (!nodes)
+        CT_TAB_FAIL("missing # nodes = ... (the number of rows, without which a cut table "
+                    "cannot be told from a whole one)");
+    if (t->n != nodes)
+        CT_TAB_FAIL("%lu rows where # nodes = %lu: the file is cut", (unsigned long)t->n,
+                    (unsigned long)nodes);
+    if (!(t->ln_V_star = (double *)malloc(t->n * sizeof(double)))) {
+        why = CT_TAB_NO_MEMORY;
         CT_TAB_FAIL("out of memory");
+    }
     for (size_t i = 0; i < t->n; i++) {
         t->ln_V_star[i] = log(t->V_star[i]);
         if (i && !(t->ln_V_star[i] > t->ln_V_star[i - 1]))
@@ -413,7 +513,13 @@ static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t err
 fail:
     fclose(f);
     ct_tab_free(t);
-    return -1;
+    return why;
+}
+
+/* ct_tab_read without the reason: 0, or -1 with the message in err. */
+static inline int ct_tab_load(ct_tab *t, const char *path, char *err, size_t errlen)
+{
+    return ct_tab_read(t, path, err, errlen) ? -1 : 0;
 }
 
 /* ---- e <-> damping ratio of a linear spring-dashpot normal contact (see the top) ---- */

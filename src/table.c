@@ -712,12 +712,14 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
     fprintf(f, "# interpolation = %s\n", ct_interp_name(ct_table_interpolation(t)));
     if (ct_table_interpolation(t) == CT_INTERP_LINEAR)
         fputs("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, t = (x - x_i) / "
-              "(x_i+1 - x_i): e = e_i + (e_i+1 - e_i) t (de_dlnV_star is not used: 0)\n",
+              "(x_i+1 - x_i): e = e_i + (e_i+1 - e_i) t, kept between e_i and e_i+1 (against "
+              "rounding; de_dlnV_star is not used: 0)\n",
               f);
     else
         fputs("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, h = x_i+1 - x_i, "
               "t = (x - x_i) / h, d = de_dlnV_star: e = e_i + (e_i+1 - e_i) t^2 (3 - 2 t) + "
-              "h t (1 - t) ((1 - t) d_i - t d_i+1)\n",
+              "h t (1 - t) ((1 - t) d_i - t d_i+1), kept between e_i and e_i+1 (against "
+              "rounding)\n",
               f);
     fputs("# rule: e = 1 exactly for V_star <= V_star_crit; outside the nodes above it, the "
           "nearest end's e (the table does not cover it)\n",
@@ -733,6 +735,7 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
             "# checked = %zu points against the exact model (%zu equally spaced in ln V_star "
             "inside every interval above V_star_crit; the nodes are exact)\n",
             in.checked, meta->check_points);
+    /* the number of rows: the reader refuses a file with another number (a cut one) */
     fprintf(f,
             "# nodes = %zu (%zu at kinks of e, where u_max reaches a rod's contact or yield "
             "point)\n",
@@ -753,4 +756,31 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
         fputc('\n', f);
     }
     return ferror(f) ? ct_error_set(CT_EIO, "table: write error") : CT_OK;
+}
+
+int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file)
+{
+    CT_NEED(out);
+    *out = NULL;
+    CT_NEED(path);
+    ct_tab tab;
+    char err[700];
+    const int why = ct_tab_read(&tab, path, err, sizeof err);
+    if (why)
+        return ct_error_set(why == CT_TAB_IO_ERROR    ? CT_EIO
+                            : why == CT_TAB_NO_MEMORY ? CT_ENOMEM
+                                                      : CT_EINVAL,
+                            "%s", err);
+    /* the reader has checked what ct_table_from_nodes checks (and more) */
+    const int st = ct_table_from_nodes(
+        out, tab.n, tab.V_star, tab.e, tab.slope,
+        tab.rule == CT_TAB_LINEAR ? CT_INTERP_LINEAR : CT_INTERP_MONOTONE_CUBIC, tab.V_star_crit);
+    if (!st && file) {
+        file->tolerance = tab.tolerance;
+        file->worst_error = tab.worst_error;
+        file->worst_V_star = tab.worst_V_star;
+        file->v_per_V_star = tab.v_per_V_star;
+    }
+    ct_tab_free(&tab);
+    return st;
 }

@@ -11,8 +11,8 @@ int main()
     if (fd < 0)
         return 1;
     FILE *f = fdopen(fd, "w");
-    std::fputs("# interpolation = linear\n# V_star_crit = 0.5\nV_star,e,de_dlnV_star\n"
-               "1,0.8,0\n4,0.4,0\n",
+    std::fputs("# interpolation = linear\n# V_star_crit = 0.5\n# nodes = 2\n"
+               "V_star,e,de_dlnV_star\n1,0.8,0\n4,0.4,0\n",
                f);
     std::fclose(f);
     ct_tab t;

@@ -353,6 +353,60 @@ static void round_trips(void **state)
     }
 }
 
+/* The whole input domain, as a DEM code may hand it over (e from a table; e = 1 + 2^-52 and
+ * e = -1.9e-36 came out of tables at the slope limit before the reader kept e between the
+ * nodes, tests/test_table.c): e at every binade from the smallest subnormal to 1 (256 mantissas
+ * each), the 256 doubles below 1, 0 and 1; zeta at every binade up to DBL_MAX, and infinity.
+ * Every result is defined: zeta_of_e >= 0 and finite but for e = 0 under the clipped law
+ * (+infinity, as stated), never rising with e; e_of_zeta in [0, 1], never rising with zeta.
+ * Just outside the domain (one ulp above 1, the smallest negative number) NaN says so. */
+static void whole_domain(void **state)
+{
+    (void)state;
+    size_t checked = 0;
+    for (int law = CT_TAB_TENSION; law <= CT_TAB_CLIPPED; law++) {
+        double prev = INFINITY, last_e = -1.0;
+        for (int ex = -1075; ex <= 0; ex++)
+            for (int m = 0; m < 256; m++) {
+                const double e = ex == -1075 ? ldexp((double)m, -1074) : ldexp(1.0 + m / 256.0, ex);
+                if (e >= 1.0 || !(e > last_e))
+                    continue; /* rounded to a subnormal already taken */
+                last_e = e;
+                const double z = ct_tab_zeta_of_e(e, law);
+                if (!(z >= 0.0 && (isfinite(z) || (e == 0.0 && law == CT_TAB_CLIPPED))) ||
+                    !(z <= prev))
+                    fail_msg("law %d: zeta_of_e(%a) = %a (after %a)", law, e, z, prev);
+                prev = z;
+                checked++;
+            }
+        for (int k = 256; k >= 0; k--) { /* the doubles below 1, rising, and 1 */
+            const double e = 1.0 - k * 0x1p-53, z = ct_tab_zeta_of_e(e, law);
+            if (!(z >= 0.0 && z <= prev && (k > 0 || z == 0.0)))
+                fail_msg("law %d: zeta_of_e(1 - %d ulp) = %a", law, k, z);
+            prev = z;
+        }
+        prev = 1.0;
+        double last_z = -1.0;
+        for (int ex = -1074; ex <= 1024; ex++)
+            for (int m = 0; m < 64; m++) {
+                double z = ex == -1074 ? ldexp((double)m, -1074) : ldexp(1.0 + m / 64.0, ex);
+                if (isinf(z))
+                    z = m == 0 ? INFINITY : DBL_MAX;
+                if (!(z > last_z))
+                    continue;
+                last_z = z;
+                const double e = ct_tab_e_of_zeta(z, law);
+                if (!(e >= 0.0 && e <= 1.0 && e <= prev))
+                    fail_msg("law %d: e_of_zeta(%a) = %a (after %a)", law, z, e, prev);
+                prev = e;
+                checked++;
+            }
+        assert_true(isnan(ct_tab_zeta_of_e(1.0 + 0x1p-52, law)));
+        assert_true(isnan(ct_tab_zeta_of_e(-0x1p-1074, law)));
+    }
+    assert_true(checked > 600000);
+}
+
 static void ends_and_bad_input(void **state)
 {
     (void)state;
@@ -390,6 +444,7 @@ int main(void)
         cmocka_unit_test(overdamped_tension),
         cmocka_unit_test(clipped_at_critical),
         cmocka_unit_test(round_trips),
+        cmocka_unit_test(whole_domain),
         cmocka_unit_test(ends_and_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -21,7 +21,12 @@ Checks, each of which fails the run (exit 1):
      friction (both relations) and oblique with friction (gamma_t NULL = gamma_n / 2);
   5. a negative control: v_per_V_star 10 % off must be caught by check 1;
   6. two MPI ranks (each pair split across them, ghost contacts, newton off) give the serial
-     run's final state to the bit (skipped, and said so, when mpirun cannot start 2 ranks).
+     run's final state to the bit (skipped, and said so, when mpirun cannot start 2 ranks);
+  7. contacts at speeds above the table's last node (1.5 and 2 times its speed) rebound with
+     the nearest end's e, with one warning naming the speed and the range the table knows, and
+     compute pair's vector counts 3 contacts, 2 outside; with `outside error` the run stops
+     with that message; a pair_coeff table without v_per_V_star is refused at setup (it was
+     taken as e = 1 for every contact); no run of 1 reports a contact outside its table.
 --quick: 1-3 only. Also prints the worst errors at dt = 1e-7 and 1e-6 s (not checked: the
 integrator's error, first order in dt).
 """
@@ -81,7 +86,7 @@ def scene(vs, frozen, oblique):
 
 
 def lammps_input(path, pair_style, pair_coeff, dt, vs, frozen, oblique, final, dump=None,
-                 dump_every=0, loader=None, t_end=T_END, flip=False):
+                 dump_every=0, loader=None, t_end=T_END, flip=False, thermo=None):
     """flip: the run stops in the middle of the contacts (t = T0 + 5e-5 s) and deletes as many
     far-away dummy atoms, created first, as there are spheres: LAMMPS fills each hole with the
     last atom, so every pair's two atoms swap their local order (atom sorting is off) and each
@@ -126,6 +131,9 @@ def lammps_input(path, pair_style, pair_coeff, dt, vs, frozen, oblique, final, d
     L.append("fix integrate all nve/sphere")
     L.append("fix wall frozen freeze")
     L.append("timestep %.17g" % dt)
+    if thermo:  # compute pair's vector, printed at the first and last step
+        L.append("compute p all pair gran/hooke/history/cantact")
+        L.append("thermo_style custom step %s" % thermo)
     L.append("thermo %d" % steps)
     if dump:
         L.append("dump traj all custom %d %s id x y z vx vy vz omegax omegay omegaz"
@@ -153,7 +161,7 @@ class Runner:
         self.mpirun = mpirun
         self.times = []
 
-    def run(self, name, inp, nproc=1):
+    def run(self, name, inp, nproc=1, fails=False):
         cmd = [self.lmp, "-in", inp, "-log", "none", "-nocite"]
         if nproc > 1:
             cmd = self.mpirun + ["-np", str(nproc)] + cmd
@@ -162,6 +170,10 @@ class Runner:
                            universal_newlines=True)
         dt = time.time() - t
         self.times.append((name, dt))
+        if fails:  # a run that must stop with an error: its output
+            if p.returncode == 0:
+                raise SystemExit("collide_test: lmp did not fail (%s)" % name)
+            return p.stdout
         if p.returncode != 0:
             sys.stdout.write(p.stdout[-3000:])
             raise SystemExit("collide_test: lmp failed (%s, exit %d)" % (name, p.returncode))
@@ -237,6 +249,18 @@ def main():
         return [float(l.split()[1]) for l in out.splitlines()]
 
     e_ref = e_table(vs)
+    # what the table knows: e = 1 up to v_c, its nodes from V_first to V_last (times vpv)
+    with open(table) as f:
+        text = f.read()
+    vpv = float(re.search(r"^#\s*v_per_V_star\s*=\s*(\S+)", text, re.M).group(1))
+    v_c = vpv * float(re.search(r"^#\s*V_star_crit\s*=\s*(\S+)", text, re.M).group(1))
+    rows = [l for l in text.splitlines() if l[:1].isdigit()]
+    V_first, V_last = float(rows[0].split(",")[0]), float(rows[-1].split(",")[0])
+    v_top = V_last * vpv    # the fastest speed the table knows
+    # every test speed well inside what the table knows (not at its end to a rounding): no run
+    # may warn of a contact outside it
+    inside = all(v <= v_c * (1 - 1e-9) or V_first * vpv * (1 + 1e-9) <= v <= v_top * (1 - 1e-9)
+                 for v in vs)
     frictionless = "%.17g 0.0 0.0 0.0 0" % KN  # Kn Kt gamma_t xmu dampflag
 
     def table_run(law, dt, tag, extra="", nproc=1):
@@ -275,6 +299,8 @@ def main():
         for dt in [a.dt] + more:
             tag = "table.law%d.dt%g" % (law, dt)
             atoms, out = table_run(law, dt, tag)
+            check(not inside or "outside table" not in out,
+                  "%s: a contact outside the table reported" % tag)
             finals[(law, dt)] = atoms
             free, froz, sep = rebounds(atoms)
             check(sep, "%s: some spheres still in contact at the end" % tag)
@@ -349,13 +375,52 @@ def main():
     if a.quick:
         return finish(runner, failures, counts)
 
+    # ---- speeds outside the table: the nearest end's e, one warning, counted; or an error ----
+    vs_out = [0.5 * v_top, 1.5 * v_top, 2.0 * v_top]
+    e_out = e_table(vs_out)
+    for policy in ("warn", "error"):
+        tag = "outside.%s" % policy
+        inp = os.path.join(work, "in." + tag)
+        lammps_input(inp, "pair_style gran/hooke/history/cantact %s table %s outside %s"
+                     % (frictionless, table, policy), "pair_coeff * *", a.dt, vs_out, False,
+                     False, "final." + tag, loader=loader, thermo="c_p[1] c_p[2]")
+        out = runner.run(tag, inp, fails=policy == "error")
+        if policy == "error":
+            check("outside table" in out and "(outside error)" in out,
+                  "%s: no error naming the table: %s" % (tag, out[-500:]))
+            continue
+        warns = [l for l in out.splitlines() if "outside table" in l]
+        check(len(warns) == 1 and "WARNING" in warns[0] and (".. %.6g" % v_top) in warns[0]
+              and any("v_n = %.6g" % v in warns[0] for v in vs_out[1:]),
+              "%s: one warning naming the speed and the table's end expected, got %s"
+              % (tag, warns))
+        rows = [l.split() for l in out.splitlines() if re.match(r"^\s*\d+\s+\S+\s+\S+\s*$", l)]
+        check(bool(rows) and [float(x) for x in rows[-1][1:]] == [3.0, 2.0],
+              "%s: compute pair's vector %s, not 3 contacts of which 2 outside"
+              % (tag, rows[-1:] if rows else None))
+        atoms = read_final(os.path.join(work, "final." + tag))
+        for k, v in enumerate(vs_out):
+            a1, a2 = sorted((atoms[2 * k + 1], atoms[2 * k + 2]))
+            ratio = (a2[3] - a1[3]) / v
+            check(abs(ratio - e_out[k]) <= a.tol and (k == 0 or e_out[k] == e_out[-1]),
+                  "%s: v = %.4g: ratio %.9g, the table's end e %.9g" % (tag, v, ratio, e_out[k]))
+        print("\noutside the table (it knows v_n up to %.6g m/s): v = %s m/s: nearest end's e, "
+              "one warning, compute pair counts 3 contacts, 2 outside; with `outside error`: "
+              "stopped" % (v_top, ", ".join("%.4g" % v for v in vs_out)))
+    # a table of a pair_coeff of its own, without v_per_V_star: refused at setup (it was not
+    # checked: V* = v_n / NaN went as no approach, e = 1 for every contact)
+    nov = os.path.join(work, "no_v_per_V_star.csv")
+    with open(table) as f, open(nov, "w") as g:
+        g.write("".join(l for l in f if not l.startswith("# v_per_V_star")))
+    tag = "coeff.no_v_per_V_star"
+    inp = os.path.join(work, "in." + tag)
+    lammps_input(inp, "pair_style gran/hooke/history/cantact %s e 0.5" % frictionless,
+                 "pair_coeff * * table %s" % nov, a.dt, vs_out[:1], False, False, "final." + tag,
+                 loader=loader)
+    out = runner.run(tag, inp, fails=True)
+    check("has no v_per_V_star" in out, "%s: not refused: %s" % (tag, out[-400:]))
+
     # ---- 4: negative control: a 10 % wrong v_per_V_star must fail check 1 ----
-    vpv = None
-    with open(table) as f:
-        for l in f:
-            m = re.match(r"#\s*v_per_V_star\s*=\s*(\S+)", l)
-            if m:
-                vpv = float(m.group(1))
     atoms, _ = table_run(0, a.dt, "negative", extra=" v_per_V_star %.17g" % (1.1 * vpv))
     free, froz, _ = rebounds(atoms)
     wneg = max(abs(f - e) for f, e in zip(free + froz, e_ref + e_ref))
@@ -367,7 +432,7 @@ def main():
     flat = os.path.join(work, "flat_e0.5.csv")
     with open(flat, "w") as f:
         f.write("# a flat table: e = 0.5 at every speed\n# interpolation = monotone_cubic\n"
-                "# V_star_crit = 0\n# v_per_V_star = 1\nV_star,e,de_dlnV_star\n"
+                "# V_star_crit = 0\n# v_per_V_star = 1\n# nodes = 2\nV_star,e,de_dlnV_star\n"
                 "1e-30,0.5,0\n1e30,0.5,0\n")
     print("\nbit for bit against stock gran/hooke/history (dumps of x, v, omega every 200 steps, "
           "%.17g):")

@@ -68,7 +68,14 @@ PairGranHookeHistoryCantact::PairGranHookeHistoryCantact(LAMMPS *lmp) : PairGran
   gammat_from_gamman = 0;
   law = 0;
   report_left = 0;
+  outside_error = 0;
   gamman = 0.0;
+  contacts_set = contacts_outside = 0.0;
+  // compute pair's vector (summed over the ranks): contacts set up, of which outside their
+  // table's speeds
+  nextra = 2;
+  pvector = new double[2];
+  pvector[0] = pvector[1] = 0.0;
 }
 
 /* ---------------------------------------------------------------------- */
@@ -81,6 +88,7 @@ PairGranHookeHistoryCantact::~PairGranHookeHistoryCantact()
     delete t;
   }
   memory->destroy(source_of);
+  delete[] pvector;
 }
 
 /* ----------------------------------------------------------------------
@@ -169,31 +177,68 @@ double PairGranHookeHistoryCantact::zeta_of_e(double e, int law)
 }
 
 /* ----------------------------------------------------------------------
-   e at normal approach speed vn (> 0 approaching) from one source
+   e at normal approach speed vn (> 0 approaching) from one source; covered: 0 when the
+   table does not know e there (ct_tab_covers: above V*_c and outside its nodes, where it
+   gives its nearest end's e)
 ------------------------------------------------------------------------- */
 
-double PairGranHookeHistoryCantact::e_of_speed(const Source &s, double vn) const
+double PairGranHookeHistoryCantact::e_of_speed(const Source &s, double vn, int &covered) const
 {
+  covered = 1;
   if (s.table < 0) return s.e;
+  const ct_tab &t = tables[s.table]->t;
   double V = vn / s.v_per_V_star;
   // a contact that starts without approaching (created overlapping): the low-speed limit
-  if (!(V > 0.0)) V = DBL_MIN;
-  return ct_tab_eval(&tables[s.table]->t, V);
+  if (!(V > 0.0))
+    V = DBL_MIN;
+  else
+    covered = ct_tab_covers(&t, V);
+  return ct_tab_eval(&t, V);
 }
 
 void PairGranHookeHistoryCantact::contact_damping(int itype, int jtype, double vn, double meff,
-                                                  double &e, double &gn) const
+                                                  double &e, double &gn, int count)
 {
-  const Source &s = sources[source_of[itype][jtype]];
+  Source &s = sources[source_of[itype][jtype]];
   double zeta;
   if (s.table < 0) {
     e = s.e;
     zeta = s.zeta;
   } else {
-    e = e_of_speed(s, vn);
+    int covered;
+    e = e_of_speed(s, vn, covered);
     zeta = zeta_of_e(e, law);
+    if (count && !covered) outside_table(s, itype, jtype, vn);
   }
+  if (count) contacts_set += 1.0;
   gn = 2.0 * zeta * sqrt(kn / meff);
+}
+
+/* ----------------------------------------------------------------------
+   a contact that starts at a speed its table does not cover: counted; an error with
+   `outside error`, else a warning, once per source on each rank (LAMMPS prints what rank 0,
+   or a rank with a screen or log, warns; the count of every rank is in compute pair's vector)
+------------------------------------------------------------------------- */
+
+void PairGranHookeHistoryCantact::outside_table(Source &s, int itype, int jtype, double vn)
+{
+  contacts_outside += 1.0;
+  const ct_tab &t = tables[s.table]->t;
+  const double S = s.v_per_V_star;
+  const std::string what = fmt::format(
+      "gran/hooke/history/cantact: a contact of types {} {} starts at v_n = {:.6g} (V* = {:.6g}), "
+      "outside table {}: it knows e for v_n <= {:.6g} (e = 1) and {:.6g} .. {:.6g}",
+      itype, jtype, vn, vn / S, table_paths[s.table], t.V_star_crit * S, t.V_star[0] * S,
+      t.V_star[t.n - 1] * S);
+  if (outside_error)
+    error->one(FLERR, "{} (outside error)", what);
+  if (!s.warned) {
+    s.warned = 1;
+    error->warning(FLERR,
+                   "{}: e of its nearest end used; warned once per table and rank, every such "
+                   "contact counted (compute pair: its vector's second value)",
+                   what);
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -325,7 +370,9 @@ void PairGranHookeHistoryCantact::compute(int eflag, int vflag)
         shear = &allshear[N_HISTORY * jj];
         if (shear[H_SET] == 0.0) {
           double e;
-          contact_damping(type[i], type[j], -vnnr * rinv, meff, e, gn);
+          // counted once: a pair across two ranks with newton off is set up on both
+          const int count = newton_pair || j < nlocal || atom->tag[i] < atom->tag[j];
+          contact_damping(type[i], type[j], -vnnr * rinv, meff, e, gn, count);
           shear[H_SET] = 1.0;
           shear[H_E] = e;
           shear[H_GAMMAN] = gn;
@@ -423,6 +470,8 @@ void PairGranHookeHistoryCantact::compute(int eflag, int vflag)
   }
 
   if (vflag_fdotr) virial_fdotr_compute();
+  pvector[0] = contacts_set;
+  pvector[1] = contacts_outside;
 }
 
 /* ----------------------------------------------------------------------
@@ -441,6 +490,8 @@ void PairGranHookeHistoryCantact::transfer_history(double *source, double *targe
                v_per_V_star S     (impact speed per unit V*: overrides the table's)
                limit_damping      (as stock; damping from e by the force-clipped relation)
                report N           (print the first N new contacts seen by proc 0)
+               outside warn|error (a contact at a speed outside its table: the nearest end's
+                                   e and a warning once per table, or an error)
 ------------------------------------------------------------------------- */
 
 void PairGranHookeHistoryCantact::settings(int narg, char **arg)
@@ -448,7 +499,8 @@ void PairGranHookeHistoryCantact::settings(int narg, char **arg)
   if (narg < 5)
     error->all(FLERR,
                "Illegal pair_style gran/hooke/history/cantact command: Kn Kt gamma_t xmu "
-               "dampflag [table FILE | e E] [v_per_V_star S] [limit_damping] [report N]");
+               "dampflag [table FILE | e E] [v_per_V_star S] [limit_damping] [report N] "
+               "[outside warn|error]");
 
   kn = utils::numeric(FLERR, arg[0], false, lmp);
   if (strcmp(arg[1], "NULL") == 0)
@@ -478,6 +530,7 @@ void PairGranHookeHistoryCantact::settings(int narg, char **arg)
   // the keywords; limit_damping first, as the source's zeta depends on the law
   limit_damping = 0;
   report_left = 0;
+  outside_error = 0;
   for (int iarg = 5; iarg < narg; iarg++)
     if (strcmp(arg[iarg], "limit_damping") == 0) limit_damping = 1;
   law = limit_damping ? 1 : 0;
@@ -491,6 +544,11 @@ void PairGranHookeHistoryCantact::settings(int narg, char **arg)
     } else if (strcmp(arg[iarg], "report") == 0) {
       if (iarg + 1 >= narg) error->all(FLERR, "pair_style gran/hooke/history/cantact: report N");
       report_left = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      iarg += 2;
+    } else if (strcmp(arg[iarg], "outside") == 0) {
+      if (iarg + 1 >= narg || (strcmp(arg[iarg + 1], "warn") && strcmp(arg[iarg + 1], "error")))
+        error->all(FLERR, "pair_style gran/hooke/history/cantact: outside warn | outside error");
+      outside_error = strcmp(arg[iarg + 1], "error") == 0;
       iarg += 2;
     } else if (!parse_source(narg, arg, iarg, src, v_override, "pair_style")) {
       error->all(FLERR, "Illegal pair_style gran/hooke/history/cantact keyword: {}", arg[iarg]);
@@ -532,6 +590,7 @@ int PairGranHookeHistoryCantact::parse_source(int narg, char **arg, int &iarg, i
     s.e = 0.0;
     s.zeta = 0.0;
     s.v_per_V_star = tables[s.table]->t.v_per_V_star;
+    s.warned = 0;
     src = add_source(s);
     iarg += 2;
     return 1;
@@ -545,6 +604,7 @@ int PairGranHookeHistoryCantact::parse_source(int narg, char **arg, int &iarg, i
       error->all(FLERR, "{} gran/hooke/history/cantact: e {} is not in [0, 1]", cmd, s.e);
     s.zeta = zeta_of_e(s.e, law);
     s.v_per_V_star = 1.0;
+    s.warned = 0;
     check_source(s);
     src = add_source(s);
     iarg += 2;
@@ -591,6 +651,7 @@ int PairGranHookeHistoryCantact::add_table(const std::string &path)
     t.tolerance = head[2];
     t.worst_error = head[3];
     t.v_per_V_star = head[4];
+    t.worst_V_star = NAN;
     t.V_star = (double *) malloc(t.n * sizeof(double));
     t.ln_V_star = (double *) malloc(t.n * sizeof(double));
     t.e = (double *) malloc(t.n * sizeof(double));
@@ -639,6 +700,14 @@ void PairGranHookeHistoryCantact::check_source(const Source &s)
     emin = 1.0;
     for (size_t k = 0; k < t.n; k++)
       if (t.e[k] < emin) emin = t.e[k];    // both rules keep e within its nodes
+    if (comm->me == 0)
+      utils::logmesg(lmp,
+                     "gran/hooke/history/cantact: table {} with v_per_V_star {:.17g} knows e for "
+                     "v_n <= {:.6g} (e = 1) and {:.6g} .. {:.6g}; outside: its nearest end's e "
+                     "and {}\n",
+                     table_paths[s.table], s.v_per_V_star, t.V_star_crit * s.v_per_V_star,
+                     t.V_star[0] * s.v_per_V_star, t.V_star[t.n - 1] * s.v_per_V_star,
+                     outside_error ? "an error (outside error)" : "a warning");
   }
   if (law == 1 && !(emin > 0.0))
     error->all(FLERR,
@@ -679,6 +748,8 @@ void PairGranHookeHistoryCantact::coeff(int narg, char **arg)
     s.v_per_V_star = v_override;
     check_source(s);
     src = add_source(s);
+  } else if (src != default_source) {
+    check_source(sources[src]);    // a table of its own: it needs its v_per_V_star too
   }
 
   PairGranHookeHistory::coeff(2, arg);    // allocate(), setflag
@@ -785,7 +856,7 @@ double PairGranHookeHistoryCantact::single(int i, int j, int itype, int jtype, d
   if (shear[H_SET] != 0.0)
     gn = shear[H_GAMMAN];
   else
-    contact_damping(itype, jtype, -vnnr * rinv, meff, e, gn);
+    contact_damping(itype, jtype, -vnnr * rinv, meff, e, gn, 0);
   double gt = gammat_from_gamman ? 0.5 * gn : gammat;
   if (dampflag == 0) gt = 0.0;
 

@@ -57,6 +57,7 @@ class PairGranHookeHistoryCantact : public PairGranHookeHistory {
     double e;             // the constant e (table < 0)
     double zeta;          // its damping ratio under this style's law (table < 0)
     double v_per_V_star;  // impact speed per unit V* (table >= 0): the table's or the user's
+    int warned;           // a contact outside the table has been warned about (this rank)
   };
   struct Table;           // a loaded cantact table (opaque: cantact_table.h stays in the .cpp)
   std::vector<Table *> tables;
@@ -67,17 +68,21 @@ class PairGranHookeHistoryCantact : public PairGranHookeHistory {
   int gammat_from_gamman; // gamma_t given as NULL: 0.5 gamma_n of each contact
   int law;                // 0 tension allowed, 1 force clipped (limit_damping)
   long report_left;       // new contacts still to print (report N)
-  double vmin_covered, vmax_covered;
+  int outside_error;      // outside error: a contact outside its table's speeds is an error
+  double contacts_set;    // contacts set up on this rank (pvector[0], summed by compute pair)
+  double contacts_outside; // of which at a speed outside their table (pvector[1])
 
   int parse_source(int narg, char **arg, int &iarg, int &src, double &v_override, const char *cmd);
   int add_table(const std::string &path);
   int add_source(const Source &s);
   void check_source(const Source &s);
-  double e_of_speed(const Source &s, double vn) const;
+  double e_of_speed(const Source &s, double vn, int &covered) const;
   // gamma_n (1/time, as stock: F_damp = meff gamma_n v_n) and e for a contact that starts
-  // now with normal approach speed vn and effective mass meff
-  void contact_damping(int itype, int jtype, double vn, double meff, double &e,
-                       double &gn) const;
+  // now with normal approach speed vn and effective mass meff; count: a new contact of
+  // compute() (counted, and warned about or refused when outside its table), not single()
+  void contact_damping(int itype, int jtype, double vn, double meff, double &e, double &gn,
+                       int count);
+  void outside_table(Source &s, int itype, int jtype, double vn);
   void allocate_sources();
 };
 

@@ -1,8 +1,10 @@
 """Restitution, ensembles, the load curve, the paper's laws and e(V*) tables: NumPy arrays in,
 NumPy arrays out, every call through libcantact's own path (the same as `cantact run`)."""
+import errno
 import math
 import os
 import re
+import stat
 
 import numpy as np
 
@@ -698,7 +700,12 @@ class Table:
         text (default: what the table was read with, else left out; version "" as the library
         writes it without one); v_per_V_star: overrides the table's (written when known). A
         key the table does not know (tolerance, worst_error, its place, the points checked) is
-        left out rather than written as NaN, which the C reader refuses."""
+        left out rather than written as NaN, which the C reader refuses; `# nodes` (the number
+        of rows, by which the readers tell a cut file) is always written. As the program
+        writes its outputs: into a temporary file beside the path, flushed to the disk, then
+        renamed over it, so that a failure (a full disk) raises IOFailure and leaves the
+        path as it was (a symbolic link to a file: its target is replaced; a device or a FIFO
+        is written in place)."""
         name = chk.path("path", path)
         h = self.header
         scene = h["scene"] if scene is None else scene
@@ -728,12 +735,13 @@ class Table:
         lines.append(f"# interpolation = {self.interpolation}")
         if self.interpolation == "linear":
             lines.append("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, t = "
-                         "(x - x_i) / (x_i+1 - x_i): e = e_i + (e_i+1 - e_i) t (de_dlnV_star is "
-                         "not used: 0)")
+                         "(x - x_i) / (x_i+1 - x_i): e = e_i + (e_i+1 - e_i) t, kept between e_i "
+                         "and e_i+1 (against rounding; de_dlnV_star is not used: 0)")
         else:
             lines.append("# rule: in x = ln V_star on the interval [x_i, x_i+1] holding x, h = "
                          "x_i+1 - x_i, t = (x - x_i) / h, d = de_dlnV_star: e = e_i + (e_i+1 - "
-                         "e_i) t^2 (3 - 2 t) + h t (1 - t) ((1 - t) d_i - t d_i+1)")
+                         "e_i) t^2 (3 - 2 t) + h t (1 - t) ((1 - t) d_i - t d_i+1), kept between "
+                         "e_i and e_i+1 (against rounding)")
         lines.append("# rule: e = 1 exactly for V_star <= V_star_crit; outside the nodes above "
                      "it, the nearest end's e (the table does not cover it)")
         lines.append(f"# V_star_crit = {g(self.V_star_crit)}")
@@ -753,18 +761,20 @@ class Table:
         if info.get("kinks") is not None:
             lines.append(f"# nodes = {self.V_star.size} ({info['kinks']} at kinks of e, where "
                          "u_max reaches a rod's contact or yield point)")
+        else:
+            lines.append(f"# nodes = {self.V_star.size}")
         if vpv is not None:
             lines.append(f"# v_per_V_star = {g(vpv)} (impact speed = V_star * v_per_V_star, in "
                          "the units of the scene's mass, l0, E and h0)")
         lines.append("V_star,e,de_dlnV_star")
         lines.extend(f"{g(V)},{g(e)},{g(d)}" for V, e, d in
                      zip(self.V_star.tolist(), self.e.tolist(), self.slope.tolist()))
-        text = "\n".join(lines) + "\n"
-        try:
-            with open(name, "w", encoding="utf-8", newline="\n") as f:
-                f.write(text)
-        except OSError as exc:
-            raise error(lib.CT_EIO, f"{os.fsdecode(name)}: cannot write: {exc.strerror}") from None
+        try:  # the text read from a file keeps its bytes (surrogateescape, as read)
+            data = ("\n".join(lines) + "\n").encode("utf-8", errors="surrogateescape")
+        except UnicodeEncodeError as exc:
+            raise invalid(f"scene, surface or version: {exc.object[exc.start:exc.end]!r} cannot "
+                          "be written as UTF-8") from None
+        _write_replacing(name, data)
 
     def covers(self, V_star):
         """True where the table knows e: at or below V*_c, or within its nodes."""
@@ -816,82 +826,120 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
 
 
 def read_table(path):
-    """A table written by `cantact table` (the format include/cantact_table.h reads), as a
-    Table evaluated by the library: the same numbers as the C reader's."""
-    name = chk.path("path", path).decode(errors="replace")  # a file name, never a descriptor
-    keys = {}
-    rows = []
-    header = False
-    try:
-        f = open(chk.path("path", path), encoding="utf-8")
-    except OSError as exc:
-        raise error(lib.CT_EIO, f"{name}: cannot open: {exc.strerror}") from None
-    meta = {"version": None, "scene": None, "surface": None, "check_points": None}
-    info = {}
-    with f:
-        for lineno, line in enumerate(f, 1):
-            if line.startswith("#"):
-                m = _HEADER_LINE.match(line.rstrip("\r\n"))
-                if m:
-                    d = {k: v for k, v in m.groupdict().items() if v is not None}
-                    for k in ("version", "scene", "surface"):
-                        if k in d:
-                            meta[k] = d[k]
-                    if "checked" in d:
-                        info["checked"] = int(d["checked"])
-                        meta["check_points"] = int(d["points_each"])
-                    if "kinks" in d:
-                        info["kinks"] = int(d["kinks"])
-                if "=" in line:
-                    k, v = line[1:].split("=", 1)
-                    keys[k.strip()] = v.split()[0] if v.split() else ""
-                continue
-            if not header:
-                if not line.startswith("V_star,e,de_dlnV_star"):
-                    raise invalid(f"{name}:{lineno}: expected the header V_star,e,de_dlnV_star")
-                header = True
-                continue
-            if not line.strip():
-                continue
-            fields = line.strip().split(",")
-            try:
-                if len(fields) != 3:
-                    raise ValueError
-                rows.append([float(x) for x in fields])
-            except ValueError:
-                raise invalid(f"{name}:{lineno}: expected three numbers V_star,e,de_dlnV_star")
-    if "interpolation" not in keys or "V_star_crit" not in keys:
-        raise invalid(f"{name}: missing # interpolation = ... or # V_star_crit = ... (not a "
-                      "cantact table)")
-    rule = chk.choice("interpolation", keys["interpolation"], INTERPOLATIONS)
-    try:
-        Vc = float(keys["V_star_crit"])
-    except ValueError:
-        raise invalid(f"{name}: V_star_crit = {keys['V_star_crit']!r}: not a number")
-    a = np.array(rows, dtype=np.float64).reshape(-1, 3)
-    V, e, d = (np.ascontiguousarray(a[:, k]) for k in range(3))
+    """A table file (written by `cantact table` or Table.save) as a Table evaluated by the
+    library. The file is read by include/cantact_table.h's reader itself (ct_table_read), so
+    read_table accepts exactly the files the C reader accepts, to the same numbers: InvalidInput
+    (its one-line message naming file:line) for any other, IOFailure when the file cannot be
+    opened or read."""
+    name = chk.path("path", path)  # a file name, never a descriptor
     out = ffi.new("ct_table **")
-    _ok(lib.ct_table_from_nodes(out, V.size, ffi.from_buffer("double[]", V),
-                                  ffi.from_buffer("double[]", e), ffi.from_buffer("double[]", d),
-                                  rule, Vc))
-    t = Table(ffi.gc(out[0], lib.ct_table_free),
-              float(keys["tolerance"]) if "tolerance" in keys else None)
+    file = ffi.new("ct_table_file_info *")
+    _ok(lib.ct_table_read(out, name, file))
+
+    def given(x):
+        return x if math.isfinite(x) else None
+
+    t = Table(ffi.gc(out[0], lib.ct_table_free), given(file.tolerance))
     # what the build found, as far as the file tells it (None: not in the file)
     for k in ("worst_error", "worst_V_star", "checked", "kinks", "rounds", "evaluations"):
         t.info[k] = None
-    for k in ("worst_error", "v_per_V_star"):
-        if k in keys:
-            t.info[k] = float(keys[k])
-    if "worst_error_at_V_star" in keys:
-        try:
-            t.info["worst_V_star"] = float(keys["worst_error_at_V_star"])
-        except ValueError:  # "none (no point above V_star_crit in the range)"
-            meta["worst_at_none"] = True
-    if "v_per_V_star" in keys:
-        t.v_per_V_star = float(keys["v_per_V_star"])
-    t.info.update(info)
+    t.info["worst_error"] = given(file.worst_error)
+    t.info["worst_V_star"] = given(file.worst_V_star)
+    t.v_per_V_star = given(file.v_per_V_star)
+    # the header's prose, which the reader skips, for save(): the version, scene and surface
+    # text, the points checked and the nodes at kinks
+    meta = {"version": None, "scene": None, "surface": None, "check_points": None}
+    try:
+        with open(name, "rb") as f:
+            for raw in f:
+                if not raw.startswith(b"#"):
+                    break  # the column header: the rows follow
+                m = _HEADER_LINE.match(raw.rstrip(b"\r\n").decode("utf-8", "surrogateescape"))
+                if not m:
+                    continue
+                d = {k: v for k, v in m.groupdict().items() if v is not None}
+                for k in ("version", "scene", "surface"):
+                    if k in d:
+                        meta[k] = d[k]
+                if "checked" in d:
+                    t.info["checked"] = int(d["checked"])
+                    meta["check_points"] = int(d["points_each"])
+                if "kinks" in d:
+                    t.info["kinks"] = int(d["kinks"])
+                if "none" in d:
+                    meta["worst_at_none"] = True
+    except OSError as exc:
+        raise error(lib.CT_EIO, f"{os.fsdecode(name)}: cannot read: {exc.strerror}") from None
     t.header = meta
     return t
+
+
+def _write_replacing(name, data):
+    """data (bytes) into the file `name` (bytes) the way the program writes its outputs
+    (src/cli/output.c): a temporary file beside it (the file's permissions, or 0666 less the
+    umask for a new one), written, flushed to the disk, renamed over it; on any failure the
+    temporary is removed and IOFailure raised, and the file is as it was. A symbolic link to a
+    regular file: the target is replaced; a device or a FIFO (/dev/stdout): written in place."""
+    shown = os.fsdecode(name)
+
+    def fail(what):
+        return error(lib.CT_EIO, f"{shown}: cannot write: {what}")
+
+    target, st = name, None
+    try:
+        if os.path.islink(name) and os.path.exists(name) and os.path.isfile(name):
+            target = os.path.realpath(name)
+        st = os.stat(target)
+    except FileNotFoundError:
+        if os.path.islink(name):
+            raise fail("a symbolic link whose target does not exist") from None
+    except OSError as exc:
+        raise fail(exc.strerror) from None
+    mode = None
+    if st is not None:
+        if stat.S_ISDIR(st.st_mode):
+            raise fail("is a directory")
+        if not os.access(target, os.W_OK):
+            raise fail(os.strerror(errno.EACCES))
+        if not stat.S_ISREG(st.st_mode):  # a device or a FIFO: nothing to rename over
+            try:
+                with open(target, "wb") as f:
+                    f.write(data)
+            except OSError as exc:
+                raise fail(exc.strerror) from None
+            return
+        mode = stat.S_IMODE(st.st_mode)
+    tmp, fd = None, -1
+    try:
+        for _ in range(100):
+            tmp = target + b".tmp" + os.urandom(4).hex().encode()
+            try:  # 0666 less the umask, as a new file gets
+                fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_CLOEXEC, 0o666)
+                break
+            except FileExistsError:
+                continue
+        if fd < 0:
+            raise FileExistsError(errno.EEXIST, "no free temporary name")
+        if mode is not None:
+            os.fchmod(fd, mode)
+        view = memoryview(data)
+        while view:
+            view = view[os.write(fd, view):]
+        os.fsync(fd)
+        os.close(fd)
+        fd = -1
+        os.replace(tmp, target)
+        tmp = None
+    except OSError as exc:
+        raise fail(exc.strerror or str(exc)) from None
+    finally:
+        if fd >= 0:
+            os.close(fd)
+        if tmp is not None:
+            try:
+                os.unlink(tmp)
+            except OSError:
+                pass
 
 
 # The header lines read_table keeps for save(): the version, scene and surface text, the points
@@ -903,4 +951,5 @@ _HEADER_LINE = re.compile(
     r"|# surface = (?P<surface>.*)$"
     r"|# checked = (?P<checked>[0-9]+) points against the exact model \((?P<points_each>[0-9]+) "
     r"equally spaced"
-    r"|# nodes = [0-9]+ \((?P<kinks>[0-9]+) at kinks")
+    r"|# nodes = [0-9]+ \((?P<kinks>[0-9]+) at kinks"
+    r"|# worst_error_at_V_star = (?P<none>none)\b")

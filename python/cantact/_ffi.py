@@ -322,6 +322,13 @@ void ct_table_get_info(const ct_table *t, ct_table_info *info);
 double ct_table_eval(const ct_table *t, double V_star);
 void ct_pchip_slopes(size_t n, const double *x, const double *y, double *d);
 typedef struct {
+    double tolerance;
+    double worst_error;
+    double worst_V_star;
+    double v_per_V_star;
+} ct_table_file_info;
+int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file);
+typedef struct {
     size_t n;
     size_t nx, ny;
     double *x;

@@ -211,6 +211,11 @@ int main(void)
     FIELD(ct_table_info, kinks);
     FIELD(ct_table_info, rounds);
     FIELD(ct_table_info, evaluations);
+    SIZE(ct_table_file_info);
+    FIELD(ct_table_file_info, tolerance);
+    FIELD(ct_table_file_info, worst_error);
+    FIELD(ct_table_file_info, worst_V_star);
+    FIELD(ct_table_file_info, v_per_V_star);
     SIZE(ct_column);
     FIELD(ct_column, name);
     FIELD(ct_column, group);

@@ -123,9 +123,10 @@ def test_read_table_refuses_other_files(tmp_path):
     raises(cantact.InvalidInput, "x.csv:1: expected the header", cantact.read_table, p)
     p.write_text("V_star,e,de_dlnV_star\n1,1,0\n2,0.5,0\n")
     raises(cantact.InvalidInput, "not a cantact table", cantact.read_table, p)
-    p.write_text("# interpolation = linear\n# V_star_crit = 0.1\nV_star,e,de_dlnV_star\n"
-                 "1,1,0\n0.5,0.5,0\n")
-    raises(cantact.InvalidInput, "increasing", cantact.read_table, p)
+    p.write_text("# interpolation = linear\n# V_star_crit = 0.1\n# nodes = 2\n"
+                 "V_star,e,de_dlnV_star\n1,1,0\n0.5,0.5,0\n")
+    raises(cantact.InvalidInput, "x.csv:6: V_star = 0.5: must be > 0 and above the previous",
+           cantact.read_table, p)
 
 
 def test_hostile_round_four():
