@@ -1001,6 +1001,43 @@ void ct_key_clear(const ct_key *row, void *settings);
 /* The word's index in "a|b|c", -1 when it is none of them. */
 int ct_word_index(const char *words, const char *word);
 
+/* The keys of a run that are not the surface's (sections impact, solver, table, ensemble),
+ * where their rows (ct_run_keys_table) store them. */
+typedef struct {
+    ct_speeds V_star, velocity;                  /* [impact] */
+    double mass, drop_height, gravity, stop_speed; /* [impact], the scene's units */
+    long impacts;
+    int sequence; /* 0 sweep, 1 bounce */
+    int quadrature;                 /* [solver]: ct_quad_rule */
+    long nodes;
+    double tolerance, depth_tolerance;
+    long threads;
+    int on_error, check, path; /* stop|skip; auto|all|closed|none; ct_sweep_path */
+    double table_tolerance, table_range[2]; /* [table] */
+    int interpolation;
+    long max_nodes, check_points;
+    long realisations; /* [ensemble] */
+    int split;
+} ct_run_keys;
+/* The rows of ct_run_keys (their offsets point into it): every front-end parses the run's
+ * keys through them (ct_key_parse), so ranges, words and defaults are stated once. */
+const ct_key *ct_run_keys_table(size_t *n);
+/* The rows' defaults (the solver's are ct_impact_opts_default's). */
+void ct_run_keys_defaults(ct_run_keys *k);
+/* Frees the lists ct_key_parse stored (speeds) and zeroes them. */
+void ct_run_keys_clear(ct_run_keys *k);
+/* What the solver keys mean: the impact options, the sweep's path, its threads, whether a
+ * failed impact is a row (on_error = skip), depth auto's tolerance. */
+typedef struct {
+    ct_impact_opts opts;
+    ct_sweep_path path;
+    int threads;
+    int skip_failed;
+    double depth_tolerance;
+} ct_run_solver;
+/* CT_OK, or CT_EINVAL with the reason alone when tolerance is below what doubles can meet. */
+int ct_run_keys_solver(const ct_run_keys *k, ct_run_solver *out);
+
 /* ---- surfaces of every kind (src/surface/kind.c) --------------------------------- */
 /* A surface is one kind (cantor, random_cantor, profile, rods: ct_surface_kind_name) set up
  * by its scene keys (sections surface and material, and what else the kind owns), prepared

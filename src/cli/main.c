@@ -100,6 +100,15 @@ static const char *keys_help = "Usage: cantact keys [--markdown]\n"
 
 /* ---- the key list of run --help, from the tables ---- */
 
+/* The scene's rows that are not the surface's, in section order (surface.type first). */
+static size_t scene_rows(ct_key *rows, size_t cap)
+{
+    size_t n = 0;
+    for (const ct_key *r; n < cap && (r = ct_scene_key_row(n));)
+        rows[n++] = *r;
+    return n;
+}
+
 static void key_names(FILE *f, const ct_key *rows, size_t n, const char *section)
 {
     for (size_t k = 0; k < n; k++)
@@ -135,8 +144,8 @@ static void print_run_help(FILE *f)
         f);
     fputs(run_help_tail, f);
     fputs("Scene keys (cantact keys: with ranges, defaults and meanings):\n", f);
-    size_t n;
-    const ct_key *cli = ct_scene_keys_table(&n);
+    ct_key cli[64];
+    const size_t n = scene_rows(cli, sizeof cli / sizeof cli[0]);
     fputs("[surface] type: ", f);
     for (size_t k = 0; k < ct_surface_kind_count(); k++)
         fprintf(f, "%s%s", k ? " | " : "", ct_surface_kind_name(k));
@@ -251,8 +260,8 @@ static int cmd_keys(int argc, char **argv)
              "scene's units unless a unit key says otherwise (docs/model.md §13).\n\n"
              "| section | key | kinds | type and range | default | meaning |\n"
              "|---|---|---|---|---|---|");
-    size_t n;
-    const ct_key *cli = ct_scene_keys_table(&n);
+    ct_key cli[64];
+    const size_t n = scene_rows(cli, sizeof cli / sizeof cli[0]);
     print_key(&cli[0], "", markdown); /* surface.type */
     for (size_t k = 0; k < ct_surface_kind_count(); k++) {
         size_t m;

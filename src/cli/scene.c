@@ -50,51 +50,6 @@ const char *ct_scene_message(void)
 static const ct_key cli_keys[] = {
     {"surface", "type", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a kind of surface", "cantor",
      "the kind of surface that makes the rods (cantact kinds lists them)", AT(type)},
-    {"impact", "V_star", CT_KEY_SPEEDS, 0, 0, 0, NULL, "", "",
-     "speeds V* = sqrt(m v^2 / (2 l0 E h0)), dimensionless (or give mass and velocity)",
-     AT(V_star)},
-    {"impact", "mass", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
-     "mass of the body per unit depth (a grid: its mass), in the scene's units", AT(mass)},
-    {"impact", "velocity", CT_KEY_SPEEDS, 0, 0, 0, NULL, "", "",
-     "incident speeds, in the scene's units (with mass)", AT(velocity)},
-    {"impact", "drop_height", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
-     "a body dropped from rest: velocity = sqrt(2 gravity drop_height) (with mass)",
-     AT(drop_height)},
-    {"impact", "impacts", CT_KEY_INTEGER, 1, 1000000, 0, NULL,
-     "must satisfy 1 <= impacts <= 1000000", "1 (bounce: 20)",
-     "impacts per speed on the same spot, the rods' state carried", AT(impacts)},
-    {"impact", "sequence", CT_KEY_WORD, 0, 0, 0, "sweep|bounce", "must be sweep or bounce", "sweep",
-     "bounce: each impact at the previous rebound speed (needs mass)", AT(sequence)},
-    {"impact", "gravity", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "9.81",
-     "gravity for drop_height and bounce flights [length/time^2]", AT(gravity)},
-    {"impact", "stop_speed", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_LO_CLOSED, NULL, "must be >= 0",
-     "0", "a bounce sequence ends once a rebound is slower", AT(stop_speed)},
-    {"solver", "quadrature", CT_KEY_WORD, 0, 0, 0, "breakpoints|trapezoid|simpson|gauss|closed",
-     "must be breakpoints, trapezoid, simpson, gauss or closed", "breakpoints",
-     "how W_load and W_unload are integrated (breakpoints: exact)", AT(quadrature)},
-    {"solver", "nodes", CT_KEY_INTEGER, 3, 100000000, 0, NULL, "must satisfy 3 <= nodes <= 1e8",
-     "64", "nodes of the composite rules", AT(nodes)},
-    {"solver", "tolerance", CT_KEY_NUMBER, 0.0, 1e-3, 0, NULL, "must satisfy 0 < tolerance < 1e-3",
-     "1e-14", "relative tolerance of the u_max solve (>= 1e-15)", AT(tolerance)},
-    {"solver", "depth_tolerance", CT_KEY_NUMBER, 0.0, 1e-2, 0, NULL,
-     "must satisfy 0 < depth_tolerance < 1e-2", "1e-12", "truncation bound of depth auto (Cantor)",
-     AT(depth_tolerance)},
-    {"solver", "threads", CT_KEY_INTEGER, 0, 1024, 0, NULL, "must satisfy 0 <= threads <= 1024",
-     "0", "threads of the sums over rods (0: OMP_NUM_THREADS); results do not depend on it",
-     AT(threads)},
-    {"solver", "on_error", CT_KEY_WORD, 0, 0, 0, "stop|skip", "must be stop or skip", "stop",
-     "skip: a failed impact is a row with its reason, not the end of the run", AT(on_error)},
-    {"solver", "check", CT_KEY_WORD, 0, 0, 0, "auto|all|closed|none",
-     "must be auto, all, closed or none", "auto",
-     "impacts also in closed form rod by rod (e_closed_form, quadrature_error): auto every "
-     "speed while rods x impacts x speeds <= 2^19, else a sample (the note says which), and in "
-     "an ensemble the realisations whose index is a multiple of 8; all (or closed) every impact",
-     AT(check)},
-    {"solver", "path", CT_KEY_WORD, 0, 0, 0, "auto|curve|rods|lean",
-     "must be auto, curve, rods or lean", "auto",
-     "the load curve, Newton on the rods' closed forms (no curve in memory), or the lean curve "
-     "(its sorted events: same results, about a sixth of the memory)",
-     AT(path)},
     {"output", "file", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a path or -", "-",
      "where the e table goes (-: standard output); other outputs beside it", AT(file)},
     {"output", "what", CT_KEY_WORDS, 0, 0, 0, CT_OUTPUT_WORDS,
@@ -104,33 +59,25 @@ static const ct_key cli_keys[] = {
     {"output", "history_points", CT_KEY_INTEGER, 0, 100000000, 0, NULL,
      "must satisfy 0 <= history_points <= 1e8", "200",
      "uniform time points of each impact's history, beside its breakpoints", AT(history_points)},
-    {"table", "tolerance", CT_KEY_NUMBER, 1e-13, 0.5, CT_KEY_LO_CLOSED, NULL,
-     "must satisfy 1e-13 <= tolerance < 0.5", "1e-6",
-     "largest |e_table - e| at every checked point (cantact table)", AT(table_tolerance)},
-    {"table", "V_star", CT_KEY_RANGE, 0, 0, 0, NULL, "", "the range of [impact]'s speeds",
-     "the table's range of V*", AT(table_range)},
-    {"table", "interpolation", CT_KEY_WORD, 0, 0, 0, "monotone_cubic|linear",
-     "must be monotone_cubic or linear", "monotone_cubic", "in x = ln V*", AT(interpolation)},
-    {"table", "max_nodes", CT_KEY_INTEGER, 2, 10000000, 0, NULL,
-     "must satisfy 2 <= max_nodes <= 10000000", "100000", "the build fails rather than exceed it",
-     AT(max_nodes)},
-    {"table", "check_points", CT_KEY_INTEGER, 1, 1000, 0, NULL,
-     "must satisfy 1 <= check_points <= 1000", "16", "points checked inside every interval",
-     AT(check_points)},
-    {"ensemble", "realisations", CT_KEY_INTEGER, 1, 1000000000, 0, NULL,
-     "must satisfy 1 <= realisations <= 1e9", "",
-     "realisations of a random surface (their statistics per speed)", AT(realisations)},
-    {"ensemble", "split", CT_KEY_WORD, 0, 0, 0, "auto|realisations|rods",
-     "must be auto, realisations or rods", "auto",
-     "threads over whole realisations, or over one realisation's rods", AT(split)},
 };
 #undef AT
 #define NCLI (sizeof cli_keys / sizeof cli_keys[0])
 
-const ct_key *ct_scene_keys_table(size_t *n)
+const ct_key *ct_scene_key_row(size_t i)
 {
-    *n = NCLI;
-    return cli_keys;
+    static const char *const sections[] = {"surface", "impact", "solver", "output", "table",
+                                           "ensemble"};
+    size_t nrun;
+    const ct_key *run = ct_run_keys_table(&nrun);
+    for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++) {
+        for (size_t r = 0; r < NCLI; r++)
+            if (!strcmp(cli_keys[r].section, sections[s]) && i-- == 0)
+                return &cli_keys[r];
+        for (size_t r = 0; r < nrun; r++)
+            if (!strcmp(run[r].section, sections[s]) && i-- == 0)
+                return &run[r];
+    }
+    return NULL;
 }
 
 /* ---- the values as read: text, where it came from ---- */
@@ -156,9 +103,10 @@ typedef struct {
 
 static const ct_key *cli_key(const char *section, const char *key)
 {
-    for (size_t k = 0; k < NCLI; k++)
-        if (!strcmp(cli_keys[k].section, section) && !strcmp(cli_keys[k].name, key))
-            return &cli_keys[k];
+    const ct_key *row;
+    for (size_t k = 0; (row = ct_scene_key_row(k)); k++)
+        if (!strcmp(row->section, section) && !strcmp(row->name, key))
+            return row;
     return NULL;
 }
 
@@ -172,7 +120,7 @@ static const ct_key *any_row(size_t i)
             return &rows[i];
         i -= n;
     }
-    return i < NCLI ? &cli_keys[i] : NULL;
+    return ct_scene_key_row(i);
 }
 
 static int key_known(const char *section, const char *key)
@@ -497,11 +445,11 @@ static int impact_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
             return bad(edrop, "give either drop_height or velocity / V_star, not both");
         if (!em)
             return bad(edrop, "needs impact.mass");
-        free(k->velocity.v);
-        if (!(k->velocity.v = malloc(sizeof(double))))
+        free(k->run.velocity.v);
+        if (!(k->run.velocity.v = malloc(sizeof(double))))
             return scene_error(CT_ENOMEM, "scene: out of memory");
-        k->velocity.v[0] = sqrt(2.0 * k->gravity * k->drop_height);
-        k->velocity.n = 1;
+        k->run.velocity.v[0] = sqrt(2.0 * k->run.gravity * k->run.drop_height);
+        k->run.velocity.n = 1;
         evel = edrop;
     }
     if (ev && (em || evel))
@@ -509,51 +457,40 @@ static int impact_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
     if (!ev && !(em && evel))
         return scene_error(CT_EINVAL, "%s: [impact]: needs V_star, or both mass and velocity",
                            s->name);
-    ct_speeds *sp = ev ? &k->V_star : &k->velocity;
+    ct_speeds *sp = ev ? &k->run.V_star : &k->run.velocity;
     sc->V_star = sp->v;
     sc->nvel = sp->n;
     sp->v = NULL;
     sp->n = 0;
-    sc->mass = ev ? 0.0 : k->mass;
+    sc->mass = ev ? 0.0 : k->run.mass;
     sc->speeds_are_velocities = !ev;
     sc->speeds_key = ev ? "V_star" : edrop ? "drop_height" : "velocity";
     snprintf(sc->where_speeds, sizeof sc->where_speeds, "%s", (ev ? ev : evel)->where);
-    sc->bounce = k->sequence == 1;
+    sc->bounce = k->run.sequence == 1;
     entry *e = find_entry(s, "impact", "stop_speed");
     if (e && !sc->bounce)
         return bad(e, "only with sequence = bounce");
-    sc->stop_speed = k->stop_speed;
-    sc->gravity = k->gravity;
+    sc->stop_speed = k->run.stop_speed;
+    sc->gravity = k->run.gravity;
     if (sc->bounce && !(sc->mass > 0.0 && sc->nvel == 1))
         return scene_error(CT_EINVAL,
                            "%s: impact.sequence = bounce: needs impact.mass and one first speed "
                            "(impact.velocity or impact.drop_height)",
                            s->name);
-    sc->impacts = find_entry(s, "impact", "impacts") ? k->impacts : sc->bounce ? 20 : 1;
+    sc->impacts = find_entry(s, "impact", "impacts") ? k->run.impacts : sc->bounce ? 20 : 1;
     return CT_OK;
 }
 
 static int solver_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
 {
-    ct_impact_opts_default(&sc->opts);
-    if (find_entry(s, "solver", "quadrature"))
-        sc->opts.rule = (ct_quad_rule)k->quadrature;
-    if (find_entry(s, "solver", "nodes"))
-        sc->opts.nodes = (size_t)k->nodes;
-    sc->opts.check = CT_CHECK_AUTO;
-    if (find_entry(s, "solver", "check"))
-        sc->opts.check = k->check == 0   ? CT_CHECK_AUTO
-                         : k->check == 3 ? CT_CHECK_NONE
-                                         : CT_CHECK_ALL;
-    entry *e = find_entry(s, "solver", "tolerance");
-    if (e && k->tolerance < 1e-15)
-        return bad(e, "must be >= 1e-15 (double precision)");
-    if (e)
-        sc->opts.tolerance = k->tolerance;
-    sc->skip_failed = k->on_error == 1;
-    sc->path = (ct_sweep_path)k->path;
-    sc->depth_tolerance = k->depth_tolerance;
-    sc->threads = (int)k->threads;
+    ct_run_solver r;
+    if (ct_run_keys_solver(&k->run, &r)) /* only a tolerance given below doubles' reach */
+        return bad(find_entry(s, "solver", "tolerance"), ct_error_message());
+    sc->opts = r.opts;
+    sc->skip_failed = r.skip_failed;
+    sc->path = r.path;
+    sc->depth_tolerance = r.depth_tolerance;
+    sc->threads = r.threads;
     return CT_OK;
 }
 
@@ -612,46 +549,40 @@ static int ensemble_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
     if ((er || es) &&
         !ct_surface_kind_supports(ct_surface_kind_index(sc->surface), "ensemble", &why))
         return bad(er ? er : es, why);
-    sc->realisations = er ? (uint64_t)k->realisations : 0;
+    sc->realisations = er ? (uint64_t)k->run.realisations : 0;
     if (es && !er)
         return bad(es, "needs ensemble.realisations");
     if (er && ct_surface_is_set(sc->surface, "surface", "realisation")) {
         entry *e = find_entry(s, "surface", "realisation");
         return bad(e, "names the one realisation of a run without [ensemble]");
     }
-    sc->split = (ct_ensemble_split)k->split;
+    sc->split = (ct_ensemble_split)k->run.split;
     return CT_OK;
 }
 
 static void table_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
 {
-    sc->table_tolerance = k->table_tolerance;
+    sc->table_tolerance = k->run.table_tolerance;
     sc->table_V_min = sc->table_V_max = 0.0; /* the speeds' range, once they are V* */
     if (find_entry(s, "table", "V_star")) {
-        sc->table_V_min = k->table_range[0];
-        sc->table_V_max = k->table_range[1];
+        sc->table_V_min = k->run.table_range[0];
+        sc->table_V_max = k->run.table_range[1];
     }
-    sc->table_interpolation = (ct_interp)k->interpolation;
-    sc->table_max_nodes = k->max_nodes;
-    sc->table_check_points = k->check_points;
+    sc->table_interpolation = (ct_interp)k->run.interpolation;
+    sc->table_max_nodes = k->run.max_nodes;
+    sc->table_check_points = k->run.check_points;
 }
 
 static void keys_defaults(ct_scene_keys *k)
 {
     memset(k, 0, sizeof *k);
-    k->impacts = 1;
-    k->gravity = 9.81;
-    k->nodes = 64;
-    k->tolerance = 1e-14;
-    k->depth_tolerance = 1e-12;
+    ct_run_keys_defaults(&k->run);
     k->history_points = 200;
-    k->table_tolerance = 1e-6;
-    k->max_nodes = 100000;
-    k->check_points = 16;
 }
 
 static void keys_free(ct_scene_keys *k)
 {
+    ct_run_keys_clear(&k->run);
     for (size_t r = 0; r < NCLI; r++)
         ct_key_clear(&cli_keys[r], k);
 }

@@ -13,26 +13,14 @@ enum { CT_OUT_ENSEMBLE = 16, CT_OUT_REALISATIONS = 32 };
 enum { CT_OUT_TIME = 64, CT_OUT_HISTORY = 128, CT_OUT_BOUNCE = 256 };
 enum { CT_OUT_BEARING = 512 };
 
-/* The values of the CLI's own keys, where their rows store them. */
+/* The values of the scene's keys that are not the surface's: the library's run keys
+ * (ct_run_keys_table) first, so that their rows' offsets point here too, then the CLI's own. */
 typedef struct {
+    ct_run_keys run;
     char *type;
-    ct_speeds V_star, velocity;
-    double mass, drop_height, gravity, stop_speed;
-    long impacts;
-    int sequence; /* 0 sweep, 1 bounce */
-    int quadrature;
-    long nodes;
-    double tolerance, depth_tolerance;
-    long threads;
-    int on_error, check, path;
     char *file;
     unsigned what;
     long history_points;
-    double table_tolerance, table_range[2];
-    int interpolation;
-    long max_nodes, check_points;
-    long realisations;
-    int split;
 } ct_scene_keys;
 
 typedef struct {
@@ -85,8 +73,10 @@ int ct_scene_prepare(ct_scene *scene);
 void ct_scene_free(ct_scene *scene);
 /* Returns the message of the last scene error in this thread. */
 const char *ct_scene_message(void);
-/* The CLI's own key rows (sections impact, solver, output, table, ensemble; surface.type). */
-const ct_key *ct_scene_keys_table(size_t *n);
+/* Row i of the scene's keys that are not the surface's, in section order (surface.type, then
+ * impact, solver, output, table, ensemble): the library's run keys and the CLI's output keys.
+ * NULL past the last. */
+const ct_key *ct_scene_key_row(size_t i);
 /* The build request of a scene for its speeds (keep_all: the whole surface is written). */
 void ct_scene_request(const ct_scene *sc, int keep_all, ct_build_request *req);
 
