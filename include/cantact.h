@@ -140,13 +140,31 @@ const ct_layer *ct_bundle_layer(const ct_bundle *b); /* E, sigma_y, H*, l0, h0 *
  * arrays, "cantor" for ct_cantor_bundle). */
 const char *ct_bundle_surface(const ct_bundle *b);
 
+/* Where a rod stands on the surface, the part of the plane its top face covers: what a curved
+ * body meets first (docs/model.md §12). An interval [x_lo, x_hi] of a line surface (a Cantor
+ * piece, a profile sample's share of the x-axis), a rectangle of an areal one (an X3P pixel),
+ * or a point (x_lo = x_hi, y_lo = y_hi; y NaN on a line) where a rod is given by its position.
+ * CT_FOOTPRINT_NONE: the rod stands for pieces at several places (a merged Cantor stage) or
+ * its surface gave no position; every coordinate is then NaN. [length] */
+typedef enum {
+    CT_FOOTPRINT_NONE = 0,
+    CT_FOOTPRINT_INTERVAL = 1,
+    CT_FOOTPRINT_RECTANGLE = 2,
+    CT_FOOTPRINT_POINT = 3,
+} ct_footprint_shape;
+typedef struct {
+    int shape; /* ct_footprint_shape */
+    double x_lo, x_hi, y_lo, y_hi;
+} ct_footprint;
+
 /* Rod k's data [length, length, length, dimensionless] and what its surface knows of it:
- * stage (-1 when the surface has no stages) and x-extent [length] (NaN when the rod stands
- * for pieces at several places, e.g. a merged Cantor stage). */
+ * stage (-1 when the surface has no stages), x-extent [length] (NaN when the rod stands for
+ * pieces at several places, e.g. a merged Cantor stage) and footprint. */
 typedef struct {
     double top, length, area, plastic_strain;
     double x_left, x_right;
     long stage;
+    ct_footprint footprint;
 } ct_rod_info;
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info);
 
@@ -1161,6 +1179,10 @@ int ct_surface_write_fit(ct_surface *s, FILE *f);
  * and lengths (NULL: H* - top), copied; in surface.unit when given. */
 int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,
                         const double *length);
+/* The same with each rod's position [the unit of tops]: x (NULL: none) and y (NULL: rods on a
+ * line), its footprint (a point). */
+int ct_surface_set_rods_at(ct_surface *s, size_t n, const double *top, const double *area,
+                           const double *length, const double *x, const double *y);
 /* A random_cantor surface's generator settings (dimensionless parameters) and realisation. */
 int ct_surface_random_cantor(const ct_surface *s, ct_random_cantor *rc, uint64_t *realisation);
 /* A prepared profile surface's levelled profile and (fit not NULL) its fit. */

@@ -357,14 +357,21 @@ int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
     CT_NEED(info);
     if (k >= b->n)
         return ct_error_set(CT_EINVAL, "rod %zu: bundle holds %zu rods", k, b->n);
+    memset(info, 0, sizeof *info); /* padding too: rods compare bytewise */
     info->top = b->top[k];
     info->length = b->length[k];
     info->area = b->area[k];
     info->plastic_strain = b->plastic_strain[k];
     info->stage = -1;
     info->x_left = info->x_right = NAN;
+    info->footprint = (ct_footprint){CT_FOOTPRINT_NONE, NAN, NAN, NAN, NAN};
     if (b->kind && b->kind->rod_info)
         b->kind->rod_info(b->meta, k, info);
+    /* a surface that gives an x-extent and no footprint of its own: the interval */
+    if (info->footprint.shape == CT_FOOTPRINT_NONE && isfinite(info->x_left) &&
+        isfinite(info->x_right))
+        info->footprint = (ct_footprint){CT_FOOTPRINT_INTERVAL, info->x_left, info->x_right, NAN,
+                                         NAN};
     return CT_OK;
 }
 

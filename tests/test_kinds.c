@@ -406,6 +406,201 @@ static void keys_of_other_kinds(void **state)
     ct_surface_free(s);
 }
 
+/* ---- footprints: every rod knows where it stands (docs/model.md §12) ---- */
+
+static int by_lo(const void *a, const void *b)
+{
+    const double x = ((const double *)a)[0], y = ((const double *)b)[0];
+    return (x > y) - (x < y);
+}
+
+/* The rods' intervals of a line surface tile [lo, hi] exactly: each interval as wide as the
+ * rod's area (a line rod's area is its share of the x-axis), no gap, no overlap. Checks the
+ * footprints against the areas, an independent statement of the same geometry. */
+static void intervals_tile(const ct_bundle *b, double lo, double hi, double rel)
+{
+    const size_t n = ct_bundle_size(b);
+    double *iv = malloc(2 * n * sizeof *iv);
+    assert_non_null(iv);
+    double total = 0.0;
+    for (size_t k = 0; k < n; k++) {
+        ct_rod_info r;
+        assert_int_equal(ct_bundle_rod(b, k, &r), CT_OK);
+        assert_int_equal(r.footprint.shape, CT_FOOTPRINT_INTERVAL);
+        assert_true(isnan(r.footprint.y_lo) && isnan(r.footprint.y_hi));
+        const double w = r.footprint.x_hi - r.footprint.x_lo;
+        assert_true(fabs(w - r.area) <= rel * (hi - lo));
+        assert_true(r.footprint.x_lo == r.x_left && r.footprint.x_hi == r.x_right);
+        iv[2 * k] = r.footprint.x_lo;
+        iv[2 * k + 1] = r.footprint.x_hi;
+        total += r.area;
+    }
+    qsort(iv, n, 2 * sizeof *iv, by_lo);
+    assert_true(fabs(iv[0] - lo) <= rel * (hi - lo));
+    assert_true(fabs(iv[2 * n - 1] - hi) <= rel * (hi - lo));
+    for (size_t k = 1; k < n; k++) /* each starts where the one before ends */
+        assert_true(fabs(iv[2 * k] - iv[2 * k - 1]) <= rel * (hi - lo));
+    assert_true(fabs(total - (hi - lo)) <= rel * (hi - lo));
+    free(iv);
+}
+
+static void every_rod_knows_its_footprint(void **state)
+{
+    (void)state;
+    /* the Cantor prefractal, one rod per piece: the middles of stages 0 .. N-1 and the tips of
+     * stage N tile [0, l0]; a piece of stage i, index j lies where its binary digits put it
+     * (children of width w / (2 fx) at both ends of their parent, so that the middle left is
+     * w (1 - 1/fx) wide, docs/model.md §2) */
+    const ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 2.0, .h0 = 1.0, .Hstar = 10.0, .E = 500.0,
+                         .sigma_y = 1.0};
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 6, INFINITY), CT_OK);
+    intervals_tile(b, 0.0, p.l0, 1e-14);
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        const long i = r.stage;
+        const size_t j = k - (((size_t)1 << i) - 1);
+        double L = 0.0, w = p.l0;
+        for (long s = i - 1; s >= 0; s--) {
+            if ((j >> s) & 1u)
+                L += w - w / (2.0 * p.fx);
+            w /= 2.0 * p.fx;
+        }
+        const double c = w / (2.0 * p.fx);
+        const double lo = i < 6 ? L + c : L, hi = i < 6 ? L + w - c : L + w;
+        assert_true(fabs(r.footprint.x_lo - lo) <= 1e-14 && fabs(r.footprint.x_hi - hi) <= 1e-14);
+    }
+    ct_bundle_free(b);
+    /* stage rods merge the pieces of a stage: no single place */
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 6, INFINITY), CT_OK);
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        assert_int_equal(r.footprint.shape, CT_FOOTPRINT_NONE);
+        assert_true(isnan(r.footprint.x_lo) && isnan(r.footprint.x_hi));
+    }
+    ct_bundle_free(b);
+    /* a random Cantor realisation: the same tiling, piece by piece */
+    ct_random_cantor rc = {.params = p, .dist = CT_RATIO_LOGNORMAL, .fx_spread = 0.2,
+                           .fz_spread = 0.1, .depth = 8, .seed = 7};
+    assert_int_equal(ct_random_cantor_bundle(&b, &rc, 3, 1), CT_OK);
+    intervals_tile(b, 0.0, p.l0, 1e-13);
+    ct_bundle_free(b);
+    /* a measured line with uneven spacing: sample j stands from halfway to its left neighbour
+     * to halfway to its right one (an end sample as far out as in), the areas of §9 */
+    const double x[6] = {0.0, 0.1, 0.35, 0.4, 0.8, 1.0}, z[6] = {1, 3, 2, 5, 4, 0.5};
+    ct_profile *prof;
+    assert_int_equal(ct_profile_from_line(&prof, 6, x, 0.0, z), CT_OK);
+    assert_int_equal(ct_profile_bundle(&b, prof, 100.0, 1.0, 20.0), CT_OK);
+    intervals_tile(b, -0.05, 1.1, 1e-15);
+    for (size_t k = 0; k < ct_bundle_size(b); k++) { /* each holds its sample, by its top */
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        size_t j = 0;
+        while (j < 6 && fabs((5.0 - z[j]) - r.top) > 1e-15)
+            j++;
+        assert_true(j < 6 && r.footprint.x_lo < x[j] && x[j] < r.footprint.x_hi);
+    }
+    ct_bundle_free(b);
+    ct_profile_free(prof);
+    /* an areal map: the pixel, one increment each way about its sample (sample (i, r) at
+     * x = i dx, y = r dy), its area dx dy */
+    double zg[12];
+    for (int q = 0; q < 12; q++)
+        zg[q] = (double)((q * 7) % 12);
+    assert_int_equal(ct_profile_from_grid(&prof, 4, 3, 0.5, 0.25, zg), CT_OK);
+    assert_int_equal(ct_profile_bundle(&b, prof, 100.0, 1.0, 20.0), CT_OK);
+    assert_int_equal(ct_bundle_size(b), 12);
+    for (size_t k = 0; k < 12; k++) {
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        assert_int_equal(r.footprint.shape, CT_FOOTPRINT_RECTANGLE);
+        size_t q = 0;
+        while (q < 12 && fabs((11.0 - zg[q]) - r.top) > 1e-15)
+            q++;
+        assert_true(q < 12);
+        const double xs = (double)(q % 4) * 0.5, ys = (double)(q / 4) * 0.25;
+        assert_true(r.footprint.x_lo == xs - 0.25 && r.footprint.x_hi == xs + 0.25);
+        assert_true(r.footprint.y_lo == ys - 0.125 && r.footprint.y_hi == ys + 0.125);
+        assert_true(fabs((r.footprint.x_hi - r.footprint.x_lo) *
+                             (r.footprint.y_hi - r.footprint.y_lo) -
+                         r.area) <= 1e-15);
+    }
+    ct_bundle_free(b);
+    ct_profile_free(prof);
+    /* rods given by their positions: points (a line: y NaN); without positions: none */
+    const double top[3] = {0.0, 0.5, 0.25}, area[3] = {1.0, 2.0, 1.5}, px[3] = {-1.0, 0.0, 2.5},
+                 py[3] = {3.0, 1.0, -2.0};
+    for (int with = 0; with < 3; with++) {
+        ct_surface *s;
+        assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+        assert_int_equal(ct_surface_set_rods_at(s, 3, top, area, NULL, with ? px : NULL,
+                                                with == 2 ? py : NULL),
+                         CT_OK);
+        assert_int_equal(ct_surface_set(s, "surface", "Hstar", "10", ""), CT_OK);
+        assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+        assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+        const double V = 1e-3;
+        ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1};
+        ct_impact_opts_default(&req.opts);
+        assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+        for (size_t k = 0; k < 3; k++) {
+            ct_rod_info r;
+            ct_bundle_rod(b, k, &r);
+            if (!with) {
+                assert_int_equal(r.footprint.shape, CT_FOOTPRINT_NONE);
+                continue;
+            }
+            assert_int_equal(r.footprint.shape, CT_FOOTPRINT_POINT);
+            assert_true(r.footprint.x_lo == px[k] && r.footprint.x_hi == px[k]);
+            if (with == 2)
+                assert_true(r.footprint.y_lo == py[k] && r.footprint.y_hi == py[k]);
+            else
+                assert_true(isnan(r.footprint.y_lo) && isnan(r.footprint.y_hi));
+        }
+        ct_bundle_free(b);
+        ct_surface_free(s);
+    }
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set_rods_at(s, 3, top, area, NULL, NULL, py), CT_EINVAL);
+    ct_surface_free(s);
+    /* a rod file places its rods by columns x and y, in the unit of its tops (mm here) */
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/ct_foot_%d.csv", (int)getpid());
+    write_file(path, "y; x; top; area\n3; -1; 0; 1\n1; 0; 0.5; 2\n-2; 2.5; 0.25; 1.5\n");
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "unit", "mm", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    const double V = 1e-3;
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1};
+    ct_impact_opts_default(&req.opts);
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    for (size_t k = 0; k < 3; k++) {
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        assert_int_equal(r.footprint.shape, CT_FOOTPRINT_POINT);
+        assert_true(fabs(r.footprint.x_lo - px[k] * 1e-3) <= 1e-18);
+        assert_true(fabs(r.footprint.y_lo - py[k] * 1e-3) <= 1e-18);
+        assert_true(fabs(r.top - top[k] * 1e-3) <= 1e-18);
+    }
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    /* y without x, and positions without a header, are refused naming why */
+    write_file(path, "y,top,area\n1,0,1\n2,0.5,1\n");
+    ct_scales sc;
+    assert_int_equal(file_rods(path, &sc), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "a column 'y' and no 'x'"));
+    write_file(path, "0,1,1,2\n0.5,1,1,3\n");
+    assert_int_equal(file_rods(path, &sc), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "a header naming x and y places the rods"));
+    unlink(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -416,6 +611,7 @@ int main(void)
         cmocka_unit_test(rod_files),
         cmocka_unit_test(inline_rods),
         cmocka_unit_test(keys_of_other_kinds),
+        cmocka_unit_test(every_rod_knows_its_footprint),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -60,9 +60,14 @@ size_t ct_bundle_omitted(const ct_bundle *b);
 const ct_layer *ct_bundle_layer(const ct_bundle *b);
 const char *ct_bundle_surface(const ct_bundle *b);
 typedef struct {
+    int shape;
+    double x_lo, x_hi, y_lo, y_hi;
+} ct_footprint;
+typedef struct {
     double top, length, area, plastic_strain;
     double x_left, x_right;
     long stage;
+    ct_footprint footprint;
 } ct_rod_info;
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info);
 int ct_bundle_set_threads(ct_bundle *b, int threads);

@@ -33,6 +33,13 @@ int main(void)
     FIELD(ct_rod_info, x_left);
     FIELD(ct_rod_info, x_right);
     FIELD(ct_rod_info, stage);
+    FIELD(ct_rod_info, footprint);
+    SIZE(ct_footprint);
+    FIELD(ct_footprint, shape);
+    FIELD(ct_footprint, x_lo);
+    FIELD(ct_footprint, x_hi);
+    FIELD(ct_footprint, y_lo);
+    FIELD(ct_footprint, y_hi);
     SIZE(ct_profile);
     FIELD(ct_profile, n);
     FIELD(ct_profile, nx);

@@ -1,5 +1,6 @@
 /* A user's own rod set (docs/model.md §12): rods given as a file (CSV or blank-separated
- * columns top, area and optionally length) or inline (surface.rods = top:area[:length], ...),
+ * columns top, area and optionally length; with a header, also the position x and y of each
+ * rod, its footprint) or inline (surface.rods = top:area[:length], ...),
  * in one Winkler layer. Everything of §3, §4, §7 and §11 holds rod by rod. Scales: h0 the
  * deepest top (a rod set whose tops are all 0 needs surface.h0 or surface.Hstar), l0 the total
  * area, so V* = sqrt(m v^2 / (2 l0 E h0)) and forces are in P_Y = sigma_y l0. A rod's length,
@@ -29,10 +30,11 @@ typedef struct {
     double E, sigma_y; /* [material] */
     /* rods from arrays (ct_surface_set_rods), instead of file or rods */
     size_t given_n;
-    double *given_top, *given_area, *given_length;
+    double *given_top, *given_area, *given_length, *given_x, *given_y;
     /* prepared */
     size_t n;
     double *top, *area, *length; /* length NULL: H* - top */
+    double *x, *y;               /* each rod's position (NULL: none given; y NULL: a line) */
     ct_layer layer;
     char source[160];
 } rods_config;
@@ -43,8 +45,8 @@ static const double unit_metres[] = {1.0, 1e-3, 1e-6, 1e-9};
 static const ct_key rods_keys[] = {
     {"surface", "file", CT_KEY_TEXT, 0, 0, CT_KEY_FILE, NULL, "must be a path", "",
      "a file of rods: rows of top, area and optionally length, separated by commas, semicolons "
-     "or blanks, no field empty (a header naming each column once may come first); relative to "
-     "the scene's directory",
+     "or blanks, no field empty (a header naming each column once may come first; with one, "
+     "columns x and y place each rod); relative to the scene's directory",
      AT(file)},
     {"surface", "rods", CT_KEY_TEXT, 0, 0, 0, NULL,
      "must be top:area[:length], ... (no field empty)", "",
@@ -77,7 +79,9 @@ static void rods_release_given(rods_config *c)
     free(c->given_top);
     free(c->given_area);
     free(c->given_length);
-    c->given_top = c->given_area = c->given_length = NULL;
+    free(c->given_x);
+    free(c->given_y);
+    c->given_top = c->given_area = c->given_length = c->given_x = c->given_y = NULL;
     c->given_n = 0;
 }
 
@@ -86,7 +90,9 @@ static void rods_prepared_release(rods_config *c)
     free(c->top);
     free(c->area);
     free(c->length);
-    c->top = c->area = c->length = NULL;
+    free(c->x);
+    free(c->y);
+    c->top = c->area = c->length = c->x = c->y = NULL;
     c->n = 0;
 }
 
@@ -115,41 +121,42 @@ static int rods_check(ct_surface *s, const char *scene)
 }
 
 /* Appends one rod; cap grows. */
-static int push(rods_config *c, size_t *cap, const double *v, int nv)
+/* The columns of a rod: v[COL_TOP] .. v[COL_Y]; NaN where not given (read numbers are finite). */
+enum { COL_TOP, COL_AREA, COL_LENGTH, COL_X, COL_Y, NCOL };
+
+static int push(rods_config *c, size_t *cap, const double *v)
 {
     if (c->n == *cap) {
         size_t grown = *cap ? 2 * *cap : 64;
-        double *t = realloc(c->top, grown * sizeof *t);
-        if (t)
-            c->top = t;
-        double *a = t ? realloc(c->area, grown * sizeof *a) : NULL;
-        if (a)
-            c->area = a;
-        double *l = a ? realloc(c->length, grown * sizeof *l) : NULL;
-        if (l)
-            c->length = l;
-        if (!l)
-            return ct_error_set(CT_ENOMEM, "rods: out of memory at %zu rods", c->n);
+        double **arrays[NCOL] = {&c->top, &c->area, &c->length, &c->x, &c->y};
+        for (int i = 0; i < NCOL; i++) {
+            double *t = realloc(*arrays[i], grown * sizeof *t);
+            if (!t)
+                return ct_error_set(CT_ENOMEM, "rods: out of memory at %zu rods", c->n);
+            *arrays[i] = t;
+        }
         *cap = grown;
     }
-    c->top[c->n] = v[0];
-    c->area[c->n] = v[1];
-    c->length[c->n] = nv == 3 ? v[2] : NAN; /* NaN: no length (read numbers are finite) */
+    c->top[c->n] = v[COL_TOP];
+    c->area[c->n] = v[COL_AREA];
+    c->length[c->n] = v[COL_LENGTH];
+    c->x[c->n] = v[COL_X];
+    c->y[c->n] = v[COL_Y];
     c->n++;
     return CT_OK;
 }
 
-static const char *const column_names[] = {"top", "area", "length"};
+static const char *const column_names[] = {"top", "area", "length", "x", "y"};
 
 /* The separators of a rod file's fields: commas, semicolons, or blanks (runs of blanks are one
  * separator, and blanks around a comma or semicolon belong to it). */
 #define FILE_SEPARATORS ",; "
 
-/* A header: the column names top, area and optionally length, each once, in any order: col[i]
- * is the column (0 top, 1 area, 2 length) of field i. 0, or an error naming the column. */
-static int header(const char *line, int col[3], int *ncol, const char *shown, size_t lineno)
+/* A header: the column names top, area and optionally length, x and y, each once, in any
+ * order: col[i] is the column (COL_*) of field i. 0, or an error naming the column. */
+static int header(const char *line, int col[NCOL], int *ncol, const char *shown, size_t lineno)
 {
-    int field[3] = {0, 0, 0}; /* the field (1, 2, 3) that names each column, 0: none */
+    int field[NCOL] = {0, 0, 0, 0, 0}; /* the field (from 1) that names each column, 0: none */
     ct_list l;
     const char *tok;
     size_t n;
@@ -160,12 +167,12 @@ static int header(const char *line, int col[3], int *ncol, const char *shown, si
             return ct_error_set(CT_EINVAL, "%s:%zu: header field %d is empty (%s)", shown, lineno,
                                 i, ct_list_empty_why());
         int k = 0;
-        while (k < 3 && !(strlen(column_names[k]) == n && !strncmp(tok, column_names[k], n)))
+        while (k < NCOL && !(strlen(column_names[k]) == n && !strncmp(tok, column_names[k], n)))
             k++;
-        if (k == 3)
+        if (k == NCOL)
             return ct_error_set(CT_EINVAL,
                                 "%s:%zu: header field %d is '%.*s': neither a number nor a "
-                                "column name (top, area, length)",
+                                "column name (top, area, length, x, y)",
                                 shown, lineno, i, (int)(n < 40 ? n : 40), tok);
         if (field[k])
             return ct_error_set(CT_EINVAL,
@@ -178,8 +185,13 @@ static int header(const char *line, int col[3], int *ncol, const char *shown, si
         if (!field[k])
             return ct_error_set(CT_EINVAL,
                                 "%s:%zu: header: no column '%s' (a header names top, area and "
-                                "optionally length)",
+                                "optionally length, x and y)",
                                 shown, lineno, column_names[k]);
+    if (field[COL_Y] && !field[COL_X])
+        return ct_error_set(CT_EINVAL,
+                            "%s:%zu: header: a column 'y' and no 'x' (a rod on a line is placed "
+                            "by x, on a plane by x and y)",
+                            shown, lineno);
     return CT_OK;
 }
 
@@ -196,12 +208,23 @@ static int is_header(const char *line)
            !isdigit((unsigned char)f[0]) && f[0] != '.' && f[0] != '-' && f[0] != '+';
 }
 
-/* A row of numbers: *width of them (2 or 3, set by the first row without a header), field i
- * the column col[i]. */
-static int read_row(rods_config *c, size_t *cap, const char *line, const int col[3], int *width,
-                    const char *shown, size_t lineno)
+/* "top, area, length" of a row's width columns, in the order the file gives them. */
+static const char *columns_of(const int col[NCOL], int width)
 {
-    double v[3];
+    static _Thread_local char buf[48];
+    size_t n = 0;
+    buf[0] = '\0';
+    for (int i = 0; i < width && i < NCOL; i++)
+        n += (size_t)snprintf(buf + n, sizeof buf - n, "%s%s", i ? ", " : "", column_names[col[i]]);
+    return buf;
+}
+
+/* A row of numbers: *width of them (set by the header, else 2 or 3 by the first row: top, area
+ * and optionally length), field i the column col[i]. */
+static int read_row(rods_config *c, size_t *cap, const char *line, const int col[NCOL],
+                    int *width, const char *shown, size_t lineno)
+{
+    double v[NCOL];
     int nv = 0;
     ct_list l;
     const char *f;
@@ -211,12 +234,15 @@ static int read_row(rods_config *c, size_t *cap, const char *line, const int col
         if (!n)
             return ct_error_set(CT_EINVAL, "%s:%zu: field %d is empty (%s)", shown, lineno, nv + 1,
                                 ct_list_empty_why());
-        if (nv == 3 || (*width && nv == *width))
+        if (nv == 3 && !*width)
             return ct_error_set(CT_EINVAL,
-                                "%s:%zu: more than %d fields: expected %d numbers (top, area%s) "
-                                "on every row",
-                                shown, lineno, nv, *width ? *width : nv,
-                                (*width ? *width : nv) == 3 ? ", length" : "");
+                                "%s:%zu: more than 3 fields: expected top, area and optionally "
+                                "length on every row (a header naming x and y places the rods)",
+                                shown, lineno);
+        if (*width && nv == *width)
+            return ct_error_set(CT_EINVAL, "%s:%zu: more than %d fields: expected %d numbers on "
+                                "every row (%s)",
+                                shown, lineno, nv, *width, columns_of(col, *width));
         int st = ct_number_parse(f, n, &v[nv]);
         if (st)
             return ct_error_set(CT_EINVAL, "%s:%zu: field %d (%s) = %.*s: %s", shown, lineno,
@@ -227,14 +253,14 @@ static int read_row(rods_config *c, size_t *cap, const char *line, const int col
     if (!*width && nv >= 2)
         *width = nv;
     if (nv != *width)
-        return ct_error_set(CT_EINVAL, "%s:%zu: expected %d numbers (top, area%s) on every row",
-                            shown, lineno, *width ? *width : 2, *width == 3 ? ", length" : "");
-    /* every column once (the header's rule), so every field of row is written: a length only
-     * when a column holds it */
-    double row[3] = {NAN, NAN, NAN};
+        return ct_error_set(CT_EINVAL, "%s:%zu: expected %d numbers on every row (%s)", shown,
+                            lineno, *width ? *width : 2, columns_of(col, *width ? *width : 2));
+    /* every column once (the header's rule), so every field of row is written: a length or a
+     * position only when a column holds it */
+    double row[NCOL] = {NAN, NAN, NAN, NAN, NAN};
     for (int i = 0; i < nv; i++)
         row[col[i]] = v[i];
-    return push(c, cap, row, isnan(row[2]) ? 2 : 3);
+    return push(c, cap, row);
 }
 
 /* The next line of f into line (MAX_LINE + 1 bytes), its end (\n, \r\n or a lone \r) dropped:
@@ -277,7 +303,8 @@ static int read_file(rods_config *c, const char *path, const char *shown)
         return ct_error_set(CT_ENOMEM, "rods: out of memory");
     }
     size_t cap = 0, lineno = 0;
-    int col[3] = {0, 1, 2}, width = 0, st = CT_OK; /* width: numbers per row, once known */
+    int col[NCOL] = {COL_TOP, COL_AREA, COL_LENGTH, COL_X, COL_Y};
+    int width = 0, st = CT_OK; /* width: numbers per row, once known */
     long len;
     while (!st && (len = next_line(f, line)) != -1) {
         lineno++;
@@ -367,7 +394,8 @@ static int read_inline(const ct_surface *s, rods_config *c, const char *text)
                 s, "surface", "rods", CT_EINVAL,
                 "rod %zu: %s and rod 1 %s (every rod with a length or none)", k,
                 nv == 3 ? "has a length" : "has no length", nv == 3 ? "has none" : "has one");
-        st = push(c, &cap, v, nv);
+        const double row[NCOL] = {v[0], v[1], v[2], NAN, NAN};
+        st = push(c, &cap, row);
     }
     return st;
 }
@@ -379,9 +407,11 @@ static int read_rods(const ct_surface *s, rods_config *c, const char *dir, int *
     if (c->given_top) {
         size_t cap = 0;
         for (size_t k = 0; k < c->given_n && !st; k++) {
-            double v[3] = {c->given_top[k], c->given_area[k],
-                           c->given_length ? c->given_length[k] : NAN};
-            st = push(c, &cap, v, c->given_length ? 3 : 2);
+            const double v[NCOL] = {c->given_top[k], c->given_area[k],
+                                    c->given_length ? c->given_length[k] : NAN,
+                                    c->given_x ? c->given_x[k] : NAN,
+                                    c->given_y ? c->given_y[k] : NAN};
+            st = push(c, &cap, v);
         }
         snprintf(c->source, sizeof c->source, "arrays");
         *lengths = c->given_length != NULL;
@@ -443,6 +473,14 @@ static int check_rods(const ct_surface *s, rods_config *c, int lengths, double u
                 return rod_error(s, c, k, "length = %g: must be finite and > 0", c->length[k]);
             *bottom = fmin(*bottom, c->top[k] + c->length[k]);
         }
+        for (int i = 0; i < 2; i++) {
+            double *pos = i ? c->y : c->x;
+            if (!pos)
+                continue;
+            pos[k] *= u;
+            if (!isfinite(pos[k]))
+                return rod_error(s, c, k, "%s = %g: must be finite", i ? "y" : "x", pos[k]);
+        }
         *deepest = fmax(*deepest, c->top[k]);
         *total += c->area[k];
     }
@@ -461,6 +499,14 @@ static int rods_prepare(ct_surface *s, const char *dir)
     if (!lengths) {
         free(c->length);
         c->length = NULL;
+    }
+    if (isnan(c->x[0])) { /* a file's columns and the arrays give a position to all or none */
+        free(c->x);
+        c->x = NULL;
+    }
+    if (!c->x || isnan(c->y[0])) {
+        free(c->y);
+        c->y = NULL;
     }
     const double u = ct_surface_given(s, "surface", "unit") ? unit_metres[c->unit] : 1.0;
     double deepest, total, bottom;
@@ -514,6 +560,12 @@ static int rods_prepare(ct_surface *s, const char *dir)
 int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,
                         const double *length)
 {
+    return ct_surface_set_rods_at(s, n, top, area, length, NULL, NULL);
+}
+
+int ct_surface_set_rods_at(ct_surface *s, size_t n, const double *top, const double *area,
+                           const double *length, const double *x, const double *y)
+{
     CT_NEED(s);
     if (s->kind != &ct_kind_rods)
         return ct_error_set(CT_EINVAL, "ct_surface_set_rods: a surface of type %s, not rods",
@@ -524,8 +576,14 @@ int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double
     rods_release_given(c);
     c->given_top = malloc(n * sizeof(double));
     c->given_area = malloc(n * sizeof(double));
+    if (y && !x)
+        return ct_error_set(CT_EINVAL, "ct_surface_set_rods_at: y without x (a rod on a line is "
+                                       "placed by x, on a plane by x and y)");
     c->given_length = length ? malloc(n * sizeof(double)) : NULL;
-    if (!c->given_top || !c->given_area || (length && !c->given_length)) {
+    c->given_x = x ? malloc(n * sizeof(double)) : NULL;
+    c->given_y = y ? malloc(n * sizeof(double)) : NULL;
+    if (!c->given_top || !c->given_area || (length && !c->given_length) || (x && !c->given_x) ||
+        (y && !c->given_y)) {
         rods_release_given(c);
         return ct_error_set(CT_ENOMEM, "rods: out of memory for %zu rods", n);
     }
@@ -533,10 +591,61 @@ int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double
     memcpy(c->given_area, area, n * sizeof(double));
     if (length)
         memcpy(c->given_length, length, n * sizeof(double));
+    if (x)
+        memcpy(c->given_x, x, n * sizeof(double));
+    if (y)
+        memcpy(c->given_y, y, n * sizeof(double));
     c->given_n = n;
     s->checked = s->prepared = 0;
     return CT_OK;
 }
+
+/* The bundle's metadata: each rod's position, its footprint (a point). */
+typedef struct {
+    size_t n;
+    double *x, *y; /* y NULL: rods on a line */
+} rods_meta;
+
+static void rods_meta_free(void *meta)
+{
+    rods_meta *m = meta;
+    if (m) {
+        free(m->x);
+        free(m->y);
+        free(m);
+    }
+}
+
+static rods_meta *rods_meta_new(size_t n, const double *x, const double *y)
+{
+    rods_meta *m = calloc(1, sizeof *m);
+    if (!m || !(m->x = malloc(n * sizeof(double))) || (y && !(m->y = malloc(n * sizeof(double))))) {
+        rods_meta_free(m);
+        return NULL;
+    }
+    m->n = n;
+    memcpy(m->x, x, n * sizeof(double));
+    if (y)
+        memcpy(m->y, y, n * sizeof(double));
+    return m;
+}
+
+static void *rods_meta_clone(const void *meta)
+{
+    const rods_meta *m = meta;
+    return rods_meta_new(m->n, m->x, m->y);
+}
+
+static void rods_rod_info(const void *meta, size_t k, ct_rod_info *info)
+{
+    const rods_meta *m = meta;
+    const double x = m->x[k], y = m->y ? m->y[k] : NAN;
+    info->x_left = info->x_right = x;
+    info->footprint = (ct_footprint){CT_FOOTPRINT_POINT, x, x, y, y};
+}
+
+static const ct_rod_meta_kind rods_meta_kind = {"rods", rods_rod_info, rods_meta_clone,
+                                                rods_meta_free};
 
 static int rods_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
                       ct_plan_info *info)
@@ -554,6 +663,14 @@ static int rods_build(const ct_surface *s, const ct_build_request *r, ct_bundle 
         length[k] = c->length ? c->length[k] : c->layer.Hstar - c->top[k];
         area[k] = c->area[k];
         eps_p[k] = 0.0;
+    }
+    if (c->x) {
+        rods_meta *m = rods_meta_new(c->n, c->x, c->y);
+        if (!m) {
+            ct_bundle_free(b);
+            return ct_error_set(CT_ENOMEM, "rods: out of memory for %zu positions", c->n);
+        }
+        ct_bundle_set_surface(b, &rods_meta_kind, m, 0);
     }
     *out = b;
     info->depth = -1;
@@ -582,9 +699,10 @@ static void rods_table_line(const ct_surface *s, const ct_plan_info *info, char 
 /* what = profile: every rod in input order, its top after the impacts beside its top. */
 static int rods_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
 {
-    (void)s;
+    const rods_config *c = s->config;
     const ct_layer *L = ct_bundle_layer(b);
-    fputs("rod,top_over_h0,area_over_l0,length_over_h0,residual_top_over_h0\n", f);
+    fputs("rod,top_over_h0,area_over_l0,length_over_h0,residual_top_over_h0", f);
+    fputs(!c->x ? "\n" : c->y ? ",x,y\n" : ",x\n", f);
     for (size_t k = 0; k < ct_bundle_size(b); k++) {
         ct_rod_info info;
         ct_bundle_rod(b, k, &info);
@@ -594,6 +712,10 @@ static int rods_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
         for (int i = 0; i < 4; i++) {
             fputc(',', f);
             ct_put_double(f, v[i]);
+        }
+        for (int i = 0; c->x && i < (c->y ? 2 : 1); i++) { /* the position, in the rods' unit */
+            fputc(',', f);
+            ct_put_double(f, i ? info.footprint.y_lo : info.footprint.x_lo);
         }
         fputc('\n', f);
     }
@@ -615,7 +737,8 @@ static const ct_refusal rods_refusals[] = {
 
 const ct_kind ct_kind_rods = {
     .name = "rods",
-    .summary = "your own rods: a file or a list of tops, areas and optionally lengths",
+    .summary = "your own rods: a file or a list of tops, areas and optionally lengths and "
+               "positions",
     .keys = rods_keys,
     .nkeys = sizeof rods_keys / sizeof rods_keys[0],
     .config_size = sizeof(rods_config),

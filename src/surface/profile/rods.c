@@ -65,10 +65,12 @@ static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
     const ct_profile *p = pm->p;
     const size_t j = pm->index ? pm->index[k] : k;
     info->stage = -1;
-    if (p->ny > 1) { /* a pixel: its x; the extent in x of its column */
-        double x = (double)(j % p->nx) * p->dx;
+    if (p->ny > 1) { /* a pixel: the rectangle of one increment each way about its sample */
+        const double x = (double)(j % p->nx) * p->dx, y = (double)(j / p->nx) * p->dy;
         info->x_left = x - 0.5 * p->dx;
         info->x_right = x + 0.5 * p->dx;
+        info->footprint = (ct_footprint){CT_FOOTPRINT_RECTANGLE, info->x_left, info->x_right,
+                                         y - 0.5 * p->dy, y + 0.5 * p->dy};
         return;
     }
     double x = p->x ? p->x[j] : (double)j * p->dx;
