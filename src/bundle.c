@@ -370,8 +370,8 @@ int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
     /* a surface that gives an x-extent and no footprint of its own: the interval */
     if (info->footprint.shape == CT_FOOTPRINT_NONE && isfinite(info->x_left) &&
         isfinite(info->x_right))
-        info->footprint = (ct_footprint){CT_FOOTPRINT_INTERVAL, info->x_left, info->x_right, NAN,
-                                         NAN};
+        info->footprint =
+            (ct_footprint){CT_FOOTPRINT_INTERVAL, info->x_left, info->x_right, NAN, NAN};
     return CT_OK;
 }
 

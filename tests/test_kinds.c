@@ -47,8 +47,26 @@ static void registry_complete(void **state)
         snprintf(outputs, sizeof outputs, "%s", ct_surface_outputs());
         for (char *o = strtok(outputs, " "); o; o = strtok(NULL, " ")) {
             const char *why = NULL;
-            if (!ct_surface_kind_supports(k, o, &why))
-                assert_true(why && strlen(why) > 20);
+            if (ct_surface_kind_supports(k, o, &why))
+                continue;
+            assert_true(why && strlen(why) > 20);
+            /* the reason names exactly the kinds that give the output, after "surface.type =" */
+            char reason[400];
+            snprintf(reason, sizeof reason, "%s", why);
+            const char *kinds = strstr(reason, "surface.type = ");
+            assert_non_null(kinds);
+            for (size_t j = 0; j < n; j++) {
+                char word[64];
+                int named = 0;
+                for (const char *p = kinds + 15; *p;) {
+                    size_t len = strcspn(p, ", ");
+                    snprintf(word, sizeof word, "%.*s", (int)len, p);
+                    named |= !strcmp(word, ct_surface_kind_name(j));
+                    p += len;
+                    p += strspn(p, ", ");
+                }
+                assert_int_equal(named, ct_surface_kind_supports(j, o, NULL));
+            }
         }
         const char *why;
         assert_false(ct_surface_kind_supports(k, "nonsense", &why));
@@ -401,7 +419,8 @@ static void keys_of_other_kinds(void **state)
     assert_int_equal(ct_surface_check(s, "t.ini"), CT_OK);
     assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
     assert_int_equal(ct_surface_ready(s, "compare"), CT_EINVAL);
-    assert_non_null(strstr(ct_error_message(), "compare: the paper's laws model a Cantor"));
+    assert_non_null(strstr(ct_error_message(), "compare: compare sets e beside the paper's laws"));
+    assert_non_null(strstr(ct_error_message(), "surface.type = cantor or profile"));
     assert_int_equal(ct_surface_write_geometry(s, NULL, stdout), CT_EINVAL);
     ct_surface_free(s);
 }
@@ -451,8 +470,8 @@ static void every_rod_knows_its_footprint(void **state)
      * stage N tile [0, l0]; a piece of stage i, index j lies where its binary digits put it
      * (children of width w / (2 fx) at both ends of their parent, so that the middle left is
      * w (1 - 1/fx) wide, docs/model.md §2) */
-    const ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 2.0, .h0 = 1.0, .Hstar = 10.0, .E = 500.0,
-                         .sigma_y = 1.0};
+    const ct_params p = {
+        .fx = 1.5, .fz = 1.3, .l0 = 2.0, .h0 = 1.0, .Hstar = 10.0, .E = 500.0, .sigma_y = 1.0};
     ct_bundle *b;
     assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 6, INFINITY), CT_OK);
     intervals_tile(b, 0.0, p.l0, 1e-14);
@@ -482,8 +501,12 @@ static void every_rod_knows_its_footprint(void **state)
     }
     ct_bundle_free(b);
     /* a random Cantor realisation: the same tiling, piece by piece */
-    ct_random_cantor rc = {.params = p, .dist = CT_RATIO_LOGNORMAL, .fx_spread = 0.2,
-                           .fz_spread = 0.1, .depth = 8, .seed = 7};
+    ct_random_cantor rc = {.params = p,
+                           .dist = CT_RATIO_LOGNORMAL,
+                           .fx_spread = 0.2,
+                           .fz_spread = 0.1,
+                           .depth = 8,
+                           .seed = 7};
     assert_int_equal(ct_random_cantor_bundle(&b, &rc, 3, 1), CT_OK);
     intervals_tile(b, 0.0, p.l0, 1e-13);
     ct_bundle_free(b);
@@ -523,9 +546,9 @@ static void every_rod_knows_its_footprint(void **state)
         const double xs = (double)(q % 4) * 0.5, ys = (double)(q / 4) * 0.25;
         assert_true(r.footprint.x_lo == xs - 0.25 && r.footprint.x_hi == xs + 0.25);
         assert_true(r.footprint.y_lo == ys - 0.125 && r.footprint.y_hi == ys + 0.125);
-        assert_true(fabs((r.footprint.x_hi - r.footprint.x_lo) *
-                             (r.footprint.y_hi - r.footprint.y_lo) -
-                         r.area) <= 1e-15);
+        assert_true(
+            fabs((r.footprint.x_hi - r.footprint.x_lo) * (r.footprint.y_hi - r.footprint.y_lo) -
+                 r.area) <= 1e-15);
     }
     ct_bundle_free(b);
     ct_profile_free(prof);
@@ -535,9 +558,9 @@ static void every_rod_knows_its_footprint(void **state)
     for (int with = 0; with < 3; with++) {
         ct_surface *s;
         assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
-        assert_int_equal(ct_surface_set_rods_at(s, 3, top, area, NULL, with ? px : NULL,
-                                                with == 2 ? py : NULL),
-                         CT_OK);
+        assert_int_equal(
+            ct_surface_set_rods_at(s, 3, top, area, NULL, with ? px : NULL, with == 2 ? py : NULL),
+            CT_OK);
         assert_int_equal(ct_surface_set(s, "surface", "Hstar", "10", ""), CT_OK);
         assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
         assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);

@@ -65,8 +65,8 @@ static const ct_key cli_keys[] = {
 
 const ct_key *ct_scene_key_row(size_t i)
 {
-    static const char *const sections[] = {"surface", "impact", "solver", "output", "table",
-                                           "ensemble"};
+    static const char *const sections[] = {"surface", "impact", "solver",
+                                           "output",  "table",  "ensemble"};
     size_t nrun;
     const ct_key *run = ct_run_keys_table(&nrun);
     for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++) {

@@ -261,17 +261,6 @@ static int cantor_write_geometry(const ct_surface *s, const ct_build_request *r,
     return CT_OK;
 }
 
-static const ct_refusal cantor_refusals[] = {
-    {"bearing", "a bearing-area curve is written for measured surfaces (type = profile); the "
-                "Cantor surface's is the power law (d/h0)^alpha, alpha in cantact geometry"},
-    {"ensemble", "ensembles are of random surfaces: surface.type = random_cantor"},
-    {"realisations", "ensembles are of random surfaces: surface.type = random_cantor"},
-    {"merge", "merge combines the parts of an ensemble of a random_cantor surface"},
-    {"fit", "cantact fit fits a Cantor surface to a measured profile (type = profile or a "
-            "profile file)"},
-    {NULL, NULL},
-};
-
 const ct_kind ct_kind_cantor = {
     .name = "cantor",
     .summary = "the deterministic Cantor prefractal of the paper, one rod per stage or per piece",
@@ -279,8 +268,6 @@ const ct_kind ct_kind_cantor = {
     .nkeys = sizeof cantor_keys / sizeof cantor_keys[0],
     .config_size = sizeof(cantor_config),
     .defaults = cantor_defaults,
-    .gives = "profile compare geometry",
-    .refusals = cantor_refusals,
     .check = cantor_check,
     .prepare = cantor_prepare,
     .build = cantor_build,

@@ -12,10 +12,56 @@ static const ct_kind *const registry[] = {&ct_kind_cantor, &ct_kind_random_canto
                                           &ct_kind_rods};
 #define NKINDS (sizeof registry / sizeof registry[0])
 
-/* Every kind gives these; the others are the kind's to give or refuse. */
+/* Every kind gives these. */
 static const char generic_outputs[] = "e time curve history bounce table";
-static const char all_outputs[] = "e time curve history bounce table profile compare bearing "
-                                  "ensemble realisations geometry fit merge";
+
+/* The outputs only some kinds give: the operation that gives each, and what it is, said to a
+ * kind without it together with the kinds that have it. A new kind adds no row here; a new
+ * kind-specific output adds one. */
+static int has_profile(const ct_kind *k)
+{
+    return k->write_profile != NULL;
+}
+static int has_compare(const ct_kind *k)
+{
+    return k->compare != NULL;
+}
+static int has_bearing(const ct_kind *k)
+{
+    return k->write_bearing != NULL;
+}
+static int has_geometry(const ct_kind *k)
+{
+    return k->write_geometry != NULL;
+}
+static int has_fit(const ct_kind *k)
+{
+    return k->write_fit != NULL;
+}
+static int has_realisations(const ct_kind *k)
+{
+    return k->realisations;
+}
+
+static const struct {
+    const char *output;
+    int (*given)(const ct_kind *k);
+    const char *what; /* "...: surface.type = <the kinds that give it>" follows */
+} kind_outputs[] = {
+    {"profile", has_profile, "the surface's rods and their state are written by"},
+    {"compare", has_compare,
+     "compare sets e beside the paper's laws (a Cantor surface) or beside the Cantor surface a "
+     "measured one looks like"},
+    {"bearing", has_bearing, "a bearing-area curve is written for measured surfaces"},
+    {"ensemble", has_realisations, "ensembles are of random surfaces"},
+    {"realisations", has_realisations, "ensembles are of random surfaces"},
+    {"geometry", has_geometry, "the stages' geometry is written for the Cantor surface"},
+    {"fit", has_fit,
+     "cantact fit fits a Cantor surface to a measured profile (or to a profile file given as "
+     "it is)"},
+    {"merge", has_realisations, "merge combines the parts of an ensemble of a random surface"},
+};
+#define NOUTPUTS (sizeof kind_outputs / sizeof kind_outputs[0])
 
 size_t ct_surface_kind_count(void)
 {
@@ -44,7 +90,11 @@ const ct_key *ct_surface_kind_keys(size_t k, size_t *n)
 
 const char *ct_surface_outputs(void)
 {
-    return all_outputs;
+    static _Thread_local char all[200]; /* the generic outputs, then the table's */
+    size_t n = (size_t)snprintf(all, sizeof all, "%s", generic_outputs);
+    for (size_t o = 0; o < NOUTPUTS; o++)
+        n += (size_t)snprintf(all + n, sizeof all - n, " %s", kind_outputs[o].output);
+    return all;
 }
 
 /* 1 when word is one of the blank-separated words of list. */
@@ -65,24 +115,39 @@ static int in_list(const char *list, const char *word)
 
 int ct_surface_kind_supports(size_t k, const char *output, const char **why)
 {
+    static _Thread_local char reason[300]; /* what the output is, and the kinds that give it */
     static const char unknown[] = "not an output of cantact";
     const char *dummy;
     if (!why)
         why = &dummy;
     *why = NULL;
-    if (k >= NKINDS || !output || !in_list(all_outputs, output)) {
+    if (k >= NKINDS || !output) {
         *why = unknown;
         return 0;
     }
-    const ct_kind *kind = registry[k];
-    if (in_list(generic_outputs, output) || in_list(kind->gives, output))
+    if (in_list(generic_outputs, output))
         return 1;
-    for (const ct_refusal *r = kind->refusals; r && r->output; r++)
-        if (!strcmp(r->output, output)) {
-            *why = r->why;
-            return 0;
-        }
-    *why = "not given by this kind of surface";
+    size_t o = 0;
+    while (o < NOUTPUTS && strcmp(kind_outputs[o].output, output))
+        o++;
+    if (o == NOUTPUTS) {
+        *why = unknown;
+        return 0;
+    }
+    if (kind_outputs[o].given(registry[k]))
+        return 1;
+    size_t total = 0, found = 0;
+    for (size_t j = 0; j < NKINDS; j++)
+        total += kind_outputs[o].given(registry[j]) != 0;
+    size_t n = (size_t)snprintf(reason, sizeof reason, "%s: surface.type = ", kind_outputs[o].what);
+    for (size_t j = 0; j < NKINDS && n < sizeof reason; j++) {
+        if (!kind_outputs[o].given(registry[j]))
+            continue;
+        const char *sep = found == 0 ? "" : found + 1 == total ? " or " : ", ";
+        n += (size_t)snprintf(reason + n, sizeof reason - n, "%s%s", sep, registry[j]->name);
+        found++;
+    }
+    *why = reason;
     return 0;
 }
 
@@ -444,4 +509,3 @@ int ct_surface_write_fit(ct_surface *s, FILE *f)
         return st;
     return s->kind->write_fit ? s->kind->write_fit(s, f) : refused(s, "fit");
 }
-

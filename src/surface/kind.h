@@ -9,12 +9,6 @@
 
 #include <stdio.h>
 
-/* An output a kind does not give, and what to use instead. */
-typedef struct {
-    const char *output;
-    const char *why;
-} ct_refusal;
-
 typedef struct ct_kind ct_kind;
 
 struct ct_surface {
@@ -28,6 +22,24 @@ struct ct_surface {
     char note[600];   /* what the front-end may print (not an error; "" when none) */
 };
 
+/* A kind of surface: what every kind states and does (required), and what only some do
+ * (optional: NULL or 0 where the kind has none). The outputs a kind gives follow from its
+ * operations (kind.c's table of outputs says which operation gives each and what the others
+ * are told), so a kind lists no outputs and no refusals of its own.
+ *
+ *   required   name, summary, keys/nkeys, config_size, defaults, check, prepare, build,
+ *              describe, table_line
+ *   optional   release      what prepare allocated
+ *              ready        what an output needs before any impact (a profile's fit)
+ *              write_profile  what = profile (the rods and their state)
+ *              compare, ncompare, compare_names; curve_compare...  what = compare
+ *              after_sweep  what a kind redoes once the impacts are known (a refit)
+ *              write_bearing  what = bearing
+ *              write_geometry cantact geometry
+ *              write_fit    cantact fit
+ *              realisations 1: the surface is one of many random realisations (ensembles,
+ *                           what = realisations, cantact merge)
+ *              profile_shows_state 1: what = profile shows the state after the impacts */
 struct ct_kind {
     const char *name;
     const char *summary; /* one line */
@@ -35,26 +47,18 @@ struct ct_kind {
     size_t nkeys;
     size_t config_size;
     void (*defaults)(void *config);
-    /* The kind-specific outputs it gives (space separated; e, time, curve, history, bounce
-     * and table are every kind's) and, for each it does not, why and what to use instead. */
-    const char *gives;
-    const ct_refusal *refusals;
     /* Keys together; scene names the scene for messages about no single key. */
     int (*check)(ct_surface *s, const char *scene);
     /* Files read, levelled; s->scales set. dir: where relative paths start (NULL: cwd). */
     int (*prepare)(ct_surface *s, const char *dir);
     int (*build)(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
                  ct_plan_info *info);
-    void (*release)(void *config); /* what prepare allocated (text keys are freed by kind.c) */
-    /* Makes ready what an output needs before any impact (a profile's fit); NULL: nothing. */
-    int (*ready)(ct_surface *s, const char *output);
-    /* 1 when what = profile shows the state after the impacts (written by the sweep's
-     * observer at the last impact), 0 when it does not depend on the state. */
-    int profile_shows_state;
     /* The run's summary line ("stage rods, depth 65 (auto: ...)"), and the table file's. */
     void (*describe)(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len);
     void (*table_line)(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len);
-    /* Optional outputs; NULL where the kind gives none. */
+    /* optional */
+    void (*release)(void *config); /* text keys are freed by kind.c */
+    int (*ready)(ct_surface *s, const char *output);
     int (*write_profile)(const ct_surface *s, const ct_bundle *b, FILE *f);
     size_t ncompare;
     const char *const *compare_names;
@@ -66,6 +70,8 @@ struct ct_kind {
     int (*write_bearing)(const ct_surface *s, FILE *f);
     int (*write_geometry)(const ct_surface *s, const ct_build_request *req, FILE *f);
     int (*write_fit)(ct_surface *s, FILE *f);
+    int realisations;
+    int profile_shows_state;
 };
 
 /* What both Cantor kinds take: the ratios (a random surface's centres), H (H* in units of

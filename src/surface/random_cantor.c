@@ -820,16 +820,6 @@ static int random_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f
     return CT_OK;
 }
 
-static const ct_refusal random_refusals[] = {
-    {"compare", "the paper's laws model the deterministic surface (type = cantor)"},
-    {"bearing", "a bearing-area curve is written for measured surfaces (type = profile)"},
-    {"geometry", "a random surface has no single stage geometry: what = profile writes its "
-                 "pieces"},
-    {"fit", "cantact fit fits a Cantor surface to a measured profile (type = profile or a "
-            "profile file)"},
-    {NULL, NULL},
-};
-
 const ct_kind ct_kind_random_cantor = {
     .name = "random_cantor",
     .summary = "a random Cantor surface: every split draws its own ratios (Philox, seeded)",
@@ -837,8 +827,7 @@ const ct_kind ct_kind_random_cantor = {
     .nkeys = sizeof random_keys / sizeof random_keys[0],
     .config_size = sizeof(random_config),
     .defaults = random_defaults,
-    .gives = "profile ensemble realisations merge",
-    .refusals = random_refusals,
+    .realisations = 1,
     .check = random_check,
     .prepare = random_prepare,
     .build = random_build,

@@ -221,8 +221,8 @@ static const char *columns_of(const int col[NCOL], int width)
 
 /* A row of numbers: *width of them (set by the header, else 2 or 3 by the first row: top, area
  * and optionally length), field i the column col[i]. */
-static int read_row(rods_config *c, size_t *cap, const char *line, const int col[NCOL],
-                    int *width, const char *shown, size_t lineno)
+static int read_row(rods_config *c, size_t *cap, const char *line, const int col[NCOL], int *width,
+                    const char *shown, size_t lineno)
 {
     double v[NCOL];
     int nv = 0;
@@ -240,7 +240,8 @@ static int read_row(rods_config *c, size_t *cap, const char *line, const int col
                                 "length on every row (a header naming x and y places the rods)",
                                 shown, lineno);
         if (*width && nv == *width)
-            return ct_error_set(CT_EINVAL, "%s:%zu: more than %d fields: expected %d numbers on "
+            return ct_error_set(CT_EINVAL,
+                                "%s:%zu: more than %d fields: expected %d numbers on "
                                 "every row (%s)",
                                 shown, lineno, nv, *width, columns_of(col, *width));
         int st = ct_number_parse(f, n, &v[nv]);
@@ -407,10 +408,9 @@ static int read_rods(const ct_surface *s, rods_config *c, const char *dir, int *
     if (c->given_top) {
         size_t cap = 0;
         for (size_t k = 0; k < c->given_n && !st; k++) {
-            const double v[NCOL] = {c->given_top[k], c->given_area[k],
-                                    c->given_length ? c->given_length[k] : NAN,
-                                    c->given_x ? c->given_x[k] : NAN,
-                                    c->given_y ? c->given_y[k] : NAN};
+            const double v[NCOL] = {
+                c->given_top[k], c->given_area[k], c->given_length ? c->given_length[k] : NAN,
+                c->given_x ? c->given_x[k] : NAN, c->given_y ? c->given_y[k] : NAN};
             st = push(c, &cap, v);
         }
         snprintf(c->source, sizeof c->source, "arrays");
@@ -722,19 +722,6 @@ static int rods_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
     return CT_OK;
 }
 
-static const ct_refusal rods_refusals[] = {
-    {"compare", "the paper's laws model a Cantor surface (type = cantor); a rod set has no "
-                "fitted one"},
-    {"bearing", "a bearing-area curve is written for measured surfaces (type = profile)"},
-    {"geometry", "a rod set has no Cantor stages: what = profile lists its rods"},
-    {"fit", "cantact fit fits a Cantor surface to a measured profile (type = profile or a "
-            "profile file)"},
-    {"ensemble", "ensembles are of random surfaces: surface.type = random_cantor"},
-    {"realisations", "ensembles are of random surfaces: surface.type = random_cantor"},
-    {"merge", "merge combines the parts of an ensemble of a random_cantor surface"},
-    {NULL, NULL},
-};
-
 const ct_kind ct_kind_rods = {
     .name = "rods",
     .summary = "your own rods: a file or a list of tops, areas and optionally lengths and "
@@ -743,8 +730,6 @@ const ct_kind ct_kind_rods = {
     .nkeys = sizeof rods_keys / sizeof rods_keys[0],
     .config_size = sizeof(rods_config),
     .defaults = rods_defaults,
-    .gives = "profile",
-    .refusals = rods_refusals,
     .check = rods_check,
     .prepare = rods_prepare,
     .build = rods_build,

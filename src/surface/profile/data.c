@@ -137,7 +137,6 @@ int ct_profile_from_grid(ct_profile **out, size_t nx, size_t ny, double dx, doub
     return st;
 }
 
-
 /* A sample's x and y along a pass over the samples in order, without a division per sample:
  * the sample's column i and row r (of a grid) are carried. */
 typedef struct {
@@ -344,7 +343,6 @@ static int level_fit(const ct_profile *p, const level_frame *L, ct_detrend how, 
                             how == CT_DETREND_LINEAR ? "linear" : "quadratic");
     return CT_OK;
 }
-
 
 /* Samples [j0, j1) less the fitted terms (m of them, coef), and the extremes of the heights
  * before (|z|: *big) and after (*lo, *hi). */

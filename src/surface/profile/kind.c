@@ -147,7 +147,8 @@ static int profile_prepare(ct_surface *s, const char *dir)
     const double Hstar = c->Hstar * p->z_unit;
     for (int k = 0; k < 4; k++)
         c->band_m[k] = c->band[k] * (k < 2 ? p->z_unit : p->x_unit);
-    ct_profile_stats raw = {.Rt = ct_profile_heights_span(p)}; /* only Rt is asked of the raw heights */
+    ct_profile_stats raw = {
+        .Rt = ct_profile_heights_span(p)}; /* only Rt is asked of the raw heights */
     size_t clipped = 0;
     if ((st = ct_profile_level(p, c->detrend)) ||
         (c->trim_k > 0.0 && (st = ct_profile_trim(p, c->trim_k, &clipped))) ||
@@ -201,7 +202,8 @@ static int profile_build(const ct_surface *s, const ct_build_request *r, ct_bund
     const profile_config *c = s->config;
     *out = NULL;
     int st = ct_profile_bundle_of(out, c->profile, &c->stats, c->layer.E, c->layer.sigma_y,
-                            c->layer.Hstar, r->threads); /* the profile's statistics as it stands */
+                                  c->layer.Hstar,
+                                  r->threads); /* the profile's statistics as it stands */
     if (st)
         return st;
     info->depth = -1;
@@ -226,7 +228,6 @@ static int need_fit(ct_surface *s)
     c->have_fit = 1;
     return CT_OK;
 }
-
 
 /* After the sweep, with a fit and no [fit] depth band given: the bearing fit redone on the
  * depths the impacts reached (docs/model.md §9); the default band is kept, and said, when
@@ -260,7 +261,6 @@ static int profile_after_sweep(ct_surface *s, const ct_sweep_row *rows, size_t n
                         names[f.dimension - CT_DIM_VARIATION], f.fx, f.fz);
     return CT_OK;
 }
-
 
 static const char *const fit_e_names[] = {"e_cantor_fit", "e_asymptotic_fit", "V_star_cantor_fit"};
 
@@ -365,8 +365,6 @@ static int profile_write_levelled(const ct_surface *s, const ct_bundle *b, FILE 
     return CT_OK;
 }
 
-
-
 static int profile_write_fit(ct_surface *s, FILE *f)
 {
     int st = need_fit(s);
@@ -408,15 +406,6 @@ static void profile_table_line(const ct_surface *s, const ct_plan_info *info, ch
              detrend_name(c->detrend));
 }
 
-static const ct_refusal profile_refusals[] = {
-    {"geometry", "a measured profile has no Cantor stages: cantact fit gives the Cantor surface "
-                 "it looks like"},
-    {"ensemble", "ensembles are of random surfaces: surface.type = random_cantor"},
-    {"realisations", "ensembles are of random surfaces: surface.type = random_cantor"},
-    {"merge", "merge combines the parts of an ensemble of a random_cantor surface"},
-    {NULL, NULL},
-};
-
 const ct_kind ct_kind_profile = {
     .name = "profile",
     .summary = "a measured line profile or areal topography (text, Dektak, X3P), one rod per "
@@ -425,8 +414,6 @@ const ct_kind ct_kind_profile = {
     .nkeys = sizeof profile_keys / sizeof profile_keys[0],
     .config_size = sizeof(profile_config),
     .defaults = profile_defaults,
-    .gives = "profile compare bearing fit",
-    .refusals = profile_refusals,
     .check = profile_check,
     .prepare = profile_prepare,
     .build = profile_build,

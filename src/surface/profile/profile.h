@@ -13,8 +13,8 @@
 double ct_profile_heights_span(const ct_profile *p);
 /* ct_profile_bundle with p's statistics known (sp), filled on threads threads (0: the OpenMP
  * default). */
-int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
-                         double E, double sigma_y, double Hstar, int threads);
+int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp, double E,
+                         double sigma_y, double Hstar, int threads);
 /* CT_OK when p has the 3 valid points every statistic and fit needs, else CT_EINVAL. */
 int ct_profile_check_heights(const ct_profile *p);
 

@@ -109,8 +109,8 @@ static inline void rod_of(const ct_profile *p, size_t j, double zmax, double Hst
     eps_p[k] = 0.0;
 }
 
-int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp,
-                         double E, double sigma_y, double Hstar, int threads)
+int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp, double E,
+                         double sigma_y, double Hstar, int threads)
 {
     const ct_profile_stats s = *sp;
     int st;
