@@ -979,6 +979,7 @@ typedef enum {
     CT_KEY_DEPTH,      /* an integer lo..hi or one of words; stored as long, word k as -1 - k */
     CT_KEY_SPEEDS,     /* numbers > 0: "a, b, c" or "from:to:count[:log]"; stored as ct_speeds */
     CT_KEY_RANGE,      /* "from:to", 0 < from < to; stored as double[2] */
+    CT_KEY_POINT,      /* "x" or "x, y", finite; stored as double[2] (y NaN when not given) */
 } ct_key_type;
 
 enum {
@@ -1128,6 +1129,29 @@ double ct_V_star_of(double m, double v, double l0, double E, double h0);
 /* tau = sqrt(m h0 / (E l0)) [time] of a body of mass m in the physical units. */
 double ct_time_scale(const ct_scales *sc, double m);
 
+/* ---- bodies (docs/model.md §12) -------------------------------------------------- */
+/* What strikes the rods: the paper's flat strip, a cylinder with its axis across a line
+ * surface, or a sphere over an areal one. A body only shifts each rod's top by the gap of its
+ * face at the rod's footprint (the first point of the footprint it reaches); everything after
+ * that knows nothing of the body. The kinds of body are a registry, like the kinds of surface. */
+typedef struct {
+    int shape;          /* the body's index in the registry (0: flat, ct_body_name) */
+    double radius;      /* R [the surface's length unit: metres for profiles and maps, the rods'
+                           unit, l0's unit for Cantor surfaces], > 0 for a curved body */
+    double position[2]; /* the apex: x, or x and y [length]; NaN: the middle of the surface */
+} ct_body;
+size_t ct_body_count(void);
+const char *ct_body_name(size_t k);    /* "flat", "cylinder", "sphere" */
+const char *ct_body_summary(size_t k); /* one line */
+/* The rows of section [body] (shape, radius, position): offsets into ct_body. */
+const ct_key *ct_body_keys_table(size_t *n);
+/* The flat body (shape 0, radius 0, position NaN). */
+void ct_body_defaults(ct_body *body);
+/* The gap [length] of the body's face at a horizontal distance r [length] from its apex:
+ * R - sqrt(R^2 - r^2) for a curved body (computed as r^2 / (R + sqrt(R^2 - r^2))), INFINITY
+ * beyond R, 0 for the flat body. */
+double ct_body_gap(const ct_body *body, double r);
+
 /* What a build is for: the speeds it will see and how. */
 typedef struct {
     const double *V_star; /* dimensionless, > 0 */
@@ -1137,6 +1161,7 @@ typedef struct {
     int keep_all_rods;      /* 1: leave out nothing (the whole surface is written) */
     int threads;            /* of the bundle's sums; 0: the OpenMP default */
     double depth_tolerance; /* of depth auto (Cantor): relative truncation bound */
+    const ct_body *body;    /* what strikes the rods (NULL: the flat strip of the paper) */
 } ct_build_request;
 /* The rods of a prepared surface for the request (a Cantor surface plans its depth and
  * leaves out what no impact reaches; a random one builds its realisation). */

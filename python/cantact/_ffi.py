@@ -444,6 +444,16 @@ double ct_speed_to_V_star(const ct_scales *sc, double m, double v);
 double ct_V_star_of(double m, double v, double l0, double E, double h0);
 double ct_time_scale(const ct_scales *sc, double m);
 typedef struct {
+    int shape;
+    double radius;
+    double position[2];
+} ct_body;
+size_t ct_body_count(void);
+const char *ct_body_name(size_t k);
+const char *ct_body_summary(size_t k);
+void ct_body_defaults(ct_body *body);
+double ct_body_gap(const ct_body *body, double r);
+typedef struct {
     const double *V_star;
     size_t nvel;
     long impacts;
@@ -451,6 +461,7 @@ typedef struct {
     int keep_all_rods;
     int threads;
     double depth_tolerance;
+    const ct_body *body;
 } ct_build_request;
 int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
                      ct_plan_info *info);

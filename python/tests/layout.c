@@ -248,5 +248,10 @@ int main(void)
     FIELD(ct_build_request, keep_all_rods);
     FIELD(ct_build_request, threads);
     FIELD(ct_build_request, depth_tolerance);
+    FIELD(ct_build_request, body);
+    SIZE(ct_body);
+    FIELD(ct_body, shape);
+    FIELD(ct_body, radius);
+    FIELD(ct_body, position);
     return 0;
 }

@@ -218,6 +218,33 @@ static int parse_range2(const ct_key *row, const char *v, double *out)
     return CT_OK;
 }
 
+/* "x" or "x, y": one or two finite numbers (y NaN when one) */
+static int parse_point(const ct_key *row, const char *v, double *out)
+{
+    double p[2] = {NAN, NAN};
+    ct_list l;
+    const char *f;
+    size_t n, k = 0;
+    ct_list_start(&l, v, ", ");
+    while (ct_list_next(&l, &f, &n)) {
+        if (!n)
+            return ct_error_set(CT_EINVAL, "field %zu of the list is empty (%s)", k + 1,
+                                ct_list_empty_why());
+        if (k == 2)
+            return ct_error_set(CT_EINVAL, "%s", row->range);
+        const int st = ct_number_parse(f, n, &p[k]);
+        if (st)
+            return ct_error_set(CT_EINVAL, "field %zu = %.*s: %s", k + 1, (int)(n < 40 ? n : 40), f,
+                                ct_number_why(st));
+        k++;
+    }
+    if (k == 0)
+        return ct_error_set(CT_EINVAL, "%s", row->range);
+    out[0] = p[0];
+    out[1] = p[1];
+    return CT_OK;
+}
+
 /* words separated by commas or blanks, no field empty */
 static int parse_words(const ct_key *row, const char *v, unsigned *out)
 {
@@ -312,6 +339,8 @@ static int parse_value(const ct_key *row, const char *v, void *at)
     }
     case CT_KEY_RANGE:
         return parse_range2(row, v, (double *)at);
+    case CT_KEY_POINT:
+        return parse_point(row, v, (double *)at);
     }
     return ct_error_set(CT_EINVAL, "key %s.%s: unknown type %d", row->section, row->name,
                         (int)row->type);
@@ -380,6 +409,9 @@ void ct_key_describe(const ct_key *row, char *buf, size_t len)
         break;
     case CT_KEY_RANGE:
         snprintf(buf, len, "from:to, 0 < from < to");
+        break;
+    case CT_KEY_POINT:
+        snprintf(buf, len, "x, or x and y");
         break;
     }
 }

@@ -2,6 +2,7 @@
  * text through the kind's rows, checked together, prepared, built into rods; the outputs
  * only some kinds give are asked of the kind's descriptor. */
 #include "kind.h"
+#include "body/body.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -402,8 +403,15 @@ int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle
     if ((st = need_prepared(s)))
         return st;
     ct_plan_info dummy;
-    if ((st = s->kind->build(s, req, out, info ? info : &dummy)))
+    if (!info)
+        info = &dummy;
+    if ((st = s->kind->build(s, req, out, info)))
         return st;
+    if ((st = ct_body_apply(req->body, &s->scales, out, info))) {
+        ct_bundle_free(*out);
+        *out = NULL;
+        return st;
+    }
     ct_bundle_set_threads(*out, req->threads);
     return CT_OK;
 }

@@ -1,0 +1,29 @@
+/* The seam between bodies and everything else: a body is one descriptor (its name, how it
+ * measures the distance from its apex to a rod's footprint, what surface carries it); body.c
+ * keeps the registry and shifts each rod's top by the face's gap. Nothing else asks which
+ * body struck the rods. */
+#ifndef CT_BODY_H
+#define CT_BODY_H
+
+#include "internal.h"
+
+typedef struct {
+    const char *name;
+    const char *summary; /* one line */
+    /* 0: the face is flat (no footprint is read, the rods are left as built); 1: the gap
+     * depends on the distance along x (the axis lies across a line surface); 2: on the
+     * distance in the plane (an areal surface) */
+    int dims;
+    /* what the body needs of a surface, said when one cannot carry it */
+    const char *needs;
+} ct_body_kind;
+
+extern const ct_body_kind ct_body_flat, ct_body_cylinder, ct_body_sphere;
+
+/* The rods of *b as the body meets them: each rod's top shifted by the face's gap at its
+ * footprint, the rods the face cannot reach before the layer crushes left out (counted in
+ * info->omitted), the layer's H* the new crushed limit. A flat body leaves *b as it is.
+ * sc: the surface's scales (the rods' units against the body's). */
+int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **b, ct_plan_info *info);
+
+#endif

@@ -1,0 +1,387 @@
+/* Bodies (src/body/, docs/model.md §12): a flat body leaves the rods bit for bit; a cylinder
+ * and a sphere shift each rod's top by the gap of their face at the rod's footprint. Checked
+ * against closed forms of a smooth Winkler bed (every top 0, one length L): a sphere loads as
+ * P = (E/L) pi (R u^2 - u^3/3) while elastic and as pi sigma_y [2R(u - u_y) - (u - u_y)^2 +
+ * (R - u) u_y + (2/3) u_y^2] beyond yield; a cylinder per unit depth as (E/L) (R^2 asin(a/R) -
+ * a (R - u)), a = sqrt(2Ru - u^2). A grid of point rods is the midpoint rule of those
+ * integrals: its error falls about fourfold when the spacing halves. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "cantact.h"
+
+#include <gsl/gsl_integration.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* A rods surface of n rods with tops, areas, positions (y NULL: a line), H* = Hstar,
+ * E, sigma_y; prepared. */
+static ct_surface *rod_set(size_t n, const double *top, const double *area, const double *x,
+                           const double *y, double Hstar, double E, double sigma_y)
+{
+    ct_surface *s;
+    char v[64];
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set_rods_at(s, n, top, area, NULL, x, y), CT_OK);
+    snprintf(v, sizeof v, "%.17g", Hstar);
+    assert_int_equal(ct_surface_set(s, "surface", "Hstar", v, ""), CT_OK);
+    snprintf(v, sizeof v, "%.17g", E);
+    assert_int_equal(ct_surface_set(s, "material", "E", v, ""), CT_OK);
+    snprintf(v, sizeof v, "%.17g", sigma_y);
+    assert_int_equal(ct_surface_set(s, "material", "sigma_y", v, ""), CT_OK);
+    int st = ct_surface_prepare(s, NULL);
+    if (st)
+        fail_msg("%s", ct_error_message());
+    return s;
+}
+
+static ct_bundle *build(const ct_surface *s, const ct_body *body)
+{
+    const double V = 1e-3;
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    int st = ct_surface_build(s, &req, &b, NULL);
+    if (st)
+        fail_msg("%s", ct_error_message());
+    return b;
+}
+
+static ct_body body_of(int shape, double R, double x, double y)
+{
+    ct_body b;
+    ct_body_defaults(&b);
+    b.shape = shape;
+    b.radius = R;
+    b.position[0] = x;
+    b.position[1] = y;
+    return b;
+}
+
+/* A smooth bed: an m x m grid of point rods (m x 1 on a line) of spacing h centred on 0, every
+ * top 0, area h^2 (a line: h), length L = H*. */
+typedef struct {
+    size_t n;
+    double *top, *area, *x, *y;
+} grid;
+
+static grid smooth_grid(size_t m, double h, int areal)
+{
+    grid g;
+    g.n = areal ? m * m : m;
+    g.top = calloc(g.n, sizeof(double));
+    g.area = malloc(g.n * sizeof(double));
+    g.x = malloc(g.n * sizeof(double));
+    g.y = areal ? malloc(g.n * sizeof(double)) : NULL;
+    assert_true(g.top && g.area && g.x && (!areal || g.y));
+    for (size_t i = 0; i < g.n; i++) {
+        const size_t c = i % m, r = i / m;
+        g.x[i] = ((double)c - 0.5 * (double)(m - 1)) * h;
+        if (areal)
+            g.y[i] = ((double)r - 0.5 * (double)(m - 1)) * h;
+        g.area[i] = areal ? h * h : h;
+    }
+    return g;
+}
+
+static void grid_free(grid *g)
+{
+    free(g->top);
+    free(g->area);
+    free(g->x);
+    free(g->y);
+}
+
+static double sphere_elastic(double E, double L, double R, double u)
+{
+    return E / L * M_PI * (R * u * u - u * u * u / 3.0);
+}
+
+static double sphere_plastic(double sigma_y, double uy, double R, double u)
+{
+    const double v = u - uy;
+    return M_PI * sigma_y * (2.0 * R * v - v * v + (R - u) * uy + 2.0 / 3.0 * uy * uy);
+}
+
+static double cylinder_elastic(double E, double L, double R, double u)
+{
+    const double a = sqrt(2.0 * R * u - u * u);
+    return E / L * (R * R * asin(a / R) - a * (R - u));
+}
+
+/* |P_grid - P| / P at u, for spacing h: the sphere (areal) or the cylinder (line) */
+static double grid_error(int areal, size_t m, double h, double R, double u, double sigma_y)
+{
+    const double E = 1.0, L = 1.0;
+    grid g = smooth_grid(m, h, areal);
+    ct_surface *s = rod_set(g.n, g.top, g.area, g.x, g.y, L, E, sigma_y);
+    ct_body body = body_of(areal ? 2 : 1, R, 0.0, areal ? 0.0 : NAN);
+    ct_bundle *b = build(s, &body);
+    const double P = ct_bundle_force(b, u);
+    const double uy = sigma_y / E * L;
+    const double exact = !areal    ? cylinder_elastic(E, L, R, u)
+                         : u <= uy ? sphere_elastic(E, L, R, u)
+                                   : sphere_plastic(sigma_y, uy, R, u);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    grid_free(&g);
+    return fabs(P - exact) / exact;
+}
+
+static void smooth_bed_closed_forms(void **state)
+{
+    (void)state;
+    /* a sphere R = 1 pressed u = 0.01 (contact radius 0.141): grids of spacing 0.01 and 0.005
+     * over [-0.2, 0.2]^2, elastic (sigma_y = E/2: eps_y = 0.5) */
+    const double e1 = grid_error(1, 41, 0.01, 1.0, 0.01, 0.5);
+    const double e2 = grid_error(1, 81, 0.005, 1.0, 0.01, 0.5);
+    assert_true(e1 < 1e-3);     /* measured 3.6e-4, then 6.2e-5 */
+    assert_true(e2 < e1 / 3.0); /* O(h^2) in the mean, a lattice's count of points on a disc
+                                   scatters about it */
+    /* beyond yield: eps_y = 0.002 (u_y = 0.002 < u = 0.01) */
+    const double p1 = grid_error(1, 41, 0.01, 1.0, 0.01, 0.002);
+    const double p2 = grid_error(1, 81, 0.005, 1.0, 0.01, 0.002);
+    assert_true(p1 < 3e-3); /* 1.6e-3, then 1.5e-4 */
+    assert_true(p2 < p1 / 3.0);
+    /* a cylinder on a line: the same, per unit depth */
+    const double c1 = grid_error(0, 401, 0.001, 1.0, 0.01, 0.5);
+    const double c2 = grid_error(0, 801, 0.0005, 1.0, 0.01, 0.5);
+    assert_true(c1 < 2e-5); /* 7.9e-6, then 9.5e-7 */
+    assert_true(c2 < c1 / 3.0);
+}
+
+/* One rod at distance d from the apex: the face reaches it at exactly top + R - sqrt(R^2 - d^2). */
+static void one_rod_at_an_offset(void **state)
+{
+    (void)state;
+    const double top[1] = {0.25}, area[1] = {1e-3}, x[1] = {0.3}, y[1] = {-0.4};
+    ct_surface *s = rod_set(1, top, area, x, y, 2.0, 100.0, 1.0);
+    ct_body body = body_of(2, 2.0, 0.0, 0.0); /* d = 0.5 */
+    ct_bundle *b = build(s, &body);
+    const long double R = 2.0L, d = 0.5L, f = R - sqrtl(R * R - d * d);
+    const double contact = ct_bundle_first_contact(b);
+    assert_true(fabsl((long double)contact - (0.25L + f)) <= 1e-16L);
+    ct_rod_info r;
+    ct_bundle_rod(b, 0, &r);
+    assert_int_equal(r.footprint.shape, CT_FOOTPRINT_POINT);
+    assert_true(r.footprint.x_lo == 0.3 && r.footprint.y_lo == -0.4);
+    ct_bundle_free(b);
+    /* beyond R the face never reaches it: the body meets no rod */
+    body = body_of(2, 0.4, 0.0, 0.0);
+    const double V = 1e-3;
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &body};
+    ct_impact_opts_default(&req.opts);
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "reaches no rod"));
+    ct_surface_free(s);
+}
+
+/* A flat body, given or not, leaves the rods as built, byte for byte. */
+static void flat_body_changes_nothing(void **state)
+{
+    (void)state;
+    grid g = smooth_grid(7, 0.1, 1);
+    for (size_t i = 0; i < g.n; i++)
+        g.top[i] = 0.01 * (double)((i * 5) % 7);
+    ct_surface *s = rod_set(g.n, g.top, g.area, g.x, g.y, 1.0, 50.0, 1.0);
+    ct_body flat;
+    ct_body_defaults(&flat);
+    ct_bundle *a = build(s, NULL), *b = build(s, &flat);
+    assert_int_equal(ct_bundle_size(a), ct_bundle_size(b));
+    for (size_t k = 0; k < ct_bundle_size(a); k++) {
+        ct_rod_info ra, rb;
+        ct_bundle_rod(a, k, &ra);
+        ct_bundle_rod(b, k, &rb);
+        assert_memory_equal(&ra, &rb, sizeof ra);
+    }
+    ct_bundle_free(a);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    grid_free(&g);
+}
+
+/* What a surface cannot carry is refused, saying what to use. */
+static void shapes_a_surface_cannot_carry(void **state)
+{
+    (void)state;
+    grid line = smooth_grid(5, 0.1, 0), plane = smooth_grid(5, 0.1, 1);
+    ct_surface *sl = rod_set(line.n, line.top, line.area, line.x, NULL, 1.0, 50.0, 1.0);
+    ct_surface *sp = rod_set(plane.n, plane.top, plane.area, plane.x, plane.y, 1.0, 50.0, 1.0);
+    const double V = 1e-3;
+    ct_body sphere = body_of(2, 1.0, NAN, NAN), cyl = body_of(1, 1.0, NAN, NAN);
+    ct_build_request req = {
+        .V_star = &V, .nvel = 1, .impacts = 1, .depth_tolerance = 1e-12, .body = &sphere};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_surface_build(sl, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "a sphere needs an areal surface"));
+    req.body = &cyl;
+    assert_int_equal(ct_surface_build(sp, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "a cylinder needs a line surface"));
+    /* stage rods of a Cantor surface merge pieces: no single place */
+    ct_surface *c;
+    assert_int_equal(ct_surface_new(&c, "cantor"), CT_OK);
+    assert_int_equal(ct_surface_set(c, "surface", "fx", "1.5", ""), CT_OK);
+    assert_int_equal(ct_surface_set(c, "surface", "fz", "1.3", ""), CT_OK);
+    assert_int_equal(ct_surface_set(c, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(c, "material", "E", "500", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(c, NULL), CT_OK);
+    req.body = &cyl;
+    assert_int_equal(ct_surface_build(c, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "representation = segments"));
+    /* a cylinder's apex is x alone; a sphere's needs x and y */
+    ct_body bad = body_of(1, 1.0, 0.0, 0.0);
+    req.body = &bad;
+    assert_int_equal(ct_surface_build(sl, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "placed by x alone"));
+    bad = body_of(2, 1.0, 0.0, NAN);
+    assert_int_equal(ct_surface_build(sp, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "needs x and y"));
+    bad = body_of(2, 0.0, NAN, NAN);
+    assert_int_equal(ct_surface_build(sp, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "needs a radius"));
+    ct_surface_free(c);
+    ct_surface_free(sl);
+    ct_surface_free(sp);
+    grid_free(&line);
+    grid_free(&plane);
+}
+
+/* ---- e of a sphere on a smooth bed, against the continuum ---- */
+
+typedef struct {
+    double E, L, sigma_y, R, u_max;
+} bed;
+
+static double load_at(double u, void *p)
+{
+    const bed *b = p;
+    const double uy = b->sigma_y / b->E * b->L;
+    return u <= uy ? sphere_elastic(b->E, b->L, b->R, u) : sphere_plastic(b->sigma_y, uy, b->R, u);
+}
+
+/* the energy a rod ring at radius r gives back, per dr: E L min(eps_max, eps_y)^2 / 2 2 pi r */
+static double given_back_at(double r, void *p)
+{
+    const bed *b = p;
+    const double f = r * r / (b->R + sqrt((b->R - r) * (b->R + r)));
+    const double eps = fmin((b->u_max - f) / b->L, b->sigma_y / b->E);
+    return eps > 0.0 ? b->E * b->L * eps * eps / 2.0 * 2.0 * M_PI * r : 0.0;
+}
+
+static double integral(double (*fn)(double, void *), bed *b, double lo, double hi)
+{
+    gsl_integration_workspace *w = gsl_integration_workspace_alloc(1000);
+    gsl_function F = {fn, b};
+    double v, err;
+    const double pts[3] = {lo, fmin(fmax(b->sigma_y / b->E * b->L, lo), hi), hi};
+    gsl_integration_qagp(&F, (double *)pts, 3, 0.0, 1e-13, 1000, w, &v, &err);
+    gsl_integration_workspace_free(w);
+    return v;
+}
+
+static void sphere_e_against_the_continuum(void **state)
+{
+    (void)state;
+    /* R = 1, eps_y = 0.002 (L = 1), an impact of energy W that presses the bed to u = 0.01 in
+     * the continuum: u_max by bisection on W_load(u) = int_0^u P; e = sqrt(W_unload / W) */
+    bed c = {1.0, 1.0, 0.002, 1.0, 0.0};
+    const double u_target = 0.01;
+    const double W = integral(load_at, &c, 0.0, u_target);
+    double lo = 0.0, hi = 0.02;
+    for (int k = 0; k < 200; k++) {
+        const double mid = 0.5 * (lo + hi);
+        if (integral(load_at, &c, 0.0, mid) < W)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    c.u_max = 0.5 * (lo + hi);
+    const double a = sqrt(2.0 * c.R * c.u_max - c.u_max * c.u_max);
+    bed cc = c;
+    const double e_cont = sqrt(integral(given_back_at, &cc, 0.0, a) / W);
+    /* the grid: its own V* from W (h0 = H* = 1 for a bed of tops 0, l0 = its total area) */
+    grid g = smooth_grid(81, 0.005, 1);
+    ct_surface *s = rod_set(g.n, g.top, g.area, g.x, g.y, 1.0, 1.0, 0.002);
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    const double V = sqrt(W / sc.energy_scale);
+    ct_body body = body_of(2, 1.0, 0.0, 0.0);
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    ct_sweep_row row;
+    ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 1, .opts = req.opts};
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_OK);
+    /* measured: u_max 4e-7 and e 2.6e-5 off (the grid's midpoint rule) */
+    assert_true(fabs(row.r.u_max * sc.layer.h0 - c.u_max) / c.u_max < 1e-5);
+    assert_true(fabs(row.r.e - e_cont) / e_cont < 1e-4);
+    assert_true(row.r.e < 0.9 && row.r.e > 0.1); /* plastic, not trivially 1 */
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    grid_free(&g);
+}
+
+/* A profile's samples stand for intervals: the face meets each at the interval's nearest point
+ * to the apex (a sample holding the apex: no shift). Five samples 1 mm apart, a cylinder of
+ * R = 10 mm landing at x = 1.8 mm (inside sample 2's interval [1.5, 2.5] mm). */
+static void profile_intervals_met_at_their_nearest_point(void **state)
+{
+    (void)state;
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/ct_body_%d.csv", (int)getpid());
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("x (mm), z (mm)\n0,0.01\n1,0.03\n2,0.02\n3,0.04\n4,0.00\n", f);
+    fclose(f);
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "profile"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "detrend", "none", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "2e11", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "sigma_y", "4e8", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    ct_body body = body_of(1, 10e-3, 1.8e-3, NAN);
+    ct_bundle *b = build(s, &body);
+    /* sample j: top (0.04 - z_j) mm, interval [j - 0.5, j + 0.5] mm (the ends as far out as in) */
+    const double z[5] = {0.01, 0.03, 0.02, 0.04, 0.0}, near[5] = {1.3, 0.3, 0.0, 0.7, 1.7};
+    assert_int_equal(ct_bundle_size(b), 5);
+    for (size_t k = 0; k < 5; k++) {
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        size_t j = 0;
+        while (j < 5 &&
+               !(r.footprint.x_lo < (double)j * 1e-3 && (double)j * 1e-3 < r.footprint.x_hi))
+            j++;
+        assert_true(j < 5);
+        const long double R = 10e-3L, d = (long double)near[j] * 1e-3L;
+        const long double expect = (0.04L - (long double)z[j]) * 1e-3L + (R - sqrtl(R * R - d * d));
+        assert_true(fabsl((long double)r.top - expect) <= 1e-18L);
+    }
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    unlink(path);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(smooth_bed_closed_forms),
+        cmocka_unit_test(sphere_e_against_the_continuum),
+        cmocka_unit_test(one_rod_at_an_offset),
+        cmocka_unit_test(profile_intervals_met_at_their_nearest_point),
+        cmocka_unit_test(flat_body_changes_nothing),
+        cmocka_unit_test(shapes_a_surface_cannot_carry),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
