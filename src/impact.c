@@ -48,14 +48,17 @@ static int crushed(double W, double Hstar)
                         W, Hstar);
 }
 
-/* u_max on the curve, with the model's limits: no rod, crushed layer, and (when
- * `resolve`: an impact that yields, whose e depends on it) a penetration below the
- * resolution of u. An elastic impact has e = 1 whatever its u_max's last digits. */
-static int curve_umax(const ct_curve *c, double W, double Hstar, int resolve, double *u_max)
+/* u_max on the curve where its work is W, with the model's limits: no rod, crushed layer,
+ * and (when `resolve`: an impact that yields, whose e depends on it) a penetration below the
+ * resolution of u. An elastic impact has e = 1 whatever its u_max's last digits. W_impact:
+ * the impact's own kinetic energy, which the messages name (W less the dissipation to an
+ * earlier maximum, for a repeated impact on the first curve). */
+static int curve_umax(const ct_curve *c, double W, double W_impact, double Hstar, int resolve,
+                      double *u_max)
 {
     double u0 = ct_curve_first_contact(c);
     if (!isfinite(W) || W < 0.0)
-        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and >= 0", W);
+        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and >= 0", W_impact);
     if (!isfinite(u0))
         return ct_error_set(CT_EINVAL, "u_max: the bundle holds no rod");
     if (W == 0.0) {
@@ -65,10 +68,10 @@ static int curve_umax(const ct_curve *c, double W, double Hstar, int resolve, do
     if (!(u0 < Hstar))
         return ct_error_set(CT_ERANGE, "first contact at u = %g is not above H* = %g", u0, Hstar);
     if (!(W < ct_curve_work(c, Hstar)))
-        return crushed(W, Hstar);
+        return crushed(W_impact, Hstar);
     double u = ct_curve_inverse_work(c, W);
     if (!(u < Hstar))
-        return crushed(W, Hstar);
+        return crushed(W_impact, Hstar);
     /* Near first contact P(u) is ill-conditioned: u - top loses digits, so a penetration of
      * a few ulps of u carries no information about e. */
     if (resolve && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
@@ -92,7 +95,7 @@ int ct_solve_umax(const ct_bundle *b, double W, double tolerance, double *u_max)
     if ((st = ct_curve_alloc(&c)))
         return st;
     if (!(st = ct_curve_build(c, b)))
-        st = curve_umax(c, W, ct_bundle_layer(b)->Hstar, 1, u_max);
+        st = curve_umax(c, W, W, ct_bundle_layer(b)->Hstar, 1, u_max);
     ct_curve_free(c);
     return st;
 }
@@ -161,7 +164,7 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
     res->elastic = W <= W_crit;
     if (shifted && res->elastic)
         return CT_ESKIPPED; /* below U: the caller evaluates the state itself */
-    if ((st = curve_umax(c, W + D_U, L->Hstar, !res->elastic, &res->u_max)))
+    if ((st = curve_umax(c, W + D_U, W, L->Hstar, !res->elastic, &res->u_max)))
         return st;
     const double u = res->u_max;
     if (shifted && !res->elastic && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))

@@ -193,16 +193,21 @@ typedef struct {
 } rods_ws;
 
 /* Where each state starts, and the energy that makes its first rod yield: W_crit0 on the
- * virgin state; else (the state's first yield is U) its energy to get back there. */
+ * virgin state; else (the state's first yield is U) its energy to get back there. A state
+ * advanced to U starts its Newton iteration on the tangent of its work at U: W is convex on
+ * it as on the virgin state, so the tangent's root lies right of the root, next to it (from
+ * H* instead, the first step's W(H*) - W rounds to an ulp of H*, which can put the iterate
+ * left of a root much nearer the plane than H*, digits the iteration never gets back). */
 static int rods_start(const ct_bundle *b, size_t m, const double *U, double W_crit0, double x0,
-                      const rods_ws *ws)
+                      const double *W, const rods_ws *ws)
 {
-    double *u0 = ws->u0, *Wc = ws->Wc, *Wl = ws->Wl;
+    double *u0 = ws->u0, *Wc = ws->Wc, *Wl = ws->Wl, *P = ws->P;
+    const double Hstar = ct_bundle_layer(b)->Hstar;
     size_t *open_ = ws->open_, q = 0;
     int st;
     for (size_t j = 0; j < m; j++) {
         u0[j] = U[j] > -INFINITY ? ct_bundle_release(b, U[j]) : x0;
-        ws->u[j] = ct_bundle_layer(b)->Hstar;
+        ws->u[j] = Hstar;
         if (U[j] > -INFINITY) {
             ws->adv[q] = U[j];
             ws->a0[q] = u0[j];
@@ -212,10 +217,15 @@ static int rods_start(const ct_bundle *b, size_t m, const double *U, double W_cr
             Wc[j] = W_crit0;
         }
     }
-    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, q, Wl, ws->Wu, NULL)))
+    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, q, Wl, ws->Wu, P)))
         return st;
-    for (size_t k = 0; k < q; k++)
-        Wc[open_[k]] = Wl[k];
+    for (size_t k = 0; k < q; k++) {
+        const size_t j = open_[k];
+        const double t = U[j] + (W[j] - Wl[k]) / P[k]; /* the tangent at U */
+        Wc[j] = Wl[k];
+        if (P[k] > 0.0 && t < Hstar)
+            ws->u[j] = t > u0[j] ? t : u0[j];
+    }
     return CT_OK;
 }
 
@@ -329,7 +339,7 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
     double *u0 = buf, *u = u0 + m, *Wc = u + m, *adv = Wc + m, *a0 = adv + m + GRID,
            *a1 = a0 + m + GRID, *Wl = a1 + m + GRID, *Wu = Wl + m + GRID, *P = Wu + m + GRID;
     const rods_ws ws = {u0, u, Wc, adv, a0, a1, Wl, Wu, P, open_};
-    if ((st = rods_start(b, m, U, W_crit0, x0, &ws)) || (st = rods_bracket(b, m, U, W, x0, &ws)))
+    if ((st = rods_start(b, m, U, W_crit0, x0, W, &ws)) || (st = rods_bracket(b, m, U, W, x0, &ws)))
         goto done;
     /* Newton from the right */
     size_t nopen = 0;

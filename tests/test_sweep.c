@@ -364,6 +364,128 @@ static void two_rods_five_impacts_on_paper(void **state)
     ct_bundle_free(b);
 }
 
+/* One rod struck three times on the rod path, by hand: top 0, area 1, H* = L = 10, E = 1e6,
+ * sigma_y = 1 (eps_y = 1e-6), l0 = 1, h0 = 10. Yield at u_y = eps_y L = 1e-5 with the elastic
+ * energy E s L eps_y^2 / 2 = 5e-6 stored; then the plateau force F = E s eps_y = 1. Every
+ * impact has V* = 7.7781745930520228e-07, kinetic energy W = V*^2 l0 E h0 = 6.05e-6:
+ *   impact 1: 5e-6 + F (u_1 - 1e-5) = 6.05e-6, u_1 = 1.105e-5;
+ *   impact k: the rod, released at u_{k-1} - 1e-5, reloads elastically to u_{k-1} (5e-6 stored
+ *   again), then 1.05e-6 more on the plateau: u_k = u_{k-1} + 1.05e-6.
+ * Each time the rod gives back its elastic energy 5e-6: e = sqrt(5 / 6.05) = sqrt(100 / 121)
+ * = 10/11, exactly. The second impact's Newton iteration used to start at H* = 10, whose first
+ * step rounds to an ulp of 10 (2e-15, 1e-10 of u_2) and landed left of the root: refused with
+ * |W(u) - W| / W = 1.2e-10. Then random rod sets (1 to 2000 rods, states after 2 and 3
+ * impacts) on the rod path against the curve path. */
+static void rod_path_repeated_impacts(void **state)
+{
+    (void)state;
+    ct_layer L = {.E = 1e6, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 10.0};
+    const double top = 0.0, area = 1.0, V = 7.7781745930520228e-07;
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 1, &top, &area), CT_OK);
+    for (int path = CT_PATH_CURVE; path <= CT_PATH_RODS; path++) {
+        ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 3, .path = path};
+        ct_impact_opts_default(&spec.opts);
+        ct_sweep_row rows[3];
+        assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+        for (int k = 0; k < 3; k++) {
+            if (rows[k].status)
+                fail_msg("path %d, impact %d: %s", path, k + 1, rows[k].message);
+            assert_false(rows[k].r.elastic);
+            assert_rel(rows[k].r.u_max, 1.105e-5 + 1.05e-6 * k, 1e-13);
+            assert_true(fabs(rows[k].r.e - 10.0 / 11.0) <= 1e-14);
+        }
+    }
+    ct_bundle_free(b);
+    /* random rod sets: tops over [0, 1), areas over a decade, E/sigma_y from 1e2 to 1e7 */
+    uint64_t x = 88172645463325252u;
+#define NEXT() (x ^= x << 13, x ^= x >> 7, x ^= x << 17, (double)(x >> 11) * 0x1p-53)
+    enum { SETS = 30, NV = 4, IMP = 3, MAXN = 2000 };
+    double *tops = malloc(MAXN * sizeof(double)), *areas = malloc(MAXN * sizeof(double));
+    assert_non_null(tops);
+    assert_non_null(areas);
+    for (int set = 0; set < SETS; set++) {
+        const size_t n = set == 0 ? 1 : 1 + (size_t)(NEXT() * (MAXN - 1));
+        double sum = 0.0;
+        for (size_t k = 0; k < n; k++) {
+            tops[k] = k == 0 ? 0.0 : NEXT();
+            areas[k] = pow(10.0, NEXT());
+            sum += areas[k];
+        }
+        ct_layer R = {.E = pow(10.0, 2.0 + 5.0 * NEXT()),
+                      .sigma_y = 1.0,
+                      .Hstar = 10.0,
+                      .l0 = sum,
+                      .h0 = 1.0};
+        assert_int_equal(ct_bundle_from_rods(&b, &R, n, tops, areas), CT_OK);
+        double Wc, uy;
+        assert_int_equal(ct_critical_energy(b, &Wc, &uy), CT_OK);
+        double Vs[NV];
+        for (int v = 0; v < NV; v++) /* 1.01 to 1e4 times V*_c, below a crushed layer */
+            Vs[v] = sqrt(Wc * pow(10.0, 0.005 + 4.0 * NEXT()) / (R.l0 * R.E * R.h0));
+        ct_sweep_row c[NV * IMP], r[NV * IMP];
+        ct_sweep_spec spec = {.V_star = Vs, .nvel = NV, .impacts = IMP, .path = CT_PATH_CURVE};
+        ct_impact_opts_default(&spec.opts);
+        assert_int_equal(ct_sweep(b, &spec, c), CT_OK);
+        spec.path = CT_PATH_RODS;
+        assert_int_equal(ct_sweep(b, &spec, r), CT_OK);
+        for (int q = 0; q < NV * IMP; q++) {
+            if (r[q].status != c[q].status)
+                fail_msg("set %d (%zu rods, E %g), V* %g impact %ld: rods %d (%s), curve %d (%s)",
+                         set, n, R.E, r[q].V_star, r[q].impact, r[q].status, r[q].message,
+                         c[q].status, c[q].message);
+            if (c[q].status) { /* only a crushed layer, the same on both */
+                assert_true(c[q].status == CT_ERANGE || c[q].status == CT_ESKIPPED);
+                continue;
+            }
+            assert_int_equal(r[q].r.elastic, c[q].r.elastic);
+            assert_rel(r[q].r.u_max, c[q].r.u_max, 1e-13);
+            assert_rel(r[q].r.u_contact, c[q].r.u_contact, 1e-13);
+            if (!(fabs(r[q].r.e - c[q].r.e) <= 1e-13 + c[q].r.e_rounding))
+                fail_msg("set %d, V* %g impact %ld: e %.17g (rods) vs %.17g (curve)", set,
+                         r[q].V_star, r[q].impact, r[q].r.e, c[q].r.e);
+        }
+        ct_bundle_free(b);
+    }
+#undef NEXT
+    free(tops);
+    free(areas);
+}
+
+/* A repeated impact that crushes the layer names its own kinetic energy on every path. The rod
+ * of rod_path_repeated_impacts (u_y = 1e-5 storing 5e-6, then F = 1) struck with W = 6:
+ * u_1 = 1e-5 + (6 - 5e-6) = 6.000005, and impact 2 would reach u_1 + (6 - 5e-6) > H* = 10.
+ * On the first curve that impact is solved at W + D(u_1) (the dissipation to the earlier
+ * maximum), which its message must not call the impact's energy. */
+static void crushing_repeated_impact_names_its_energy(void **state)
+{
+    (void)state;
+    ct_layer L = {.E = 1e6, .sigma_y = 1.0, .Hstar = 10.0, .l0 = 1.0, .h0 = 10.0};
+    const double top = 0.0, area = 1.0, W = 6.0, V = sqrt(W / (L.l0 * L.E * L.h0));
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 1, &top, &area), CT_OK);
+    char want[64];
+    snprintf(want, sizeof want, "impact energy %.6g reaches", V * V * L.l0 * L.E * L.h0);
+    for (int q = 0; q < 4; q++) {
+        const ct_sweep_path paths[] = {CT_PATH_CURVE, CT_PATH_RODS, CT_PATH_LEAN, CT_PATH_CURVE};
+        int calls = 0;
+        ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 2, .path = paths[q]};
+        ct_impact_opts_default(&spec.opts);
+        if (q == 3) { /* the state-carrying path */
+            spec.observe = no_op_observer;
+            spec.observe_ctx = &calls;
+        }
+        ct_sweep_row rows[2];
+        assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+        assert_int_equal(rows[0].status, CT_OK);
+        assert_rel(rows[0].r.u_max, 1e-5 + (W - 5e-6), 1e-14);
+        assert_int_equal(rows[1].status, CT_ERANGE);
+        if (!strstr(rows[1].message, want))
+            fail_msg("path %d: \"%s\" does not say \"%s\"", q, rows[1].message, want);
+    }
+    ct_bundle_free(b);
+}
+
 /* b planned for the speeds V (stage rods at `depth`, 1e-12 bound) and its sweep on `path`: one
  * impact per speed into rows. */
 static ct_bundle *planned_sweep(const ct_params *p, const double *V, size_t n, int depth, int path,
@@ -923,6 +1045,8 @@ int main(void)
         cmocka_unit_test(crushing_speed_is_one_row),
         cmocka_unit_test(rod_path_equals_curve_path),
         cmocka_unit_test(two_rods_five_impacts_on_paper),
+        cmocka_unit_test(rod_path_repeated_impacts),
+        cmocka_unit_test(crushing_repeated_impact_names_its_energy),
         cmocka_unit_test(tiny_speed_is_elastic_not_an_error),
         cmocka_unit_test(blocks_equal_the_whole_sweep),
         cmocka_unit_test(dynamics_blocks_on_threads),
