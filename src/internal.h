@@ -127,6 +127,9 @@ typedef struct {
     int monotone, nested;
 } ct_unload_events;
 int ct_unload_events_of(const ct_curve *c, ct_unload_events *e);
+/* Multiplies e's positions (and eps_y L) by sx and its slopes by sk: powers of two, for the
+ * units of the impact in time (exact, the order unchanged). */
+void ct_unload_events_scale(ct_unload_events *e, double sx, double sk);
 void ct_unload_events_free(ct_unload_events *e);
 /* The unloading curve from u_max of the curve's state (e monotone), by the builder of
  * ct_curve_unload without its sort, into x, P, W and slope (room for ct_unload_split_room
@@ -153,8 +156,11 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
                   ct_dynamics *dyn, size_t grid, ct_history *hist);
 /* The sweep's fast path, on the first curve c (prepared once: its moments, its events): the
  * same impacts as ct_dyn_impact on c, without histories, the first pieces of each branch by
- * their moments. ct_dyn_reset starts a speed. */
-int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c);
+ * their moments. ct_dyn_reset starts a speed. L: the layer of c's bundle, whose h0 and
+ * E l0 h0 set the units the motion is computed in (docs/model.md §11; every workspace is
+ * prepared before its impacts). Times, speeds and forces come back in the caller's units; a
+ * motion beyond double precision, or whose e_kinematic differs from e, is an error. */
+int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, const ct_layer *L);
 int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn);
 /* A workspace for another thread's speeds on parent's prepared curve, for mass m: it reads
  * the parent's prepared arrays (the parent outlives it and is not prepared again meanwhile)

@@ -809,7 +809,7 @@ static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w
     } else if ((st = ct_curve_build(w->first, b))) {
         return st;
     }
-    if (w->dw && (st = ct_dyn_prepare(w->dw, w->first)))
+    if (w->dw && (st = ct_dyn_prepare(w->dw, w->first, L)))
         return st;
     if (!(*mask = malloc(s->nvel ? s->nvel : 1)))
         return ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);

@@ -401,5 +401,93 @@ expect 0 "streamed, skip" -- "$ct" run -q "$scene" --set impact.V_star=1e-5:10:2
     --set solver.on_error=skip -o "$tmp/skip.csv"
 grep -q ',"impact energy .* crushed' "$tmp/skip.csv" && [ "$(wc -l <"$tmp/skip.csv")" -eq 20001 ] &&
     ok || bad "streamed, skip: no crushed rows with their reason"
+
+# The impact in time is scale-free (docs/model.md §11): t / tau depends on the dimensionless
+# groups only. One rod (top 0, area 1, length L = h0 = 1e-160: speeds of 1e-162 whose squares
+# underflow; e_kinematic was NaN), E = 1000, sigma_y = 1: omega = 1 in tau, yield at
+# u_y = 1e-3 h0 reached at t1 = asin(1e-3 / (sqrt(2) V*)), then the plateau F / m = h0 / 1000
+# for t2 = 1000 sqrt(2) V* cos(t1); unloading a quarter period, pi / 2; e = sqrt(5e-7) / V*.
+cat >"$tmp/tiny_rod.ini" <<INI
+[surface]
+type = rods
+rods = 0:1:1e-160
+[material]
+E = 1000
+[impact]
+V_star = 0.01, 0.02
+[output]
+what = e,time
+INI
+expect 0 "time, rod of length 1e-160" -- "$ct" run -q "$tmp/tiny_rod.ini" -o "$tmp/tiny_rod.csv"
+awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+    function close_to(a, b) { d = a - b; if (d < 0) d = -d; return d <= 1e-12 * (b < 0 ? -b : b) }
+    { V = $2; t1 = atan2(1e-3 / (sqrt(2) * V), sqrt(1 - 5e-7 / V ^ 2)); t2 = 1000 * sqrt(2) * V * cos(t1)
+      pi = atan2(0, -1); e = sqrt(5e-7) / V; n++
+      if (!close_to($c["t_load_over_tau"], t1 + t2) || !close_to($c["t_unload_over_tau"], pi / 2) ||
+          !close_to($c["t_contact_over_tau"], t1 + t2 + pi / 2) || !close_to($c["e_kinematic"], e) ||
+          !close_to($c["e"], e) || !close_to($c["P_peak_over_PY"], 1) ||
+          !close_to($c["unload_period_over_tau"], 2 * pi)) { print "row " NR ": " $0; bad = 1 } }
+    END { exit bad || n != 2 }' "$tmp/tiny_rod.csv" && ok || bad "time of a rod of length 1e-160 against its closed form"
+# tops of 1e308 nm (v^2 overflowed in the layer's units) and a profile 1e-200 m high (v^2
+# underflowed): every column as for the same surface at unit scale
+cat >"$tmp/far_rods.ini" <<INI
+[surface]
+type = rods
+rods = 1e308:1, 0:1
+unit = nm
+H = 3
+[material]
+E = 1000
+[impact]
+V_star = 0.005, 0.01
+[output]
+what = e,time
+INI
+same_columns() { # FILE_A FILE_B: every number equal to 1e-12 relative, the same row count
+    awk -F, 'NR == FNR { a[FNR] = $0; n = FNR; next }
+        { m = FNR; split(a[FNR], x, ","); for (i = 1; i <= NF; i++) {
+            if (i == 5 || i == 6) continue # e_closed_form, quadrature_error: rounding of e
+            d = x[i] - $i; if (d < 0) d = -d; r = ($i < 0 ? -$i : $i)
+            if (d > 1e-12 * r + 1e-300 || (x[i] == "") != ($i == "")) { print "row " FNR " column " i ": " x[i] " vs " $i; bad = 1 } } }
+        END { exit bad || n != m || n < 2 }' "$1" "$2"
+}
+expect 0 "time, tops of 1e308 nm" -- "$ct" run -q "$tmp/far_rods.ini" -o "$tmp/far.csv"
+expect 0 "time, the same rods at unit scale" -- "$ct" run -q "$tmp/far_rods.ini" \
+    --set surface.rods=1:1,0:1 --set surface.unit=m -o "$tmp/near.csv"
+same_columns "$tmp/far.csv" "$tmp/near.csv" && ok || bad "rods at 1e308 nm: not the columns of the same rods at unit scale"
+awk 'BEGIN { srand(7); print "x,z"; for (i = 0; i < 60; i++) printf "%.17g,%.17g\n", i * 1e-6, rand() }' \
+    >"$tmp/unit_profile.csv"
+awk -F, 'NR == 1 { print; next } { printf "%s,%.17g\n", $1, $2 * 1e-200 }' "$tmp/unit_profile.csv" \
+    >"$tmp/tiny_profile.csv"
+for z in unit tiny; do
+    cat >"$tmp/${z}_profile.ini" <<INI
+[surface]
+type = profile
+file = ${z}_profile.csv
+unit = m
+H = 10
+[material]
+E = 2e11
+sigma_y = 4e8
+[impact]
+V_star = 0.001, 0.01, 0.1
+[output]
+what = e,time
+INI
+    expect 0 "time, profile ($z heights)" -- "$ct" run -q "$tmp/${z}_profile.ini" -o "$tmp/${z}_profile_e.csv"
+done
+same_columns "$tmp/tiny_profile_e.csv" "$tmp/unit_profile_e.csv" && ok ||
+    bad "a profile 1e-200 m high: not the columns of the same profile 1 m high"
+# A failed impact in time is a row like any other: e of a composite rule is not the motion's
+# (e_kinematic differs), so every plastic row fails; under skip those are rows with their
+# reason (exit 0; it was exit 1), under stop the run ends (exit 1, a failed computation) and
+# leaves no file.
+expect 0 "time, trapezoid rule, skip" -- "$ct" run -q "$tmp/s.ini" --set solver.quadrature=trapezoid \
+    --set output.what=e,time --set solver.on_error=skip -o "$tmp/trap.csv"
+grep -q ',"impact in time: e_kinematic = .* differ' "$tmp/trap.csv" && ok || bad "trapezoid rule, skip: no failed time row"
+rm -f "$tmp/trap_stop.csv"
+expect 1 "time, trapezoid rule, stop" -- "$ct" run -q "$tmp/s.ini" --set solver.quadrature=trapezoid \
+    --set output.what=e,time -o "$tmp/trap_stop.csv"
+[ ! -e "$tmp/trap_stop.csv" ] && ok || bad "trapezoid rule, stop: a file left behind"
 echo "$pass passed, $failn failed"
 [ "$failn" -eq 0 ]
