@@ -144,6 +144,7 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
     const double W = s->V_star[v] * s->V_star[v] * L->l0 * L->E * L->h0;
     const size_t impacts = (size_t)s->impacts;
     int st, changed = 0;
+    double W_U = NAN; /* the state's energy back to its maximum, rod by rod (ct_impact_on_curve) */
     ct_impact_opts opts = s->opts; /* the closed-form check for the sampled speeds */
     opts.check = check[v] ? CT_CHECK_ALL : CT_CHECK_NONE;
     copy_state(work, b);
@@ -161,6 +162,8 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
             return CT_OK;
         }
         row->message[0] = '\0';
+        if (!isnan(W_U)) /* the state's own curve lost it too: its elastic ranges, eps_y L */
+            row->r.V_star_crit = sqrt(W_U / (L->l0 * L->E * L->h0));
         if (dw) { /* the impact in time on its own state's curve */
             ct_dyn_reset(dw);
             if ((row->status = ct_dyn_impact(dw, c, &row->r, unit_mass(L), &row->dyn, 0, NULL))) {
@@ -171,7 +174,12 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
         if (s->observe && (st = s->observe(row, 0, work, c, s->observe_ctx)))
             return st;
         if (!row->r.elastic) {
-            ct_bundle_advance(work, row->r.u_max);
+            const double u = row->r.u_max;
+            W_U = ct_unload_lost(ct_curve_work(c, u) + ct_curve_dissipation(c, u), row->r.W_load,
+                                 row->r.W_unload)
+                      ? row->r.W_unload
+                      : NAN;
+            ct_bundle_advance(work, u);
             changed = 1;
         }
         if (s->observe && (st = s->observe(row, 1, work, NULL, s->observe_ctx)))
@@ -198,8 +206,8 @@ typedef struct {
  * it as on the virgin state, so the tangent's root lies right of the root, next to it (from
  * H* instead, the first step's W(H*) - W rounds to an ulp of H*, which can put the iterate
  * left of a root much nearer the plane than H*, digits the iteration never gets back). */
-static int rods_start(const ct_bundle *b, size_t m, const double *U, double W_crit0, double x0,
-                      const double *W, const rods_ws *ws)
+static int rods_start(const ct_bundle *b, size_t m, const double *U, const double *W_U,
+                      double W_crit0, double x0, const double *W, const rods_ws *ws)
 {
     double *u0 = ws->u0, *Wc = ws->Wc, *Wl = ws->Wl, *P = ws->P;
     const double Hstar = ct_bundle_layer(b)->Hstar;
@@ -222,7 +230,7 @@ static int rods_start(const ct_bundle *b, size_t m, const double *U, double W_cr
     for (size_t k = 0; k < q; k++) {
         const size_t j = open_[k];
         const double t = U[j] + (W[j] - Wl[k]) / P[k]; /* the tangent at U */
-        Wc[j] = Wl[k];
+        Wc[j] = isnan(W_U[j]) ? Wl[k] : W_U[j];
         if (P[k] > 0.0 && t < Hstar)
             ws->u[j] = t > u0[j] ? t : u0[j];
     }
@@ -325,7 +333,8 @@ static void rods_row(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *r
  * W(u) is convex, so from any point right of the root the iterates fall monotonically onto
  * it; each iteration evaluates every open speed in one pass over the rods. */
 static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_sweep_row **r,
-                      const double *U, const double *W, double W_crit0, double x0)
+                      const double *U, const double *W_U, const double *W, double W_crit0,
+                      double x0)
 {
     const double tol = s->opts.tolerance;
     int st = CT_OK;
@@ -339,7 +348,8 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
     double *u0 = buf, *u = u0 + m, *Wc = u + m, *adv = Wc + m, *a0 = adv + m + GRID,
            *a1 = a0 + m + GRID, *Wl = a1 + m + GRID, *Wu = Wl + m + GRID, *P = Wu + m + GRID;
     const rods_ws ws = {u0, u, Wc, adv, a0, a1, Wl, Wu, P, open_};
-    if ((st = rods_start(b, m, U, W_crit0, x0, W, &ws)) || (st = rods_bracket(b, m, U, W, x0, &ws)))
+    if ((st = rods_start(b, m, U, W_U, W_crit0, x0, W, &ws)) ||
+        (st = rods_bracket(b, m, U, W, x0, &ws)))
         goto done;
     /* Newton from the right */
     size_t nopen = 0;
@@ -390,7 +400,11 @@ static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
     if ((st = ct_critical_energy(b, &W_crit0, &uy)))
         return st;
     const double x0 = ct_bundle_first_contact(b);
-    double *U = malloc(2 * (nv + 1) * sizeof(double)), *W = U ? U + nv + 1 : NULL;
+    /* per speed: its maximum U and (WU) the state's energy back there when the impact that
+     * reached U gave back too little for its closed forms on the advanced state (their elastic
+     * strains, (U - top) / L - eps_p, lose eps_y's digits): that impact's W_unload */
+    double *U = malloc(4 * (nv + 1) * sizeof(double)), *W = U ? U + nv + 1 : NULL;
+    double *WU = U ? W + nv + 1 : NULL, *WUr = U ? WU + nv + 1 : NULL;
     ct_sweep_row **r = malloc((nv + 1) * sizeof *r);
     size_t *which = malloc((nv + 1) * sizeof *which);
     double *Ur = malloc((nv + 1) * sizeof *Ur);
@@ -398,8 +412,10 @@ static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
         st = ct_error_set(CT_ENOMEM, "rod path of %zu speeds: out of memory", nv);
         goto done;
     }
-    for (size_t v = 0; v < nv; v++)
+    for (size_t v = 0; v < nv; v++) {
         U[v] = -INFINITY;
+        WU[v] = NAN;
+    }
     for (size_t i = 0; i < impacts; i++) {
         size_t m = 0;
         for (size_t v = 0; v < nv; v++) {
@@ -407,17 +423,25 @@ static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
                 continue; /* the speed failed: its later impacts stay "not run" */
             r[m] = &rows[v * impacts + i];
             Ur[m] = U[v];
+            WUr[m] = WU[v];
             W[m] = s->V_star[v] * s->V_star[v] * scale;
             which[m++] = v;
         }
-        if ((st = rods_round(b, s, m, r, Ur, W, W_crit0, x0)))
+        if ((st = rods_round(b, s, m, r, Ur, WUr, W, W_crit0, x0)))
             goto done;
         for (size_t k = 0; k < m; k++) {
             size_t v = which[k];
-            if (r[k]->status)
+            const ct_impact_result *res = &r[k]->r;
+            if (r[k]->status) {
                 fail_from(rows, impacts, v, i, r[k]->status, r[k]->message);
-            else if (!r[k]->r.elastic && r[k]->r.u_max > U[v])
-                U[v] = r[k]->r.u_max;
+            } else if (!res->elastic && res->u_max > U[v]) {
+                U[v] = res->u_max;
+                /* W(u) + D(u) of the curve path: W_load and the dissipation W_load - W_unload */
+                WU[v] =
+                    ct_unload_lost(2.0 * res->W_load - res->W_unload, res->W_load, res->W_unload)
+                        ? res->W_unload
+                        : NAN;
+            }
         }
         if (s->progress)
             s->progress((i + 1) * nv / impacts, nv, s->progress_ctx);
@@ -579,6 +603,7 @@ typedef struct {
     ct_dyn_work *dw;                 /* the impacts in time */
     ct_dyn_work **forks;             /* dw's forks, for the other threads' speeds */
     int nforks, fork_cap;            /* made, room for */
+    double crit0; /* the first curve's critical energy rod by rod, or NaN (ct_critical_by_rods) */
 } sweep_ws;
 
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
@@ -595,14 +620,19 @@ static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
     *m = 0;
     for (size_t v = 0; v < s->nvel; v++) {
         const double W = s->V_star[v] * s->V_star[v] * scale;
-        double U = -INFINITY;
+        double U = -INFINITY, W_U = w->crit0;
         for (size_t i = 0; i < impacts; i++) {
             ct_sweep_row *row = &rows[v * impacts + i];
-            int rs = ct_impact_on_curve(w->first, L, U, W, &s->opts, &row->r);
+            int rs = ct_impact_on_curve(w->first, L, U, W_U, W, &s->opts, &row->r);
             if (rs == CT_ESKIPPED) {
                 w->by_state[v] = 1;
                 break;
             }
+            const int lost = !rs && isnan(row->r.W_unload);
+            double W_load_rods;
+            if (lost) /* W_unload rod by rod: the state advanced to U, at u_max */
+                rs = ct_bundle_closed_many(b, &U, &row->r.u_contact, &row->r.u_max, 1, &W_load_rods,
+                                           &row->r.W_unload, NULL);
             if (rs) {
                 fail_from(rows, impacts, v, i, rs, ct_error_message());
                 break;
@@ -616,8 +646,10 @@ static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
                 w->u1[*m] = row->r.u_max;
                 (*m)++;
             }
-            if (!row->r.elastic)
+            if (!row->r.elastic) {
                 U = row->r.u_max;
+                W_U = lost ? row->r.W_unload : NAN;
+            }
         }
         if (s->progress && !w->by_state[v])
             s->progress(v + 1, s->nvel, s->progress_ctx);
@@ -811,6 +843,7 @@ static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w
     }
     if (w->dw && (st = ct_dyn_prepare(w->dw, w->first, L)))
         return st;
+    w->crit0 = ct_critical_by_rods(b, w->first);
     if (!(*mask = malloc(s->nvel ? s->nvel : 1)))
         return ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
     const double W_crit = ct_curve_work(w->first, ct_curve_first_yield(w->first));
