@@ -519,5 +519,30 @@ for E in 1e16 1e20; do
     awk -F, 'NR == 2 && /unloading interval/ { a = 1 } NR == 3 && $NF == "" && $10 > 0 && $14 > 0 { b = 1 }
         END { exit !(a && b) }' "$tmp/stiff_time.csv" && ok || bad "E/sigma_y = $E, time, skip: $(cat "$tmp/stiff_time.csv")"
 done
+
+# The other outputs in time, at the same scale: the history of the rod 1e-160 long (its fields
+# were empty) ends at the closed-form contact time, and a bounce on it (mass 1, the speed
+# that gives V* = 0.01) is the bounce on the rod 1 long with speeds and times 1e-80 of its own
+# (tau = sqrt(m h0 / (E l0))): e, V* and u_max/h0 the same (v_out was 0, t_contact empty).
+expect 0 "history, rod of length 1e-160" -- "$ct" run -q "$tmp/tiny_rod.ini" --set impact.V_star=0.01 \
+    --set output.what=history --set output.history_points=5 -o "$tmp/tiny_hist.csv"
+awk -F, 'NR > 1 { n++; for (i = 1; i <= NF; i++) if ($i == "" || $i ~ /nan|inf/) bad = 1; t = $3 }
+    END { V = 0.01; t1 = atan2(1e-3 / (sqrt(2) * V), sqrt(1 - 5e-7 / V ^ 2))
+          tc = t1 + 1000 * sqrt(2) * V * cos(t1) + atan2(1, 0); d = t - tc; if (d < 0) d = -d
+          exit bad || n < 8 || d > 1e-12 * tc }' "$tmp/tiny_hist.csv" && ok ||
+    bad "history of a rod of length 1e-160: empty fields or the wrong contact time"
+grep -v -e V_star -e what "$tmp/tiny_rod.ini" >"$tmp/bounce_rod.ini"
+for L in 1e-160 1; do
+    v=$(awk -v L=$L 'BEGIN { printf "%.17g", sqrt(2 * 1000 * L * 1e-4) }')
+    expect 0 "bounce, rod of length $L" -- "$ct" run -q "$tmp/bounce_rod.ini" --set surface.rods=0:1:$L \
+        --set impact.mass=1 --set impact.velocity=$v --set impact.sequence=bounce --set impact.impacts=2 \
+        -o "$tmp/bounce_$L.csv"
+done
+awk -F, 'NR == FNR { a[FNR] = $0; next } FNR > 1 { n++; split(a[FNR], x, ",")
+        for (i = 2; i <= 8; i++) { s = (i == 3 || i == 5 || i == 8) ? 1e-80 : 1
+            d = x[i] - s * $i; if (d < 0) d = -d; r = s * ($i < 0 ? -$i : $i)
+            if (x[i] == "" || d > 1e-12 * r) { print "row " FNR " column " i ": " x[i] " vs " $i; bad = 1 } } }
+    END { exit bad || n != 2 }' "$tmp/bounce_1e-160.csv" "$tmp/bounce_1.csv" && ok ||
+    bad "bounce on a rod of length 1e-160: not the bounce on a rod of length 1, scaled"
 echo "$pass passed, $failn failed"
 [ "$failn" -eq 0 ]
