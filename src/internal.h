@@ -187,8 +187,8 @@ int ct_profile_adopt_grid(ct_profile **out, size_t nx, size_t ny, double dx, dou
  * energy back to U summed rod by rod (the W_unload of the impact that reached U; with
  * U = -INFINITY its energy to its first yield, ct_critical_by_rods), or NaN to take it from
  * the curve, W(U) - D(U) (W at the first yield). W_unload NaN: the curve's W_load - D would carry e
- * to worse than CT_UNLOAD_DIFF_E (ct_unload_lost), and the caller sums it rod by rod (the state's
- * recoverable energy at u_max: ct_bundle_elastic_energy, or ct_bundle_closed_many's
+ * to worse than CT_UNLOAD_DIFF_E relative (ct_unload_lost), and the caller sums it rod by rod (the
+ * state's recoverable energy at u_max: ct_bundle_elastic_energy, or ct_bundle_closed_many's
  * W_unload); then W_U of the next impact is that sum. */
 #define CT_UNLOAD_DIFF_E 1e-13
 int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W_U, double W,
@@ -199,9 +199,9 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W_
  * where the curve's is good: the W_U of a first impact. */
 double ct_critical_by_rods(const ct_bundle *b, const ct_curve *c);
 /* Whether W_unload as the difference of energies summing to W_sum (a few ulps of each) would
- * carry e = sqrt(W_unload / W_load) to worse than CT_UNLOAD_DIFF_E: where little comes back
- * (e ~ 1e-2 and below). */
-int ct_unload_lost(double W_sum, double W_load, double W_unload);
+ * carry e = sqrt(W_unload / W_load), and the next impact's V*_c, to worse than
+ * CT_UNLOAD_DIFF_E relative: where little comes back (e below about 0.07). */
+int ct_unload_lost(double W_sum, double W_unload);
 /* e, e_rounding and, when W_load_closed is set, the closed forms' check (P_max: the force at
  * u_max, for the rounding floor of the u_max solve) and e_closed. */
 int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result *res);

@@ -175,8 +175,7 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
             return st;
         if (!row->r.elastic) {
             const double u = row->r.u_max;
-            W_U = ct_unload_lost(ct_curve_work(c, u) + ct_curve_dissipation(c, u), row->r.W_load,
-                                 row->r.W_unload)
+            W_U = ct_unload_lost(ct_curve_work(c, u) + ct_curve_dissipation(c, u), row->r.W_unload)
                       ? row->r.W_unload
                       : NAN;
             ct_bundle_advance(work, u);
@@ -225,13 +224,20 @@ static int rods_start(const ct_bundle *b, size_t m, const double *U, const doubl
             Wc[j] = W_crit0;
         }
     }
-    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, q, Wl, ws->Wu, P)))
+    /* the force at U from b's own state (the same as the advanced state's, where its elastic
+     * strains (U - top) / L - eps_p may have lost eps_y's digits and clamp to noise) */
+    for (size_t k = 0; k < q; k++) {
+        ws->adv[q + k] = -INFINITY;
+        ws->a0[q + k] = x0;
+        ws->a1[q + k] = ws->a1[k];
+    }
+    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, 2 * q, Wl, ws->Wu, P)))
         return st;
     for (size_t k = 0; k < q; k++) {
         const size_t j = open_[k];
-        const double t = U[j] + (W[j] - Wl[k]) / P[k]; /* the tangent at U */
         Wc[j] = isnan(W_U[j]) ? Wl[k] : W_U[j];
-        if (P[k] > 0.0 && t < Hstar)
+        const double t = U[j] + (W[j] - Wc[j]) / P[q + k]; /* the tangent at U */
+        if (P[q + k] > 0.0 && t < Hstar)
             ws->u[j] = t > u0[j] ? t : u0[j];
     }
     return CT_OK;
@@ -331,30 +337,40 @@ static void rods_row(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *r
 /* One impact round on the rod path: row r[j] (j < m) has the state b advanced to U[j] and
  * kinetic energy W[j]. u_max by Newton's method on the closed-form work summed rod by rod:
  * W(u) is convex, so from any point right of the root the iterates fall monotonically onto
- * it; each iteration evaluates every open speed in one pass over the rods. */
+ * it; each iteration evaluates every open speed in one pass over the rods. A long step rounds
+ * to ulps of where it starts, which can put the iterate left of a root far nearer the plane
+ * (from H*, or a grid point 20 times the root: |W(u) - W| / W up to 1e-7 was refused there):
+ * from the left the iterate steps back right, past the root by convexity, within the bracket
+ * of the iterates seen (bisected when the step leaves it), until the residual meets the
+ * tolerance or its rounding floor, or the bracket holds no double between its ends. */
 static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_sweep_row **r,
                       const double *U, const double *W_U, const double *W, double W_crit0,
                       double x0)
 {
     const double tol = s->opts.tolerance;
     int st = CT_OK;
-    double *buf = malloc(9 * (m + GRID) * sizeof(double));
+    double *buf = malloc((5 * m + 6 * (2 * m + GRID)) * sizeof(double));
     size_t *open_ = malloc((m + 1) * sizeof(size_t));
     if (!buf || !open_) {
         free(buf);
         free(open_);
         return ct_error_set(CT_ENOMEM, "rod path of %zu impacts: out of memory", m);
     }
-    double *u0 = buf, *u = u0 + m, *Wc = u + m, *adv = Wc + m, *a0 = adv + m + GRID,
-           *a1 = a0 + m + GRID, *Wl = a1 + m + GRID, *Wu = Wl + m + GRID, *P = Wu + m + GRID;
+    /* the closed forms' nodes: room for the grid, or two per impact (rods_start) */
+    const size_t nodes = 2 * m + GRID;
+    double *u0 = buf, *u = u0 + m, *Wc = u + m, *lo = Wc + m, *hi = lo + m, *adv = hi + m,
+           *a0 = adv + nodes, *a1 = a0 + nodes, *Wl = a1 + nodes, *Wu = Wl + nodes, *P = Wu + nodes;
     const rods_ws ws = {u0, u, Wc, adv, a0, a1, Wl, Wu, P, open_};
     if ((st = rods_start(b, m, U, W_U, W_crit0, x0, W, &ws)) ||
         (st = rods_bracket(b, m, U, W, x0, &ws)))
         goto done;
     /* Newton from the right */
     size_t nopen = 0;
-    for (size_t j = 0; j < m; j++)
+    for (size_t j = 0; j < m; j++) {
+        lo[j] = u0[j];
+        hi[j] = INFINITY;
         open_[nopen++] = j;
+    }
     for (int it = 0; nopen && it < MAX_NEWTON; it++) {
         for (size_t k = 0; k < nopen; k++) {
             size_t j = open_[k];
@@ -371,7 +387,17 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
             double floor = 8.0 * DBL_EPSILON * fabs(u[j]) * P[k];
             double next = P[k] > 0.0 ? u[j] - resid / P[k] : u[j];
             next = next < u0[j] ? u0[j] : next;
-            if (fabs(resid) <= tol * W[j] || fabs(resid) <= floor || !(next < u[j])) {
+            int done = fabs(resid) <= tol * W[j] || fabs(resid) <= floor;
+            if (!done && resid < 0.0) { /* left of the root: back right, within the bracket */
+                lo[j] = u[j];
+                if (!(next > lo[j] && next < hi[j]))
+                    next = lo[j] + 0.5 * (hi[j] - lo[j]);
+                done = !(next > lo[j] && next < hi[j]);
+            } else if (!done) {
+                hi[j] = u[j];
+                done = !(next < u[j]);
+            }
+            if (done) {
                 rods_row(b, s, r[j], W[j], Wc[j], u0[j], u[j], Wl[k], Wu[k], P[k]);
                 continue;
             }
@@ -437,10 +463,9 @@ static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
             } else if (!res->elastic && res->u_max > U[v]) {
                 U[v] = res->u_max;
                 /* W(u) + D(u) of the curve path: W_load and the dissipation W_load - W_unload */
-                WU[v] =
-                    ct_unload_lost(2.0 * res->W_load - res->W_unload, res->W_load, res->W_unload)
-                        ? res->W_unload
-                        : NAN;
+                WU[v] = ct_unload_lost(2.0 * res->W_load - res->W_unload, res->W_unload)
+                            ? res->W_unload
+                            : NAN;
             }
         }
         if (s->progress)
@@ -609,8 +634,9 @@ typedef struct {
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
  * maximum U sees the first curve shifted (ct_impact_on_curve), and impacts of equal energy
  * always do, so every impact costs O(log n). A speed with an impact that stays below U is
- * left to the general path (by_state). When closed, each row's closed-form nodes are
- * collected (*m of them) for one batch. */
+ * left to the general path (by_state). Each row's closed-form nodes (when closed and its
+ * speed is checked, or when its W_unload is left to the rods and no later impact of its
+ * speed needs it) are collected (*m of them) for one batch. */
 static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
                          sweep_ws *w, int closed, size_t *m)
 {
@@ -628,9 +654,11 @@ static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
                 w->by_state[v] = 1;
                 break;
             }
-            const int lost = !rs && isnan(row->r.W_unload);
+            /* W_unload rod by rod (the state advanced to U, at u_max): at once when the next
+             * impact needs it (its energy back to U), else in the batch */
+            const int lost = !rs && isnan(row->r.W_unload), now = lost && i + 1 < impacts;
             double W_load_rods;
-            if (lost) /* W_unload rod by rod: the state advanced to U, at u_max */
+            if (now)
                 rs = ct_bundle_closed_many(b, &U, &row->r.u_contact, &row->r.u_max, 1, &W_load_rods,
                                            &row->r.W_unload, NULL);
             if (rs) {
@@ -639,7 +667,7 @@ static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
             }
             row->status = CT_OK;
             row->message[0] = '\0';
-            if (closed && w->check[v]) {
+            if ((closed && w->check[v]) || (lost && !now)) {
                 w->slot[v * impacts + i] = *m;
                 w->adv[*m] = U;
                 w->u0[*m] = row->r.u_contact;
@@ -665,6 +693,8 @@ static void fast_finish(const ct_sweep_spec *s, ct_sweep_row *rows, const sweep_
         ct_sweep_row *row = &rows[v * impacts + i];
         if (row->status)
             break;
+        if (isnan(row->r.W_unload)) /* left to the batch by fast_impacts */
+            row->r.W_unload = w->Wu[w->slot[v * impacts + i]];
         if (closed && w->check[v]) {
             const size_t q = w->slot[v * impacts + i];
             row->r.W_load_closed = w->Wl[q];
@@ -757,16 +787,17 @@ static int sweep_fast(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *
     const size_t nrows = s->nvel * (size_t)s->impacts;
     const int closed = s->opts.check || s->opts.rule == CT_QUAD_CLOSED;
     int st;
-    if (closed && (!(w->adv = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->u0 = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->u1 = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->Wl = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->Wu = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->slot = malloc((nrows + 1) * sizeof(size_t)))))
+    /* the batch's nodes: the check's, and any row's W_unload rod by rod */
+    if (!(w->adv = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->u0 = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->u1 = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->Wl = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->Wu = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->slot = malloc((nrows + 1) * sizeof(size_t))))
         return ct_error_set(CT_ENOMEM, "sweep of %zu impacts: out of memory", nrows);
     size_t m;
     fast_impacts(b, s, rows, w, closed, &m);
-    if (closed && (st = ct_bundle_closed_many(b, w->adv, w->u0, w->u1, m, w->Wl, w->Wu, NULL)))
+    if (m && (st = ct_bundle_closed_many(b, w->adv, w->u0, w->u1, m, w->Wl, w->Wu, NULL)))
         return st;
     for (size_t v = 0; v < s->nvel; v++)
         if (!w->by_state[v])

@@ -374,8 +374,10 @@ static void two_rods_five_impacts_on_paper(void **state)
  * Each time the rod gives back its elastic energy 5e-6: e = sqrt(5 / 6.05) = sqrt(100 / 121)
  * = 10/11, exactly. The second impact's Newton iteration used to start at H* = 10, whose first
  * step rounds to an ulp of 10 (2e-15, 1e-10 of u_2) and landed left of the root: refused with
- * |W(u) - W| / W = 1.2e-10. Then random rod sets (1 to 2000 rods, states after 2 and 3
- * impacts) on the rod path against the curve path. */
+ * |W(u) - W| / W = 1.2e-10. Then random rod sets on the rod path against the curve path: of
+ * 30 with 1 to 2000 rods and E/sigma_y up to 1e7 over three impacts 5 failed so; of 200 with up
+ * to 500 rods and E/sigma_y up to 1e20 over four impacts 148 failed, first impacts too (from a
+ * grid point 20 times the root the first step landed 30 ulps left of it). */
 static void rod_path_repeated_impacts(void **state)
 {
     (void)state;
@@ -397,26 +399,26 @@ static void rod_path_repeated_impacts(void **state)
         }
     }
     ct_bundle_free(b);
-    /* random rod sets: tops over [0, 1), areas over a decade, E/sigma_y from 1e2 to 1e7 */
+    /* random rod sets: tops over [0, 1), areas over a decade; 30 of 1 to 2000 rods with
+     * E/sigma_y from 1e2 to 1e7, three impacts; 200 of 1 to 500 rods with E/sigma_y up to
+     * 1e20, four impacts */
     uint64_t x = 88172645463325252u;
 #define NEXT() (x ^= x << 13, x ^= x >> 7, x ^= x << 17, (double)(x >> 11) * 0x1p-53)
-    enum { SETS = 30, NV = 4, IMP = 3, MAXN = 2000 };
+    enum { SETS = 230, NV = 4, IMP = 4, MAXN = 2000 };
     double *tops = malloc(MAXN * sizeof(double)), *areas = malloc(MAXN * sizeof(double));
     assert_non_null(tops);
     assert_non_null(areas);
     for (int set = 0; set < SETS; set++) {
-        const size_t n = set == 0 ? 1 : 1 + (size_t)(NEXT() * (MAXN - 1));
+        const int stiff = set >= 30, imp = stiff ? IMP : 3;
+        const size_t n = set == 0 ? 1 : 1 + (size_t)(NEXT() * (stiff ? 499 : MAXN - 1));
         double sum = 0.0;
         for (size_t k = 0; k < n; k++) {
             tops[k] = k == 0 ? 0.0 : NEXT();
             areas[k] = pow(10.0, NEXT());
             sum += areas[k];
         }
-        ct_layer R = {.E = pow(10.0, 2.0 + 5.0 * NEXT()),
-                      .sigma_y = 1.0,
-                      .Hstar = 10.0,
-                      .l0 = sum,
-                      .h0 = 1.0};
+        const double E = pow(10.0, 2.0 + (stiff ? 18.0 : 5.0) * NEXT());
+        ct_layer R = {.E = E, .sigma_y = 1.0, .Hstar = 10.0, .l0 = sum, .h0 = 1.0};
         assert_int_equal(ct_bundle_from_rods(&b, &R, n, tops, areas), CT_OK);
         double Wc, uy;
         assert_int_equal(ct_critical_energy(b, &Wc, &uy), CT_OK);
@@ -424,12 +426,12 @@ static void rod_path_repeated_impacts(void **state)
         for (int v = 0; v < NV; v++) /* 1.01 to 1e4 times V*_c, below a crushed layer */
             Vs[v] = sqrt(Wc * pow(10.0, 0.005 + 4.0 * NEXT()) / (R.l0 * R.E * R.h0));
         ct_sweep_row c[NV * IMP], r[NV * IMP];
-        ct_sweep_spec spec = {.V_star = Vs, .nvel = NV, .impacts = IMP, .path = CT_PATH_CURVE};
+        ct_sweep_spec spec = {.V_star = Vs, .nvel = NV, .impacts = imp, .path = CT_PATH_CURVE};
         ct_impact_opts_default(&spec.opts);
         assert_int_equal(ct_sweep(b, &spec, c), CT_OK);
         spec.path = CT_PATH_RODS;
         assert_int_equal(ct_sweep(b, &spec, r), CT_OK);
-        for (int q = 0; q < NV * IMP; q++) {
+        for (int q = 0; q < NV * imp; q++) {
             if (r[q].status != c[q].status)
                 fail_msg("set %d (%zu rods, E %g), V* %g impact %ld: rods %d (%s), curve %d (%s)",
                          set, n, R.E, r[q].V_star, r[q].impact, r[q].status, r[q].message,
@@ -440,10 +442,12 @@ static void rod_path_repeated_impacts(void **state)
             }
             assert_int_equal(r[q].r.elastic, c[q].r.elastic);
             assert_rel(r[q].r.u_max, c[q].r.u_max, 1e-13);
-            assert_rel(r[q].r.u_contact, c[q].r.u_contact, 1e-13);
-            if (!(fabs(r[q].r.e - c[q].r.e) <= 1e-13 + c[q].r.e_rounding))
+            /* the release point of an earlier maximum: u_max's rounding, not its own */
+            assert_true(fabs(r[q].r.u_contact - c[q].r.u_contact) <= 1e-13 * c[q].r.u_max);
+            if (!(fabs(r[q].r.e - c[q].r.e) <= 1e-13 * c[q].r.e + c[q].r.e_rounding))
                 fail_msg("set %d, V* %g impact %ld: e %.17g (rods) vs %.17g (curve)", set,
                          r[q].V_star, r[q].impact, r[q].r.e, c[q].r.e);
+            assert_rel(r[q].r.V_star_crit, c[q].r.V_star_crit, 1e-12);
         }
         ct_bundle_free(b);
     }
