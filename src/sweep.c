@@ -634,54 +634,91 @@ typedef struct {
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
  * maximum U sees the first curve shifted (ct_impact_on_curve), and impacts of equal energy
  * always do, so every impact costs O(log n). A speed with an impact that stays below U is
- * left to the general path (by_state). Each row's closed-form nodes (when closed and its
- * speed is checked, or when its W_unload is left to the rods and no later impact of its
- * speed needs it) are collected (*m of them) for one batch. */
-static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
-                         sweep_ws *w, int closed, size_t *m)
+ * left to the general path (by_state). Impacts go round by round (impact 1 of every speed,
+ * then impact 2, ...): a row whose W_unload is left to the rods gets it in one pass over them
+ * for its round when the speed's next impact needs it (its energy back to U), else in the
+ * batch with the check's nodes (when closed and its speed is checked), *m of them. */
+static int fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows, sweep_ws *w,
+                        int closed, size_t *m)
 {
     const ct_layer *L = ct_bundle_layer(b);
     const double scale = L->l0 * L->E * L->h0;
-    const size_t impacts = (size_t)s->impacts;
+    const size_t impacts = (size_t)s->impacts, nv = s->nvel;
     *m = 0;
-    for (size_t v = 0; v < s->nvel; v++) {
-        const double W = s->V_star[v] * s->V_star[v] * scale;
-        double U = -INFINITY, W_U = w->crit0;
-        for (size_t i = 0; i < impacts; i++) {
+    /* per speed: its maximum U, its energy back there rod by rod (or NaN), whether it goes
+     * on; the round's rows for the rods (their nodes, results and speeds) */
+    double *U = malloc(7 * (nv + 1) * sizeof(double)), *W_U = U + nv + 1, *ra = W_U + nv + 1,
+           *r0 = ra + nv + 1, *r1 = r0 + nv + 1, *rWl = r1 + nv + 1, *rWu = rWl + nv + 1;
+    size_t *rv = malloc((nv + 1) * sizeof(size_t));
+    unsigned char *on = malloc(nv + 1);
+    if (!U || !rv || !on) {
+        free(U);
+        free(rv);
+        free(on);
+        return ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", nv);
+    }
+    for (size_t v = 0; v < nv; v++) {
+        U[v] = -INFINITY;
+        W_U[v] = w->crit0;
+        on[v] = 1;
+    }
+    for (size_t i = 0; i < impacts; i++) {
+        size_t nr = 0;
+        for (size_t v = 0; v < nv; v++) {
+            if (!on[v])
+                continue;
             ct_sweep_row *row = &rows[v * impacts + i];
-            int rs = ct_impact_on_curve(w->first, L, U, W_U, W, &s->opts, &row->r);
+            const double W = s->V_star[v] * s->V_star[v] * scale;
+            int rs = ct_impact_on_curve(w->first, L, U[v], W_U[v], W, &s->opts, &row->r);
             if (rs == CT_ESKIPPED) {
                 w->by_state[v] = 1;
-                break;
+                on[v] = 0;
+                continue;
             }
-            /* W_unload rod by rod (the state advanced to U, at u_max): at once when the next
-             * impact needs it (its energy back to U), else in the batch */
-            const int lost = !rs && isnan(row->r.W_unload), now = lost && i + 1 < impacts;
-            double W_load_rods;
-            if (now)
-                rs = ct_bundle_closed_many(b, &U, &row->r.u_contact, &row->r.u_max, 1, &W_load_rods,
-                                           &row->r.W_unload, NULL);
             if (rs) {
                 fail_from(rows, impacts, v, i, rs, ct_error_message());
-                break;
+                on[v] = 0;
+                continue;
             }
             row->status = CT_OK;
             row->message[0] = '\0';
+            const int lost = isnan(row->r.W_unload), now = lost && i + 1 < impacts;
+            if (now) {
+                ra[nr] = U[v];
+                r0[nr] = row->r.u_contact;
+                r1[nr] = row->r.u_max;
+                rv[nr++] = v;
+            }
             if ((closed && w->check[v]) || (lost && !now)) {
                 w->slot[v * impacts + i] = *m;
-                w->adv[*m] = U;
+                w->adv[*m] = U[v];
                 w->u0[*m] = row->r.u_contact;
                 w->u1[*m] = row->r.u_max;
                 (*m)++;
             }
             if (!row->r.elastic) {
-                U = row->r.u_max;
-                W_U = lost ? row->r.W_unload : NAN;
+                U[v] = row->r.u_max;
+                W_U[v] = NAN;
             }
         }
-        if (s->progress && !w->by_state[v])
-            s->progress(v + 1, s->nvel, s->progress_ctx);
+        const int rs = nr ? ct_bundle_closed_many(b, ra, r0, r1, nr, rWl, rWu, NULL) : CT_OK;
+        for (size_t k = 0; k < nr; k++) {
+            const size_t v = rv[k];
+            if (rs) {
+                fail_from(rows, impacts, v, i, rs, ct_error_message());
+                on[v] = 0;
+            } else {
+                rows[v * impacts + i].r.W_unload = W_U[v] = rWu[k];
+            }
+        }
     }
+    for (size_t v = 0; s->progress && v < nv; v++)
+        if (!w->by_state[v])
+            s->progress(v + 1, nv, s->progress_ctx);
+    free(U);
+    free(rv);
+    free(on);
+    return CT_OK;
 }
 
 /* The fast path's speed v after the batched closed forms: its rows finished (e, the check). */
@@ -796,7 +833,8 @@ static int sweep_fast(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *
         !(w->slot = malloc((nrows + 1) * sizeof(size_t))))
         return ct_error_set(CT_ENOMEM, "sweep of %zu impacts: out of memory", nrows);
     size_t m;
-    fast_impacts(b, s, rows, w, closed, &m);
+    if ((st = fast_impacts(b, s, rows, w, closed, &m)))
+        return st;
     if (m && (st = ct_bundle_closed_many(b, w->adv, w->u0, w->u1, m, w->Wl, w->Wu, NULL)))
         return st;
     for (size_t v = 0; v < s->nvel; v++)
