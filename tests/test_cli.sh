@@ -544,5 +544,18 @@ awk -F, 'NR == FNR { a[FNR] = $0; next } FNR > 1 { n++; split(a[FNR], x, ",")
             if (x[i] == "" || d > 1e-12 * r) { print "row " FNR " column " i ": " x[i] " vs " $i; bad = 1 } } }
     END { exit bad || n != 2 }' "$tmp/bounce_1e-160.csv" "$tmp/bounce_1.csv" && ok ||
     bad "bounce on a rod of length 1e-160: not the bounce on a rod of length 1, scaled"
+
+# A history whose impact cannot be timed is a failed row like the time columns' (it ended the
+# run under on_error = skip, exit 2): skipped, the other speeds' histories written
+rm -f "$tmp/hskip.csv" "$tmp/hskip_history.csv"
+expect 0 "history, an untimed impact, skip" -- "$ct" run -q "$def" --set material.E=1e20 \
+    --set impact.V_star=3e-11,1e-29 --set output.what=e,history --set solver.on_error=skip -o "$tmp/hskip.csv"
+grep -q '^1,3e-11,.*"impact in time: the unloading interval' "$tmp/hskip.csv" &&
+    [ "$(grep -c '^1e-29\|^9.99' "$tmp/hskip_history.csv")" -gt 2 ] && ! grep -q '^3e-11' "$tmp/hskip_history.csv" &&
+    ok || bad "history, an untimed impact, skip: $(head -c 400 "$tmp/hskip.csv")"
+rm -f "$tmp/hstop.csv" "$tmp/hstop_history.csv"
+expect 2 "history, an untimed impact, stop" -- "$ct" run -q "$def" --set material.E=1e20 \
+    --set impact.V_star=3e-11 --set output.what=e,history -o "$tmp/hstop.csv"
+[ ! -e "$tmp/hstop.csv" ] && [ ! -e "$tmp/hstop_history.csv" ] && ok || bad "history, stop: a file left behind"
 echo "$pass passed, $failn failed"
 [ "$failn" -eq 0 ]
