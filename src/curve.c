@@ -923,6 +923,23 @@ int ct_unload_events_of(const ct_curve *c, ct_unload_events *e)
     return CT_OK;
 }
 
+void ct_unload_events_scale(ct_unload_events *e, double sx, double sk)
+{
+    /* the arrays are e->buf's, laid out by ct_unload_events_of */
+    double *cx = (double *)e->cx, *ck = (double *)e->ck, *yy = (double *)e->yy,
+           *yc = (double *)e->yc, *eL = (double *)e->eL, *yk = (double *)e->yk;
+    for (size_t i = 0; i < e->nc; i++) {
+        cx[i] *= sx;
+        ck[i] *= sk;
+    }
+    for (size_t i = 0; i < e->ny; i++) {
+        yy[i] *= sx;
+        yc[i] *= sx;
+        eL[i] *= sx;
+        yk[i] *= sk;
+    }
+}
+
 /* Count of sorted values <= u. */
 static size_t count_upto(const double *v, size_t n, double u)
 {

@@ -15,7 +15,15 @@
  *
  * Where the work done is below 2^-60 of the kinetic energy, the speed is v0 to double
  * precision and x^2 < 2^-62: those first pieces (the deep Cantor stages next to the plane)
- * take du / v0 together, summed as one. */
+ * take du / v0 together, summed as one.
+ *
+ * Units: t / tau depends only on the dimensionless groups (docs/model.md §11), but the
+ * layer's own units need not keep the motion within the doubles (rods 1e-160 long: speeds
+ * ~1e-160, their squares underflow; tops of 1e299 m: v^2 overflows). The motion is computed
+ * with lengths in units of 2^ex ~ h0, energies in 2^eW ~ E l0 h0 and times in 2^et, chosen per
+ * mass so that the mass is between 1 and 4 there: then displacements, works, speeds and
+ * times are of the order of the groups themselves. The scalings are powers of two, exact, so
+ * wherever the layer's units kept every number a normal double the results are the same bits. */
 #include "internal.h"
 
 #include <float.h>
@@ -49,7 +57,16 @@ typedef struct {
     double *x, *P, *k, *W, *M1, *M2;
 } pcurve;
 
+/* The units of the motion: lengths in 2^ex, energies in 2^eW of the layer's (sx, sW, sP, sk:
+ * the factors that take a length, an energy, a force and a slope into them), h0 for
+ * messages. Times in 2^et of the caller's, per mass (dyn_mass). */
+typedef struct {
+    int ex, eW;
+    double sx, sW, sP, sk, h0;
+} dyn_units;
+
 struct ct_dyn_work {
+    dyn_units s;
     path load, unload;
     ct_curve *prev, *cur; /* the unloading curves of the state's maximum U and of this impact */
     int have_prev;
@@ -126,9 +143,17 @@ static size_t piece_of(const ct_curve_view *v, double u)
     return lo;
 }
 
-/* Appends the curve from a to b (a >= its first point), its work shifted by dW; the point a
- * itself only when the path is empty (a junction is not repeated). */
-static int path_append(path *p, const ct_curve *c, double a, double b, double dW)
+/* Appends a point given in the layer's units, in the motion's (room reserved). */
+static void path_put_scaled(path *p, const dyn_units *s, double x, double P, double k, double W)
+{
+    path_put(p, x * s->sx, P * s->sP, k * s->sk, W * s->sW);
+}
+
+/* Appends the curve from a to b (a >= its first point; the curve, a, b and dW in the layer's
+ * units), its work shifted by dW; the point a itself only when the path is empty (a junction
+ * is not repeated). The path holds the motion's units. */
+static int path_append(path *p, const dyn_units *s, const ct_curve *c, double a, double b,
+                       double dW)
 {
     ct_curve_view v;
     ct_curve_view_of(c, &v);
@@ -140,16 +165,16 @@ static int path_append(path *p, const ct_curve *c, double a, double b, double dW
         return st;
     double t = a - v.x[j];
     if (!p->n)
-        path_put(p, a, v.P[j] + v.slope[j] * t, v.slope[j],
-                 v.W[j] + t * (v.P[j] + 0.5 * v.slope[j] * t) + dW);
-    p->k[p->n - 1] = v.slope[j]; /* the path goes on along this curve's piece */
+        path_put_scaled(p, s, a, v.P[j] + v.slope[j] * t, v.slope[j],
+                        v.W[j] + t * (v.P[j] + 0.5 * v.slope[j] * t) + dW);
+    p->k[p->n - 1] = v.slope[j] * s->sk; /* the path goes on along this curve's piece */
     for (size_t i = j + 1; i < v.n && v.x[i] < b; i++)
         if (v.x[i] > a)
-            path_put(p, v.x[i], v.P[i], v.slope[i], v.W[i] + dW);
+            path_put_scaled(p, s, v.x[i], v.P[i], v.slope[i], v.W[i] + dW);
     t = b - v.x[e];
-    if (b > p->x[p->n - 1])
-        path_put(p, b, v.P[e] + v.slope[e] * t, v.slope[e],
-                 v.W[e] + t * (v.P[e] + 0.5 * v.slope[e] * t) + dW);
+    if (b * s->sx > p->x[p->n - 1])
+        path_put_scaled(p, s, b, v.P[e] + v.slope[e] * t, v.slope[e],
+                        v.W[e] + t * (v.P[e] + 0.5 * v.slope[e] * t) + dW);
     return CT_OK;
 }
 
@@ -314,6 +339,115 @@ static double time_to_turn(const path *p, double W_kin, double m, double *t, siz
     return time + turn_time(p->P[J], p->k[J], m, v);
 }
 
+/* The part of exponent e outside [lo, hi]: what a scaling by 2^-that takes back into it. */
+static int outside(int e, int lo, int hi)
+{
+    return e < lo ? e - lo : e > hi ? e - hi : 0;
+}
+
+/* The motion's units for layer L: the layer's own unless h0 lies outside [2^-64, 2^64] or
+ * E l0 h0 outside [1, 2^64] (exponents summed: the product itself may overflow), then lengths
+ * and energies in the powers of two that bring them to the nearest end (so impact energies,
+ * V*^2 E l0 h0, stay normal down to V* ~ 1e-154 and their squares finite). Shrunk towards the
+ * layer's own where a factor would leave the normal doubles (a layer whose own curve is beyond
+ * them anyway). NULL: the layer's own units. */
+static void units_of(dyn_units *s, const ct_layer *L)
+{
+    double ex = 0.0, eW = 0.0;
+    if (L) {
+        ex = outside(ilogb(L->h0), -64, 64);
+        eW = outside(ilogb(L->E) + ilogb(L->l0) + ilogb(L->h0), 0, 64);
+        const double big = fmax(fmax(fabs(ex), fabs(eW)), fmax(fabs(ex - eW), fabs(2.0 * ex - eW)));
+        if (big > 1000.0) {
+            ex = trunc(ex * 1000.0 / big);
+            eW = trunc(eW * 1000.0 / big);
+        }
+    }
+    s->ex = (int)ex;
+    s->eW = (int)eW;
+    s->sx = ldexp(1.0, -s->ex);
+    s->sW = ldexp(1.0, -s->eW);
+    s->sP = ldexp(1.0, s->ex - s->eW);
+    s->sk = ldexp(1.0, 2 * s->ex - s->eW);
+    s->h0 = L ? L->h0 : 1.0;
+}
+
+/* The mass m (the caller's units) in the motion's; *et the exponent of the motion's unit of
+ * time (2^et of the caller's): 0 while the mass lies within [2^-64, 2^65), else the one that
+ * brings it between 1 and 4. A mass is [energy] [time]^2 / [length]^2. */
+static double dyn_mass(const dyn_units *s, double m, int *et)
+{
+    const int e = 2 * s->ex - s->eW, q = ilogb(m) + e;
+    *et = q >= -64 && q <= 64 ? 0 : q >= 0 ? q / 2 : -((1 - q) / 2); /* floor(q / 2) */
+    return ldexp(m, e - 2 * *et);
+}
+
+/* dyn from the motion's units (time unit 2^et) into the caller's: exact. */
+static void dyn_unscale(ct_dynamics *d, const dyn_units *s, int et)
+{
+    d->t_contact = ldexp(d->t_contact, et);
+    d->t_load = ldexp(d->t_load, et);
+    d->t_unload = ldexp(d->t_unload, et);
+    d->period_min = ldexp(d->period_min, et);
+    d->P_peak = ldexp(d->P_peak, s->eW - s->ex);
+    d->v1 = ldexp(d->v1, s->ex - et);
+    d->v2 = ldexp(d->v2, s->ex - et);
+    d->dissipated = ldexp(d->dissipated, s->eW);
+    d->k_unload_max = ldexp(d->k_unload_max, s->eW - 2 * s->ex);
+}
+
+/* The limit of the motion in double precision, before it is computed: a plastic impact's
+ * unloading branch spans u_max - u_release, and its release points (u_max - eps_y L) round
+ * to ulps of u_max. Below 2^-26 of u_max (eps_y L that thin: E / sigma_y beyond about 1e8
+ * for u_max ~ h0) they keep fewer than half their digits, and e_kinematic and t_unload would
+ * be wrong in their leading ones (at E / sigma_y = 1e16 e_kinematic was 0.4 % off, at 1e20
+ * it was 0 and t_unload infinite). e itself does not need them (docs/model.md §7). */
+#define CT_DYN_UNLOAD_MIN 0x1p-26
+
+static int dyn_resolvable(const dyn_units *s, const ct_impact_result *res)
+{
+    const double span = res->u_max - res->u_release;
+    if (res->elastic || span >= CT_DYN_UNLOAD_MIN * fabs(res->u_max))
+        return CT_OK;
+    return ct_error_set(CT_ERANGE,
+                        "impact in time: the unloading interval u_max - u_release = %.3g h0 is "
+                        "%.3g of u_max = %.6g h0, below 2^-26: its release points cannot be "
+                        "carried in double precision (eps_y L this thin against u_max: E / "
+                        "sigma_y too large for the time outputs; e alone is computed)",
+                        span / s->h0, span / fabs(res->u_max), res->u_max / s->h0);
+}
+
+/* The results of an impact in time, in the caller's units: finite, and v2 / v1 from the
+ * unloading curve's own work equal to the energy e to 1e-12 beyond e's rounding bound
+ * (docs/model.md §11). A row failing either is an error, never a result. */
+static int dyn_check(const ct_impact_result *res, const ct_dynamics *d)
+{
+    const struct {
+        const char *name;
+        double v;
+    } f[] = {{"t_load", d->t_load},
+             {"t_unload", d->t_unload},
+             {"t_contact", d->t_contact},
+             {"P_peak", d->P_peak},
+             {"v1", d->v1},
+             {"v2", d->v2},
+             {"e_kinematic", d->e_kinematic},
+             {"the unloading's stiffest slope", d->k_unload_max},
+             {"the shortest unloading period", d->period_min}};
+    for (size_t q = 0; q < sizeof f / sizeof f[0]; q++)
+        if (!isfinite(f[q].v))
+            return ct_error_set(CT_ERANGE,
+                                "impact in time: %s = %g, beyond double precision in the "
+                                "layer's units",
+                                f[q].name, f[q].v);
+    if (!(fabs(d->e_kinematic - res->e) <= 1e-12 + 4.0 * res->e_rounding))
+        return ct_error_set(CT_ENOCONV,
+                            "impact in time: e_kinematic = %.17g and e = %.17g differ by more "
+                            "than 1e-12 (plus e's rounding bound %.3g)",
+                            d->e_kinematic, res->e, res->e_rounding);
+    return CT_OK;
+}
+
 int ct_dyn_work_alloc(ct_dyn_work **out)
 {
     CT_NEED(out);
@@ -323,6 +457,7 @@ int ct_dyn_work_alloc(ct_dyn_work **out)
         *out = NULL;
         return ct_error_set(CT_ENOMEM, "impact in time: out of memory");
     }
+    units_of(&w->s, NULL);
     *out = w;
     return CT_OK;
 }
@@ -387,7 +522,8 @@ static void pcurve_moments(pcurve *c)
     }
 }
 
-static int pcurve_from_curve(pcurve *pc, const ct_curve *c)
+/* A curve into the motion's units, with its moments. */
+static int pcurve_from_curve(pcurve *pc, const dyn_units *s, const ct_curve *c)
 {
     ct_curve_view v;
     ct_curve_view_of(c, &v);
@@ -395,10 +531,12 @@ static int pcurve_from_curve(pcurve *pc, const ct_curve *c)
     if (st)
         return st;
     pc->n = v.n;
-    memcpy(pc->x, v.x, v.n * sizeof(double));
-    memcpy(pc->P, v.P, v.n * sizeof(double));
-    memcpy(pc->k, v.slope, v.n * sizeof(double));
-    memcpy(pc->W, v.W, v.n * sizeof(double));
+    for (size_t i = 0; i < v.n; i++) {
+        pc->x[i] = v.x[i] * s->sx;
+        pc->P[i] = v.P[i] * s->sP;
+        pc->k[i] = v.slope[i] * s->sk;
+        pc->W[i] = v.W[i] * s->sW;
+    }
     pcurve_moments(pc);
     return CT_OK;
 }
@@ -543,13 +681,13 @@ static int load_path(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *
     int st;
     const double u_max = res->u_max;
     if (!w->have_prev) {
-        st = path_append(&w->load, c, res->u_contact, u_max, 0.0);
+        st = path_append(&w->load, &w->s, c, res->u_contact, u_max, 0.0);
     } else if (u_max <= w->U) {
-        st = path_append(&w->load, w->prev, ct_curve_first_contact(w->prev), u_max, 0.0);
+        st = path_append(&w->load, &w->s, w->prev, ct_curve_first_contact(w->prev), u_max, 0.0);
     } else {
-        st = path_append(&w->load, w->prev, ct_curve_first_contact(w->prev), w->U, 0.0);
+        st = path_append(&w->load, &w->s, w->prev, ct_curve_first_contact(w->prev), w->U, 0.0);
         if (!st)
-            st = path_append(&w->load, c, w->U, u_max,
+            st = path_append(&w->load, &w->s, c, w->U, u_max,
                              ct_curve_work(w->prev, w->U) - ct_curve_work(c, w->U));
     }
     if (st)
@@ -567,12 +705,14 @@ static int unload_path(ct_dyn_work *w, const ct_curve *c, double u_max)
     int st;
     if (w->one_shot && w->first == c && w->ue.nested) {
         /* one impact from a virgin layer (ct_impact_history): the two-run unloading */
-        if ((st = path_reserve(&w->unload, ct_unload_split_room(&w->ue, u_max))))
+        const double u_max_s = u_max * w->s.sx; /* w->ue holds the motion's units */
+        if ((st = path_reserve(&w->unload, ct_unload_split_room(&w->ue, u_max_s))))
             return st;
         w->unload.n =
-            ct_unload_split(&w->ue, u_max, w->unload.x, w->unload.P, w->unload.W, w->unload.k);
+            ct_unload_split(&w->ue, u_max_s, w->unload.x, w->unload.P, w->unload.W, w->unload.k);
     } else if ((st = ct_curve_unload(c, u_max, w->cur)) ||
-               (st = path_append(&w->unload, w->cur, ct_curve_first_contact(w->cur), u_max, 0.0))) {
+               (st = path_append(&w->unload, &w->s, w->cur, ct_curve_first_contact(w->cur), u_max,
+                                 0.0))) {
         return st;
     }
     if (!w->unload.n)
@@ -630,11 +770,27 @@ static int impact_history(ct_dyn_work *w, const path *up, size_t J_load, size_t 
     return st;
 }
 
-int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res, double m,
+/* A history from the motion's units (time unit 2^et) into the caller's: exact. */
+static void history_unscale(ct_history *h, const dyn_units *s, int et)
+{
+    for (size_t i = 0; i < h->n; i++) {
+        ct_history_point *q = &h->points[i];
+        q->t = ldexp(q->t, et);
+        q->u = ldexp(q->u, s->ex);
+        q->v = ldexp(q->v, s->ex - et);
+        q->P = ldexp(q->P, s->eW - s->ex);
+    }
+}
+
+int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res, double m_caller,
                   ct_dynamics *dyn, size_t grid, ct_history *hist)
 {
-    int st;
-    const double W_kin = res->kinetic_energy, u_max = res->u_max;
+    int st, et;
+    if ((st = dyn_resolvable(&w->s, res)))
+        return st;
+    /* the motion's units: the curves are scaled as they are read (path_append) */
+    const double m = dyn_mass(&w->s, m_caller, &et), W_kin = res->kinetic_energy * w->s.sW,
+                 u_max = res->u_max;
     w->load.n = w->unload.n = 0;
     if ((st = load_path(w, c, res)))
         return st;
@@ -669,6 +825,14 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
     dyn->P_peak = w->load.P[w->load.n - 1];
     if (hist && (st = impact_history(w, up, J_load, J_unload, dyn, W_kin, W_back, m, grid, hist)))
         return st;
+    dyn_unscale(dyn, &w->s, et);
+    if (hist)
+        history_unscale(hist, &w->s, et);
+    if ((st = dyn_check(res, dyn))) {
+        if (hist)
+            ct_history_free(hist);
+        return st;
+    }
     if (!res->elastic &&
         !w->one_shot) { /* the new maximum: its unloading curve serves the next impact */
         ct_curve *t = w->prev;
@@ -713,7 +877,7 @@ int ct_impact_history(const ct_bundle *b, double m, double v1, size_t grid, ct_i
     }
     ct_dyn_reset(w);
     w->one_shot = 1;
-    if (!(st = ct_curve_build(c, b)) && !(st = ct_dyn_prepare(w, c)) &&
+    if (!(st = ct_curve_build(c, b)) && !(st = ct_dyn_prepare(w, c, ct_bundle_layer(b))) &&
         !(st = ct_impact_eval(b, c, 0.5 * m * v1 * v1, NULL, res)))
         st = ct_dyn_impact(w, c, res, m, dyn, grid, hist);
     ct_dyn_work_free(w);
@@ -752,18 +916,23 @@ int ct_bounce(const ct_bundle *b, double m, double v1, size_t nmax, double v_sto
 
 /* ---- the sweep's fast path: no history, the first pieces of a branch by their moments ---- */
 
-int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c)
+int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, const ct_layer *L)
 {
     int st;
     w->first = c;
     w->f_m = 0.0; /* the pieces' products: for the next mass */
-    if (!w->one_shot && (st = pcurve_from_curve(&w->first_pc, c))) /* for the sweep's walks */
+    units_of(&w->s, L);
+    if (!w->one_shot && (st = pcurve_from_curve(&w->first_pc, &w->s, c))) /* the sweep's walks */
         return st;
-    return ct_unload_events_of(c, &w->ue);
+    if ((st = ct_unload_events_of(c, &w->ue)))
+        return st;
+    ct_unload_events_scale(&w->ue, w->s.sx, w->s.sk);
+    return CT_OK;
 }
 
 /* The unloading curve from u_max of the first curve's state (its events monotone), by the
- * curve's builder from the split events (ct_unload_split: no sort). */
+ * curve's builder from the split events (ct_unload_split: no sort); u_max and the events in
+ * the motion's units. */
 static int unload_split(ct_dyn_work *w, double u_max, pcurve *out)
 {
     int st;
@@ -775,17 +944,18 @@ static int unload_split(ct_dyn_work *w, double u_max, pcurve *out)
     return CT_OK;
 }
 
-/* The unloading curve from u_max of the first curve's state (ct_curve_unload) with its
- * moments: from the split events without a sort when they are monotone. */
+/* The unloading curve from u_max (the layer's units) of the first curve's state
+ * (ct_curve_unload) with its moments, in the motion's units: from the split events without a
+ * sort when they are monotone. */
 static int unload_fast(ct_dyn_work *w, double u_max, pcurve *out)
 {
     int st;
     if (!w->ue.monotone) {
         if ((st = ct_curve_unload(w->first, u_max, w->cur)))
             return st;
-        return pcurve_from_curve(out, w->cur);
+        return pcurve_from_curve(out, &w->s, w->cur);
     }
-    if ((st = unload_split(w, u_max, out)))
+    if ((st = unload_split(w, u_max * w->s.sx, out)))
         return st;
     pcurve_moments(out);
     return CT_OK;
@@ -809,6 +979,13 @@ static size_t pc_piece(const pcurve *c, double u)
  * (at most (1e-5 W_kin)^2) then stays far above the smallest double. */
 #define CT_TINY_ENERGY 1e-100
 
+/* Whether an energy W (the motion's units) is that small, there or in the layer's units
+ * (where the moments were summed before the motion had units of its own: the same bits). */
+static int tiny_energy(const dyn_units *s, double W)
+{
+    return W < CT_TINY_ENERGY || ldexp(W, s->eW) < CT_TINY_ENERGY;
+}
+
 /* Time from A's first point (work 0, speed sqrt(2 W_kin / m)) to where the work reaches
  * W_kin; beyond endA the path goes on along B with its work shifted by dW (B NULL: A goes
  * on). While the work is below 1e-5 W_kin the speed is v0 (1 - W / W_kin)^(-1/2), whose
@@ -817,7 +994,7 @@ static size_t pc_piece(const pcurve *c, double u)
  * stiffest piece passed. d2, wd (B NULL): A's pieces' 2 du and omega du, or NULL; sorted: A's
  * x all finite and its W nondecreasing (the turning piece by bisection). */
 static double walk(const pcurve *A, double endA, const pcurve *B, double dW, double W_kin, double m,
-                   double *kmax, const double *d2, const double *wd, int sorted)
+                   double *kmax, const double *d2, const double *wd, int sorted, int tiny)
 {
     const double v0 = sqrt(2.0 * W_kin / m), delta = 1e-5 * W_kin;
     size_t lo = 0, hi = A->n;
@@ -830,10 +1007,10 @@ static double walk(const pcurve *A, double endA, const pcurve *B, double dW, dou
     }
     size_t i = lo;
     double t;
-    if (W_kin < CT_TINY_ENERGY) {
+    if (tiny) {
         /* an energy so small that W^2 underflows (M2 / W_kin^2 = 0 / 0 at V* ~ 1e-85): the
          * prefix's own pieces, in units of W_kin */
-        const double s = W_kin < CT_TINY_ENERGY ? 1.0 / W_kin : 1.0;
+        const double s = 1.0 / W_kin;
         double M1 = 0.0, M2 = 0.0;
         for (size_t q = 0; q < i; q++) {
             const double d = A->x[q + 1] - A->x[q], a = A->W[q] * s, b = A->P[q] * s,
@@ -961,12 +1138,15 @@ int ct_dyn_work_fork(ct_dyn_work *parent, double m, ct_dyn_work **out)
     *out = NULL;
     if (!parent->first || parent->one_shot)
         return ct_error_set(CT_EINVAL, "impact in time: fork of an unprepared workspace");
-    if (m != parent->f_m && (st = first_products(parent, m)))
+    int et;
+    const double ms = dyn_mass(&parent->s, m, &et);
+    if (ms != parent->f_m && (st = first_products(parent, ms)))
         return st;
     ct_dyn_work *w;
     if ((st = ct_dyn_work_alloc(&w)))
         return st;
     w->fork = 1;
+    w->s = parent->s;
     w->first = parent->first;
     w->first_pc = parent->first_pc;
     w->ue = parent->ue;
@@ -986,10 +1166,16 @@ int ct_dyn_work_fork(ct_dyn_work *parent, double m, ct_dyn_work **out)
     return CT_OK;
 }
 
-int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn)
+int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m_caller,
+                       ct_dynamics *dyn)
 {
-    int st;
-    const double W_kin = res->kinetic_energy, u_max = res->u_max;
+    int st, et;
+    if ((st = dyn_resolvable(&w->s, res)))
+        return st;
+    /* the motion's units (first_pc, pprev, pcur and the events hold them already) */
+    const double m = dyn_mass(&w->s, m_caller, &et), W_kin = res->kinetic_energy * w->s.sW,
+                 u_max = res->u_max * w->s.sx, U = w->U * w->s.sx;
+    const int tiny = tiny_energy(&w->s, W_kin);
     double t_load, kmax;
     const pcurve *F = &w->first_pc;
     if (m != w->f_m && w->fork) /* the products are the parent's, shared: not rewritten here */
@@ -998,29 +1184,32 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
         return st;
     double *k_load = res->elastic ? &kmax : NULL; /* else the unloading's stiffest piece */
     if (!w->have_prev) {
-        t_load = walk(F, INFINITY, NULL, 0.0, W_kin, m, k_load, w->f_d2, w->f_wd, w->f_sorted);
+        t_load =
+            walk(F, INFINITY, NULL, 0.0, W_kin, m, k_load, w->f_d2, w->f_wd, w->f_sorted, tiny);
         dyn->P_peak = pc_force(F, u_max);
-    } else if (u_max <= w->U) {
-        t_load = walk(&w->pprev, INFINITY, NULL, 0.0, W_kin, m, k_load, NULL, NULL, 0);
+    } else if (u_max <= U) {
+        t_load = walk(&w->pprev, INFINITY, NULL, 0.0, W_kin, m, k_load, NULL, NULL, 0, tiny);
         dyn->P_peak = pc_force(&w->pprev, u_max);
     } else {
         const pcurve *A = &w->pprev;
         t_load =
-            walk(A, w->U, F, A->W[A->n - 1] - pc_work(F, w->U), W_kin, m, &kmax, NULL, NULL, 0);
+            walk(A, U, F, A->W[A->n - 1] - pc_work(F, U), W_kin, m, &kmax, NULL, NULL, 0, tiny);
         dyn->P_peak = pc_force(F, u_max);
     }
     double W_back = W_kin, t_unload = t_load;
     if (!res->elastic) {
-        if ((st = unload_fast(w, u_max, &w->pcur)))
+        if ((st = unload_fast(w, res->u_max, &w->pcur)))
             return st;
         W_back = w->pcur.W[w->pcur.n - 1];
-        t_unload = walk(&w->pcur, INFINITY, NULL, 0.0, W_back, m, &kmax, NULL, NULL, 0);
+        t_unload = walk(&w->pcur, INFINITY, NULL, 0.0, W_back, m, &kmax, NULL, NULL, 0,
+                        tiny_energy(&w->s, W_back));
         pcurve t = w->pprev;
         w->pprev = w->pcur;
         w->pcur = t;
-        w->U = u_max;
+        w->U = res->u_max;
         w->have_prev = 1;
     }
     dyn_results(dyn, t_load, t_unload, W_kin, W_back, m, kmax);
-    return CT_OK;
+    dyn_unscale(dyn, &w->s, et);
+    return dyn_check(res, dyn);
 }

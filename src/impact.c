@@ -3,6 +3,7 @@
  * breakpoint rule needs in O(log n); the bundle is read for the release point, the
  * closed-form check and the composite rules. */
 #include "internal.h"
+#include "rod.h"
 
 #include <float.h>
 #include <math.h>
@@ -16,6 +17,48 @@ void ct_impact_opts_default(ct_impact_opts *opts)
     opts->check = CT_CHECK_ALL;
 }
 
+/* The energy that makes the first rod of b's state yield, rod by rod from the distances
+ * between contacts: rod k yields first, at y = c_k + eps_y L_k, when rod i (contact c_i) has
+ * the elastic strain ((c_k - c_i) + eps_y L_k) / L_i. The positions themselves round to ulps
+ * of y, which a rod's elastic range eps_y L can be far below (E / sigma_y = 1e20 on Cantor tips
+ * 5e-9 deep: V*_c was 3.5e-6 off); the differences of contacts carry it. One pass, compensated. */
+static double critical_by_rods(const ct_bundle *b)
+{
+    double *top, *length, *area, *eps_p;
+    ct_bundle_arrays((ct_bundle *)b, &top, &length, &area, &eps_p); /* read only */
+    const ct_layer *L = ct_bundle_layer(b);
+    const double eps_y = L->sigma_y / L->E;
+    const size_t n = ct_bundle_size(b);
+    size_t k = 0;
+    for (size_t i = 1; i < n; i++)
+        if (ct_rod_yield(top[i], length[i], eps_p[i], eps_y) <
+            ct_rod_yield(top[k], length[k], eps_p[k], eps_y))
+            k = i;
+    const double ck = ct_rod_contact(top[k], length[k], eps_p[k]), reach = eps_y * length[k];
+    double s = 0.0, c = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        const double d = ((ck - ct_rod_contact(top[i], length[i], eps_p[i])) + reach) / length[i];
+        if (d > 0.0)
+            ct_add_comp(&s, &c, ct_rod_energy_of(d, 0.5 * L->E * area[i] * length[i], eps_y));
+    }
+    return s + c;
+}
+
+/* Whether W at the first yield y, from positions that round to ulps of y, carries V*_c to
+ * worse than CT_UNLOAD_DIFF_E: its error P(y) ulp(y) against W(y). */
+static int critical_lost(double y, double W, double P)
+{
+    return !(DBL_EPSILON * fabs(y) * P <= CT_UNLOAD_DIFF_E * W);
+}
+
+double ct_critical_by_rods(const ct_bundle *b, const ct_curve *c)
+{
+    const double y = ct_curve_first_yield(c);
+    if (!isfinite(y) || !critical_lost(y, ct_curve_work(c, y), ct_curve_force(c, y)))
+        return NAN;
+    return critical_by_rods(b);
+}
+
 int ct_critical_energy(const ct_bundle *b, double *energy, double *u_yield)
 {
     CT_NEED(b);
@@ -26,7 +69,15 @@ int ct_critical_energy(const ct_bundle *b, double *energy, double *u_yield)
         return ct_error_set(CT_EINVAL, "critical energy: the bundle holds no rod");
     *u_yield = uy;
     *energy = ct_bundle_work(b, u0, uy);
+    if (critical_lost(uy, *energy, ct_bundle_force(b, uy)))
+        *energy = critical_by_rods(b);
     return CT_OK;
+}
+
+int ct_unload_lost(double W_sum, double W_unload)
+{
+    /* a few ulps of the terms, 4 eps W_sum, move e by that over 2 W_unload of itself */
+    return !(2.0 * DBL_EPSILON * W_sum <= CT_UNLOAD_DIFF_E * W_unload);
 }
 
 int ct_energy_check(double W, double V_star)
@@ -48,14 +99,17 @@ static int crushed(double W, double Hstar)
                         W, Hstar);
 }
 
-/* u_max on the curve, with the model's limits: no rod, crushed layer, and (when
- * `resolve`: an impact that yields, whose e depends on it) a penetration below the
- * resolution of u. An elastic impact has e = 1 whatever its u_max's last digits. */
-static int curve_umax(const ct_curve *c, double W, double Hstar, int resolve, double *u_max)
+/* u_max on the curve where its work is W, with the model's limits: no rod, crushed layer,
+ * and (when `resolve`: an impact that yields, whose e depends on it) a penetration below the
+ * resolution of u. An elastic impact has e = 1 whatever its u_max's last digits. W_impact:
+ * the impact's own kinetic energy, which the messages name (W less the dissipation to an
+ * earlier maximum, for a repeated impact on the first curve). */
+static int curve_umax(const ct_curve *c, double W, double W_impact, double Hstar, int resolve,
+                      double *u_max)
 {
     double u0 = ct_curve_first_contact(c);
     if (!isfinite(W) || W < 0.0)
-        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and >= 0", W);
+        return ct_error_set(CT_EINVAL, "impact energy %g: must be finite and >= 0", W_impact);
     if (!isfinite(u0))
         return ct_error_set(CT_EINVAL, "u_max: the bundle holds no rod");
     if (W == 0.0) {
@@ -65,10 +119,10 @@ static int curve_umax(const ct_curve *c, double W, double Hstar, int resolve, do
     if (!(u0 < Hstar))
         return ct_error_set(CT_ERANGE, "first contact at u = %g is not above H* = %g", u0, Hstar);
     if (!(W < ct_curve_work(c, Hstar)))
-        return crushed(W, Hstar);
+        return crushed(W_impact, Hstar);
     double u = ct_curve_inverse_work(c, W);
     if (!(u < Hstar))
-        return crushed(W, Hstar);
+        return crushed(W_impact, Hstar);
     /* Near first contact P(u) is ill-conditioned: u - top loses digits, so a penetration of
      * a few ulps of u carries no information about e. */
     if (resolve && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
@@ -92,7 +146,7 @@ int ct_solve_umax(const ct_bundle *b, double W, double tolerance, double *u_max)
     if ((st = ct_curve_alloc(&c)))
         return st;
     if (!(st = ct_curve_build(c, b)))
-        st = curve_umax(c, W, ct_bundle_layer(b)->Hstar, 1, u_max);
+        st = curve_umax(c, W, W, ct_bundle_layer(b)->Hstar, 1, u_max);
     ct_curve_free(c);
     return st;
 }
@@ -134,7 +188,7 @@ static int composite(const ct_bundle *b, double u_adv, double lo, double hi,
  * D'(u) = D(u) - D(U), and its first yield is U. Returns CT_ESKIPPED when the impact would
  * stay below U (there the state's curve is not c's). Fills everything but the closed
  * forms. */
-int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
+int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W_U, double W,
                        const ct_impact_opts *opts, ct_impact_result *res)
 {
     int st;
@@ -152,8 +206,11 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
         return ct_error_set(CT_EINVAL, "impact: the bundle holds no rod");
     const double D_U = shifted ? ct_curve_dissipation(c, U) : 0.0;
     const double u0 = shifted ? ct_curve_release(c, U) : x0;
-    const double W_crit =
-        shifted ? ct_curve_work(c, U) - D_U : ct_curve_work(c, ct_curve_first_yield(c));
+    /* the state's energy to its first yield (back to U: W(U) - D(U)), or the rods' W_U where
+     * the curve lost its digits */
+    const double W_crit = !isnan(W_U) ? W_U
+                          : shifted   ? ct_curve_work(c, U) - D_U
+                                      : ct_curve_work(c, ct_curve_first_yield(c));
     res->kinetic_energy = W;
     res->V_star = sqrt(W / scale);
     res->V_star_crit = sqrt(W_crit / scale);
@@ -161,7 +218,7 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
     res->elastic = W <= W_crit;
     if (shifted && res->elastic)
         return CT_ESKIPPED; /* below U: the caller evaluates the state itself */
-    if ((st = curve_umax(c, W + D_U, L->Hstar, !res->elastic, &res->u_max)))
+    if ((st = curve_umax(c, W + D_U, W, L->Hstar, !res->elastic, &res->u_max)))
         return st;
     const double u = res->u_max;
     if (shifted && !res->elastic && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
@@ -170,8 +227,16 @@ int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
                             "resolution of u near %.17g: this impact is too weak to resolve on "
                             "rods this stiff (raise V*)",
                             u - u0, u0);
-    res->W_load = ct_curve_work(c, u) - D_U;
-    res->W_unload = res->elastic ? res->W_load : res->W_load - (ct_curve_dissipation(c, u) - D_U);
+    const double W_u = ct_curve_work(c, u), D_u = ct_curve_dissipation(c, u);
+    res->W_load = W_u - D_U;
+    res->W_unload = res->elastic ? res->W_load : res->W_load - (D_u - D_U);
+    /* W_unload as the difference W_load - D loses digits where little comes back: its
+     * rounding, a few ulps of W(u), D(u) and D(U), moves e by that over 2 W_unload of itself
+     * (at E / sigma_y = 1e16, e = 4.8e-8, it was 1.2 % off; at 1e20, 0). Beyond
+     * CT_UNLOAD_DIFF_E the caller sums the elastic energy given back rod by rod instead (NaN
+     * marks it: a caller that does not is refused by ct_impact_finish, never given a wrong e). */
+    if (!res->elastic && ct_unload_lost(W_u + D_u + D_U, res->W_unload))
+        res->W_unload = NAN;
     res->u_release = res->elastic ? u0 : ct_curve_release(c, u);
     res->W_load_closed = res->W_unload_closed = res->e_closed = res->quad_error = NAN;
     res->e_rounding = 0.0;
@@ -277,7 +342,8 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
         opts = &defaults;
     }
     int st;
-    if ((st = ct_impact_on_curve(c, ct_bundle_layer(b), -INFINITY, W, opts, res)))
+    if ((st = ct_impact_on_curve(c, ct_bundle_layer(b), -INFINITY, ct_critical_by_rods(b, c), W,
+                                 opts, res)))
         return st;
     const double u0 = res->u_contact, u = res->u_max;
     if (opts->check || opts->rule == CT_QUAD_CLOSED) {
@@ -286,6 +352,9 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
     }
     switch (opts->rule) {
     case CT_QUAD_BREAKPOINTS:
+        if (isnan(res->W_unload)) /* the difference lost its digits: rod by rod */
+            res->W_unload =
+                isnan(res->W_unload_closed) ? ct_bundle_elastic_energy(b, u) : res->W_unload_closed;
         break;
     case CT_QUAD_CLOSED:
         res->W_load = res->W_load_closed;

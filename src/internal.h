@@ -130,6 +130,9 @@ typedef struct {
     int monotone, nested;
 } ct_unload_events;
 int ct_unload_events_of(const ct_curve *c, ct_unload_events *e);
+/* Multiplies e's positions (and eps_y L) by sx and its slopes by sk: powers of two, for the
+ * units of the impact in time (exact, the order unchanged). */
+void ct_unload_events_scale(ct_unload_events *e, double sx, double sk);
 void ct_unload_events_free(ct_unload_events *e);
 /* The unloading curve from u_max of the curve's state (e monotone), by the builder of
  * ct_curve_unload without its sort, into x, P, W and slope (room for ct_unload_split_room
@@ -156,8 +159,11 @@ int ct_dyn_impact(ct_dyn_work *w, const ct_curve *c, const ct_impact_result *res
                   ct_dynamics *dyn, size_t grid, ct_history *hist);
 /* The sweep's fast path, on the first curve c (prepared once: its moments, its events): the
  * same impacts as ct_dyn_impact on c, without histories, the first pieces of each branch by
- * their moments. ct_dyn_reset starts a speed. */
-int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c);
+ * their moments. ct_dyn_reset starts a speed. L: the layer of c's bundle, whose h0 and
+ * E l0 h0 set the units the motion is computed in (docs/model.md §11; every workspace is
+ * prepared before its impacts). Times, speeds and forces come back in the caller's units; a
+ * motion beyond double precision, or whose e_kinematic differs from e, is an error. */
+int ct_dyn_prepare(ct_dyn_work *w, const ct_curve *c, const ct_layer *L);
 int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct_dynamics *dyn);
 /* A workspace for another thread's speeds on parent's prepared curve, for mass m: it reads
  * the parent's prepared arrays (the parent outlives it and is not prepared again meanwhile)
@@ -180,9 +186,25 @@ int ct_profile_adopt_grid(ct_profile **out, size_t nx, size_t ny, double dx, dou
 /* ---- impacts on a curve (src/impact.c), for the sweep ---- */
 
 /* The impact of energy W from the state c's state reaches when loaded to U (-INFINITY: c's
- * state itself), closed forms left NaN; CT_ESKIPPED when it stays below U. */
-int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W,
+ * state itself), closed forms left NaN; CT_ESKIPPED when it stays below U. W_U: that state's
+ * energy back to U summed rod by rod (the W_unload of the impact that reached U; with
+ * U = -INFINITY its energy to its first yield, ct_critical_by_rods), or NaN to take it from
+ * the curve, W(U) - D(U) (W at the first yield). W_unload NaN: the curve's W_load - D would carry e
+ * to worse than CT_UNLOAD_DIFF_E relative (ct_unload_lost), and the caller sums it rod by rod (the
+ * state's recoverable energy at u_max: ct_bundle_elastic_energy, or ct_bundle_closed_many's
+ * W_unload); then W_U of the next impact is that sum. */
+#define CT_UNLOAD_DIFF_E 1e-13
+int ct_impact_on_curve(const ct_curve *c, const ct_layer *L, double U, double W_U, double W,
                        const ct_impact_opts *opts, ct_impact_result *res);
+/* The critical energy of b's state (c its curve) summed rod by rod from the distances between
+ * contacts, where the curve's W at its first yield carries V*_c to worse than
+ * CT_UNLOAD_DIFF_E (a rod's elastic range eps_y L far below the ulps of its position); NaN
+ * where the curve's is good: the W_U of a first impact. */
+double ct_critical_by_rods(const ct_bundle *b, const ct_curve *c);
+/* Whether W_unload as the difference of energies summing to W_sum (a few ulps of each) would
+ * carry e = sqrt(W_unload / W_load), and the next impact's V*_c, to worse than
+ * CT_UNLOAD_DIFF_E relative: where little comes back (e below about 0.07). */
+int ct_unload_lost(double W_sum, double W_unload);
 /* e, e_rounding and, when W_load_closed is set, the closed forms' check (P_max: the force at
  * u_max, for the rounding floor of the u_max solve) and e_closed. */
 int ct_impact_finish(double P_max, const ct_impact_opts *opts, ct_impact_result *res);

@@ -66,6 +66,7 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
     const double W = s->V_star[v] * s->V_star[v] * L->l0 * L->E * L->h0;
     const size_t impacts = (size_t)s->impacts;
     int st, changed = 0;
+    double W_U = NAN; /* the state's energy back to its maximum, rod by rod (ct_impact_on_curve) */
     ct_impact_opts opts = s->opts; /* the closed-form check for the sampled speeds */
     opts.check = check[v] ? CT_CHECK_ALL : CT_CHECK_NONE;
     copy_state(work, b);
@@ -83,6 +84,8 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
             return CT_OK;
         }
         row->message[0] = '\0';
+        if (!isnan(W_U)) /* the state's own curve lost it too: its elastic ranges, eps_y L */
+            row->r.V_star_crit = sqrt(W_U / (L->l0 * L->E * L->h0));
         if (dw) { /* the impact in time on its own state's curve */
             ct_dyn_reset(dw);
             if ((row->status = ct_dyn_impact(dw, c, &row->r, unit_mass(L), &row->dyn, 0, NULL))) {
@@ -93,7 +96,11 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
         if (s->observe && (st = s->observe(row, 0, work, c, s->observe_ctx)))
             return st;
         if (!row->r.elastic) {
-            ct_bundle_advance(work, row->r.u_max);
+            const double u = row->r.u_max;
+            W_U = ct_unload_lost(ct_curve_work(c, u) + ct_curve_dissipation(c, u), row->r.W_unload)
+                      ? row->r.W_unload
+                      : NAN;
+            ct_bundle_advance(work, u);
             changed = 1;
         }
         if (s->observe && (st = s->observe(row, 1, work, NULL, s->observe_ctx)))
@@ -115,16 +122,21 @@ typedef struct {
 } rods_ws;
 
 /* Where each state starts, and the energy that makes its first rod yield: W_crit0 on the
- * virgin state; else (the state's first yield is U) its energy to get back there. */
-static int rods_start(const ct_bundle *b, size_t m, const double *U, double W_crit0, double x0,
-                      const rods_ws *ws)
+ * virgin state; else (the state's first yield is U) its energy to get back there. A state
+ * advanced to U starts its Newton iteration on the tangent of its work at U: W is convex on
+ * it as on the virgin state, so the tangent's root lies right of the root, next to it (from
+ * H* instead, the first step's W(H*) - W rounds to an ulp of H*, which can put the iterate
+ * left of a root much nearer the plane than H*, digits the iteration never gets back). */
+static int rods_start(const ct_bundle *b, size_t m, const double *U, const double *W_U,
+                      double W_crit0, double x0, const double *W, const rods_ws *ws)
 {
-    double *u0 = ws->u0, *Wc = ws->Wc, *Wl = ws->Wl;
+    double *u0 = ws->u0, *Wc = ws->Wc, *Wl = ws->Wl, *P = ws->P;
+    const double Hstar = ct_bundle_layer(b)->Hstar;
     size_t *open_ = ws->open_, q = 0;
     int st;
     for (size_t j = 0; j < m; j++) {
         u0[j] = U[j] > -INFINITY ? ct_bundle_release(b, U[j]) : x0;
-        ws->u[j] = ct_bundle_layer(b)->Hstar;
+        ws->u[j] = Hstar;
         if (U[j] > -INFINITY) {
             ws->adv[q] = U[j];
             ws->a0[q] = u0[j];
@@ -134,10 +146,22 @@ static int rods_start(const ct_bundle *b, size_t m, const double *U, double W_cr
             Wc[j] = W_crit0;
         }
     }
-    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, q, Wl, ws->Wu, NULL)))
+    /* the force at U from b's own state (the same as the advanced state's, where its elastic
+     * strains (U - top) / L - eps_p may have lost eps_y's digits and clamp to noise) */
+    for (size_t k = 0; k < q; k++) {
+        ws->adv[q + k] = -INFINITY;
+        ws->a0[q + k] = x0;
+        ws->a1[q + k] = ws->a1[k];
+    }
+    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, 2 * q, Wl, ws->Wu, P)))
         return st;
-    for (size_t k = 0; k < q; k++)
-        Wc[open_[k]] = Wl[k];
+    for (size_t k = 0; k < q; k++) {
+        const size_t j = open_[k];
+        Wc[j] = isnan(W_U[j]) ? Wl[k] : W_U[j];
+        const double t = U[j] + (W[j] - Wc[j]) / P[q + k]; /* the tangent at U */
+        if (P[q + k] > 0.0 && t < Hstar)
+            ws->u[j] = t > u0[j] ? t : u0[j];
+    }
     return CT_OK;
 }
 
@@ -235,28 +259,40 @@ static void rods_row(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *r
 /* One impact round on the rod path: row r[j] (j < m) has the state b advanced to U[j] and
  * kinetic energy W[j]. u_max by Newton's method on the closed-form work summed rod by rod:
  * W(u) is convex, so from any point right of the root the iterates fall monotonically onto
- * it; each iteration evaluates every open speed in one pass over the rods. */
+ * it; each iteration evaluates every open speed in one pass over the rods. A long step rounds
+ * to ulps of where it starts, which can put the iterate left of a root far nearer the plane
+ * (from H*, or a grid point 20 times the root: |W(u) - W| / W up to 1e-7 was refused there):
+ * from the left the iterate steps back right, past the root by convexity, within the bracket
+ * of the iterates seen (bisected when the step leaves it), until the residual meets the
+ * tolerance or its rounding floor, or the bracket holds no double between its ends. */
 static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_sweep_row **r,
-                      const double *U, const double *W, double W_crit0, double x0)
+                      const double *U, const double *W_U, const double *W, double W_crit0,
+                      double x0)
 {
     const double tol = s->opts.tolerance;
     int st = CT_OK;
-    double *buf = malloc(9 * (m + GRID) * sizeof(double));
+    double *buf = malloc((5 * m + 6 * (2 * m + GRID)) * sizeof(double));
     size_t *open_ = malloc((m + 1) * sizeof(size_t));
     if (!buf || !open_) {
         free(buf);
         free(open_);
         return ct_error_set(CT_ENOMEM, "rod path of %zu impacts: out of memory", m);
     }
-    double *u0 = buf, *u = u0 + m, *Wc = u + m, *adv = Wc + m, *a0 = adv + m + GRID,
-           *a1 = a0 + m + GRID, *Wl = a1 + m + GRID, *Wu = Wl + m + GRID, *P = Wu + m + GRID;
+    /* the closed forms' nodes: room for the grid, or two per impact (rods_start) */
+    const size_t nodes = 2 * m + GRID;
+    double *u0 = buf, *u = u0 + m, *Wc = u + m, *lo = Wc + m, *hi = lo + m, *adv = hi + m,
+           *a0 = adv + nodes, *a1 = a0 + nodes, *Wl = a1 + nodes, *Wu = Wl + nodes, *P = Wu + nodes;
     const rods_ws ws = {u0, u, Wc, adv, a0, a1, Wl, Wu, P, open_};
-    if ((st = rods_start(b, m, U, W_crit0, x0, &ws)) || (st = rods_bracket(b, m, U, W, x0, &ws)))
+    if ((st = rods_start(b, m, U, W_U, W_crit0, x0, W, &ws)) ||
+        (st = rods_bracket(b, m, U, W, x0, &ws)))
         goto done;
     /* Newton from the right */
     size_t nopen = 0;
-    for (size_t j = 0; j < m; j++)
+    for (size_t j = 0; j < m; j++) {
+        lo[j] = u0[j];
+        hi[j] = INFINITY;
         open_[nopen++] = j;
+    }
     for (int it = 0; nopen && it < MAX_NEWTON; it++) {
         for (size_t k = 0; k < nopen; k++) {
             size_t j = open_[k];
@@ -273,7 +309,17 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
             double floor = 8.0 * DBL_EPSILON * fabs(u[j]) * P[k];
             double next = P[k] > 0.0 ? u[j] - resid / P[k] : u[j];
             next = next < u0[j] ? u0[j] : next;
-            if (fabs(resid) <= tol * W[j] || fabs(resid) <= floor || !(next < u[j])) {
+            int done = fabs(resid) <= tol * W[j] || fabs(resid) <= floor;
+            if (!done && resid < 0.0) { /* left of the root: back right, within the bracket */
+                lo[j] = u[j];
+                if (!(next > lo[j] && next < hi[j]))
+                    next = lo[j] + 0.5 * (hi[j] - lo[j]);
+                done = !(next > lo[j] && next < hi[j]);
+            } else if (!done) {
+                hi[j] = u[j];
+                done = !(next < u[j]);
+            }
+            if (done) {
                 rods_row(b, s, r[j], W[j], Wc[j], u0[j], u[j], Wl[k], Wu[k], P[k]);
                 continue;
             }
@@ -302,7 +348,11 @@ static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
     if ((st = ct_critical_energy(b, &W_crit0, &uy)))
         return st;
     const double x0 = ct_bundle_first_contact(b);
-    double *U = malloc(2 * (nv + 1) * sizeof(double)), *W = U ? U + nv + 1 : NULL;
+    /* per speed: its maximum U and (WU) the state's energy back there when the impact that
+     * reached U gave back too little for its closed forms on the advanced state (their elastic
+     * strains, (U - top) / L - eps_p, lose eps_y's digits): that impact's W_unload */
+    double *U = malloc(4 * (nv + 1) * sizeof(double)), *W = U ? U + nv + 1 : NULL;
+    double *WU = U ? W + nv + 1 : NULL, *WUr = U ? WU + nv + 1 : NULL;
     ct_sweep_row **r = malloc((nv + 1) * sizeof *r);
     size_t *which = malloc((nv + 1) * sizeof *which);
     double *Ur = malloc((nv + 1) * sizeof *Ur);
@@ -310,8 +360,10 @@ static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
         st = ct_error_set(CT_ENOMEM, "rod path of %zu speeds: out of memory", nv);
         goto done;
     }
-    for (size_t v = 0; v < nv; v++)
+    for (size_t v = 0; v < nv; v++) {
         U[v] = -INFINITY;
+        WU[v] = NAN;
+    }
     for (size_t i = 0; i < impacts; i++) {
         size_t m = 0;
         for (size_t v = 0; v < nv; v++) {
@@ -319,17 +371,24 @@ static int sweep_by_rods(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
                 continue; /* the speed failed: its later impacts stay "not run" */
             r[m] = &rows[v * impacts + i];
             Ur[m] = U[v];
+            WUr[m] = WU[v];
             W[m] = s->V_star[v] * s->V_star[v] * scale;
             which[m++] = v;
         }
-        if ((st = rods_round(b, s, m, r, Ur, W, W_crit0, x0)))
+        if ((st = rods_round(b, s, m, r, Ur, WUr, W, W_crit0, x0)))
             goto done;
         for (size_t k = 0; k < m; k++) {
             size_t v = which[k];
-            if (r[k]->status)
+            const ct_impact_result *res = &r[k]->r;
+            if (r[k]->status) {
                 fail_from(rows, impacts, v, i, r[k]->status, r[k]->message);
-            else if (!r[k]->r.elastic && r[k]->r.u_max > U[v])
-                U[v] = r[k]->r.u_max;
+            } else if (!res->elastic && res->u_max > U[v]) {
+                U[v] = res->u_max;
+                /* W(u) + D(u) of the curve path: W_load and the dissipation W_load - W_unload */
+                WU[v] = ct_unload_lost(2.0 * res->W_load - res->W_unload, res->W_unload)
+                            ? res->W_unload
+                            : NAN;
+            }
         }
         if (s->progress)
             s->progress((i + 1) * nv / impacts, nv, s->progress_ctx);
@@ -491,49 +550,97 @@ typedef struct {
     ct_dyn_work *dw;                 /* the impacts in time */
     ct_dyn_work **forks;             /* dw's forks, for the other threads' speeds */
     int nforks, fork_cap;            /* made, room for */
+    double crit0; /* the first curve's critical energy rod by rod, or NaN (ct_critical_by_rods) */
 } sweep_ws;
 
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
  * maximum U sees the first curve shifted (ct_impact_on_curve), and impacts of equal energy
  * always do, so every impact costs O(log n). A speed with an impact that stays below U is
- * left to the general path (by_state). When closed, each row's closed-form nodes are
- * collected (*m of them) for one batch. */
-static void fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
-                         sweep_ws *w, int closed, size_t *m)
+ * left to the general path (by_state). Impacts go round by round (impact 1 of every speed,
+ * then impact 2, ...): a row whose W_unload is left to the rods gets it in one pass over them
+ * for its round when the speed's next impact needs it (its energy back to U), else in the
+ * batch with the check's nodes (when closed and its speed is checked), *m of them. */
+static int fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows, sweep_ws *w,
+                        int closed, size_t *m)
 {
     const ct_layer *L = ct_bundle_layer(b);
     const double scale = L->l0 * L->E * L->h0;
-    const size_t impacts = (size_t)s->impacts;
+    const size_t impacts = (size_t)s->impacts, nv = s->nvel;
     *m = 0;
-    for (size_t v = 0; v < s->nvel; v++) {
-        const double W = s->V_star[v] * s->V_star[v] * scale;
-        double U = -INFINITY;
-        for (size_t i = 0; i < impacts; i++) {
+    /* per speed: its maximum U, its energy back there rod by rod (or NaN), whether it goes
+     * on; the round's rows for the rods (their nodes, results and speeds) */
+    double *U = malloc(7 * (nv + 1) * sizeof(double)), *W_U = U + nv + 1, *ra = W_U + nv + 1,
+           *r0 = ra + nv + 1, *r1 = r0 + nv + 1, *rWl = r1 + nv + 1, *rWu = rWl + nv + 1;
+    size_t *rv = malloc((nv + 1) * sizeof(size_t));
+    unsigned char *on = malloc(nv + 1);
+    if (!U || !rv || !on) {
+        free(U);
+        free(rv);
+        free(on);
+        return ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", nv);
+    }
+    for (size_t v = 0; v < nv; v++) {
+        U[v] = -INFINITY;
+        W_U[v] = w->crit0;
+        on[v] = 1;
+    }
+    for (size_t i = 0; i < impacts; i++) {
+        size_t nr = 0;
+        for (size_t v = 0; v < nv; v++) {
+            if (!on[v])
+                continue;
             ct_sweep_row *row = &rows[v * impacts + i];
-            int rs = ct_impact_on_curve(w->first, L, U, W, &s->opts, &row->r);
+            const double W = s->V_star[v] * s->V_star[v] * scale;
+            int rs = ct_impact_on_curve(w->first, L, U[v], W_U[v], W, &s->opts, &row->r);
             if (rs == CT_ESKIPPED) {
                 w->by_state[v] = 1;
-                break;
+                on[v] = 0;
+                continue;
             }
             if (rs) {
                 fail_from(rows, impacts, v, i, rs, ct_error_message());
-                break;
+                on[v] = 0;
+                continue;
             }
             row->status = CT_OK;
             row->message[0] = '\0';
-            if (closed && w->check[v]) {
+            const int lost = isnan(row->r.W_unload), now = lost && i + 1 < impacts;
+            if (now) {
+                ra[nr] = U[v];
+                r0[nr] = row->r.u_contact;
+                r1[nr] = row->r.u_max;
+                rv[nr++] = v;
+            }
+            if ((closed && w->check[v]) || (lost && !now)) {
                 w->slot[v * impacts + i] = *m;
-                w->adv[*m] = U;
+                w->adv[*m] = U[v];
                 w->u0[*m] = row->r.u_contact;
                 w->u1[*m] = row->r.u_max;
                 (*m)++;
             }
-            if (!row->r.elastic)
-                U = row->r.u_max;
+            if (!row->r.elastic) {
+                U[v] = row->r.u_max;
+                W_U[v] = NAN;
+            }
         }
-        if (s->progress && !w->by_state[v])
-            s->progress(v + 1, s->nvel, s->progress_ctx);
+        const int rs = nr ? ct_bundle_closed_many(b, ra, r0, r1, nr, rWl, rWu, NULL) : CT_OK;
+        for (size_t k = 0; k < nr; k++) {
+            const size_t v = rv[k];
+            if (rs) {
+                fail_from(rows, impacts, v, i, rs, ct_error_message());
+                on[v] = 0;
+            } else {
+                rows[v * impacts + i].r.W_unload = W_U[v] = rWu[k];
+            }
+        }
     }
+    for (size_t v = 0; s->progress && v < nv; v++)
+        if (!w->by_state[v])
+            s->progress(v + 1, nv, s->progress_ctx);
+    free(U);
+    free(rv);
+    free(on);
+    return CT_OK;
 }
 
 /* The fast path's speed v after the batched closed forms: its rows finished (e, the check). */
@@ -545,6 +652,8 @@ static void fast_finish(const ct_sweep_spec *s, ct_sweep_row *rows, const sweep_
         ct_sweep_row *row = &rows[v * impacts + i];
         if (row->status)
             break;
+        if (isnan(row->r.W_unload)) /* left to the batch by fast_impacts */
+            row->r.W_unload = w->Wu[w->slot[v * impacts + i]];
         if (closed && w->check[v]) {
             const size_t q = w->slot[v * impacts + i];
             row->r.W_load_closed = w->Wl[q];
@@ -637,16 +746,18 @@ static int sweep_fast(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *
     const size_t nrows = s->nvel * (size_t)s->impacts;
     const int closed = s->opts.check || s->opts.rule == CT_QUAD_CLOSED;
     int st;
-    if (closed && (!(w->adv = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->u0 = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->u1 = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->Wl = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->Wu = malloc((nrows + 1) * sizeof(double))) ||
-                   !(w->slot = malloc((nrows + 1) * sizeof(size_t)))))
+    /* the batch's nodes: the check's, and any row's W_unload rod by rod */
+    if (!(w->adv = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->u0 = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->u1 = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->Wl = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->Wu = malloc((nrows + 1) * sizeof(double))) ||
+        !(w->slot = malloc((nrows + 1) * sizeof(size_t))))
         return ct_error_set(CT_ENOMEM, "sweep of %zu impacts: out of memory", nrows);
     size_t m;
-    fast_impacts(b, s, rows, w, closed, &m);
-    if (closed && (st = ct_bundle_closed_many(b, w->adv, w->u0, w->u1, m, w->Wl, w->Wu, NULL)))
+    if ((st = fast_impacts(b, s, rows, w, closed, &m)))
+        return st;
+    if (m && (st = ct_bundle_closed_many(b, w->adv, w->u0, w->u1, m, w->Wl, w->Wu, NULL)))
         return st;
     for (size_t v = 0; v < s->nvel; v++)
         if (!w->by_state[v])
@@ -721,8 +832,9 @@ static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w
     } else if ((st = ct_curve_build(w->first, b))) {
         return st;
     }
-    if (w->dw && (st = ct_dyn_prepare(w->dw, w->first)))
+    if (w->dw && (st = ct_dyn_prepare(w->dw, w->first, L)))
         return st;
+    w->crit0 = ct_critical_by_rods(b, w->first);
     if (!(*mask = malloc(s->nvel ? s->nvel : 1)))
         return ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
     const double W_crit = ct_curve_work(w->first, ct_curve_first_yield(w->first));

@@ -12,6 +12,7 @@
 #include <cmocka.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_odeiv2.h>
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -313,6 +314,141 @@ static void compare_paths(ct_bundle *b, const ct_params *pp)
     }
 }
 
+/* t / tau depends only on the dimensionless groups (docs/model.md §11), in any units of the
+ * layer. One rod (top 0, area 1) of length L = H* = h0 = lambda, E = 1000, sigma_y = 1,
+ * l0 = 1, struck at V* = 0.01 with the sweep's mass m = E l0 / h0 = 1000 / lambda, whose
+ * stiffness k = E s / L = 1000 / lambda gives omega = sqrt(k / m) = 1 (tau = 1). W = V*^2 l0 E
+ * h0 = 0.1 lambda, v1 = sqrt(2 W / m) = sqrt(2) V* lambda; yield at u_y = eps_y L = 1e-3
+ * lambda, reached on the harmonic arc u = v1 sin(t) at t1 = asin(u_y / v1) with speed
+ * v1 cos(t1); then the plateau F = E s eps_y = 1 decelerates it by F / m = lambda / 1000 in
+ * t2 = 1000 v1 cos(t1) / lambda. Unloading from rest along k is a quarter period, pi / 2; the
+ * rod gives back F eps_y L / 2 = 5e-4 lambda: e = sqrt(5e-4 / 0.1) = sqrt(0.005). P_peak = F,
+ * the unloading period 2 pi. For lambda = 1e-160 the layer's speeds (1e-162) have squares
+ * below the doubles (e_kinematic was NaN), for 1e160 and 1e300 above them (inf): every
+ * figure must be the same. On the sweep's fast path, its state-carrying path (an observer)
+ * and ct_impact_history with its history. */
+static int count_calls(const ct_sweep_row *row, int phase, const ct_bundle *b, const ct_curve *c,
+                       void *ctx)
+{
+    (void)row, (void)phase, (void)b, (void)c;
+    ++*(int *)ctx;
+    return 0;
+}
+
+static void time_is_scale_free(void **state)
+{
+    (void)state;
+    const double lambdas[] = {1.0, 1e-160, 0x1p-1000, 1e160, 1e300};
+    const double V = 0.01, top = 0.0, area = 1.0;
+    const double t1 = asin(1e-3 / (sqrt(2.0) * V)), t2 = 1000.0 * sqrt(2.0) * V * cos(t1);
+    for (size_t q = 0; q < sizeof lambdas / sizeof lambdas[0]; q++) {
+        const double lam = lambdas[q];
+        ct_layer L = {.E = 1000.0, .sigma_y = 1.0, .Hstar = lam, .l0 = 1.0, .h0 = lam};
+        ct_bundle *b;
+        assert_int_equal(ct_bundle_from_rods(&b, &L, 1, &top, &area), CT_OK);
+        for (int path = 0; path < 3; path++) {
+            ct_dynamics d;
+            ct_impact_result r;
+            ct_history h = {0};
+            int calls = 0;
+            if (path < 2) {
+                ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 1, .dynamics = 1};
+                ct_impact_opts_default(&spec.opts);
+                if (path == 1) {
+                    spec.observe = count_calls;
+                    spec.observe_ctx = &calls;
+                }
+                ct_sweep_row row;
+                assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+                if (row.status)
+                    fail_msg("lambda %g, path %d: %s", lam, path, row.message);
+                d = row.dyn;
+                r = row.r;
+            } else {
+                const double m = L.E * L.l0 / L.h0, v1 = sqrt(2.0) * V * lam;
+                if (ct_impact_history(b, m, v1, 20, &r, &d, &h))
+                    fail_msg("lambda %g, history: %s", lam, ct_error_message());
+                assert_rel(d.v1, v1, 1e-15);
+                for (size_t i = 0; i < h.n; i++) { /* every point finite, in the layer's units */
+                    const ct_history_point *p = &h.points[i];
+                    assert_true(isfinite(p->t) && isfinite(p->u) && isfinite(p->v) &&
+                                isfinite(p->P));
+                    assert_true(p->u >= -1e-15 * lam && p->u <= 1.01 * r.u_max);
+                    assert_true(p->P >= 0.0 && p->P <= 1.0 + 1e-15);
+                    assert_true(p->t >= 0.0 && p->t <= d.t_contact * (1.0 + 1e-15));
+                }
+                assert_rel(h.points[h.n - 1].t, d.t_contact, 1e-15);
+                assert_rel(-h.points[h.n - 1].v, d.v2, 1e-12);
+                ct_history_free(&h);
+            }
+            assert_false(r.elastic);
+            assert_rel(r.e, sqrt(0.005), 1e-13);
+            assert_rel(d.t_load, t1 + t2, 1e-13);
+            assert_rel(d.t_unload, PI / 2.0, 1e-13);
+            assert_rel(d.t_contact, t1 + t2 + PI / 2.0, 1e-13);
+            assert_rel(d.P_peak, 1.0, 1e-13);
+            assert_rel(d.e_kinematic, sqrt(0.005), 1e-13);
+            assert_rel(d.period_min, 2.0 * PI, 1e-13);
+            assert_rel(d.k_unload_max, 1000.0 / lam, 1e-13);
+            assert_rel(d.v2, sqrt(0.005) * sqrt(2.0) * V * lam, 1e-13);
+            assert_rel(d.dissipated, 0.1 * lam * (1.0 - 0.005), 1e-13);
+        }
+        ct_bundle_free(b);
+    }
+    /* a deep Cantor surface (its first pieces by their moments, W^2: beyond the doubles for
+     * E l0 h0 = 5e302) against itself at unit scale, two impacts per speed */
+    enum { NV = 3, IMP = 2 };
+    const double Vs[NV] = {2e-4, 1e-3, 1e-2},
+                 scale[][2] = {{1e150, 1e150}, {1e-150, 1e-150}, {1e-100, 1e100}, {1e100, 1e-100}};
+    ct_sweep_row ref[NV * IMP], row[NV * IMP];
+    for (int q = -1; q < 4; q++) {
+        ct_params p = {.fx = 1.5, .fz = 1.3, .l0 = 1, .h0 = 1, .Hstar = 10, .E = 500, .sigma_y = 1};
+        if (q >= 0) {
+            p.h0 = scale[q][0];
+            p.l0 = scale[q][1];
+            p.Hstar = 10.0 * p.h0;
+        }
+        ct_bundle *b;
+        assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_STAGES, 60, INFINITY), CT_OK);
+        ct_sweep_spec spec = {.V_star = Vs, .nvel = NV, .impacts = IMP, .dynamics = 1};
+        ct_impact_opts_default(&spec.opts);
+        ct_sweep_row *r = q < 0 ? ref : row;
+        assert_int_equal(ct_sweep(b, &spec, r), CT_OK);
+        for (int k = 0; k < NV * IMP && q >= 0; k++) {
+            if (r[k].status)
+                fail_msg("h0 %g, l0 %g, row %d: %s", p.h0, p.l0, k, r[k].message);
+            const ct_dynamics *a = &r[k].dyn, *c = &ref[k].dyn;
+            assert_rel(a->t_load, c->t_load, 1e-12);
+            assert_rel(a->t_unload, c->t_unload, 1e-12);
+            assert_rel(a->e_kinematic, c->e_kinematic, 1e-12);
+            assert_rel(a->P_peak / p.l0, c->P_peak, 1e-12);
+            assert_rel(a->period_min, c->period_min, 1e-12);
+        }
+        ct_bundle_free(b);
+    }
+}
+
+/* A figure the doubles cannot carry is refused, naming it, never returned as inf or NaN:
+ * one rod of stiffness k = E s / L = 1e-300 / 2e7 = 5e-308 under a body of mass 1.7e308 (an
+ * elastic impact) rings for t_contact = pi sqrt(m / k) = 1.83e308, above the largest double,
+ * while t_load = t_unload = 9.2e307 are not. */
+static void figure_beyond_doubles_is_refused(void **state)
+{
+    (void)state;
+    ct_layer L = {.E = 1e-300, .sigma_y = 1e-303, .Hstar = 2e7, .l0 = 1.0, .h0 = 2e7};
+    const double top = 0.0, area = 1.0, m = 1.7e308, k = 1e-300 / 2e7;
+    ct_bundle *b;
+    assert_int_equal(ct_bundle_from_rods(&b, &L, 1, &top, &area), CT_OK);
+    ct_impact_result r;
+    ct_dynamics d;
+    /* half the yield energy E s L eps_y^2 / 4 = 1e-300 * 2e7 * 1e-6 / 4 */
+    const double W = 5e-300, v1 = sqrt(2.0 * W) / sqrt(m);
+    assert_true(PI * (sqrt(m) / sqrt(k)) > DBL_MAX && PI / 2.0 * (sqrt(m) / sqrt(k)) < DBL_MAX);
+    assert_int_equal(ct_impact_history(b, m, v1, 0, &r, &d, NULL), CT_ERANGE);
+    assert_non_null(strstr(ct_error_message(), "t_contact = inf"));
+    ct_bundle_free(b);
+}
+
 static void bad_input(void **state)
 {
     (void)state;
@@ -337,6 +473,8 @@ int main(void)
         cmocka_unit_test(deep_surface_against_ode),
         cmocka_unit_test(energy_at_every_event),
         cmocka_unit_test(sweep_rows_against_one_by_one),
+        cmocka_unit_test(time_is_scale_free),
+        cmocka_unit_test(figure_beyond_doubles_is_refused),
         cmocka_unit_test(bad_input),
     };
     return cmocka_run_group_tests_name("dynamics", tests, NULL, NULL);

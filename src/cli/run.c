@@ -215,7 +215,9 @@ static ct_sweep_spec spec_of(const ct_scene *sc, ct_progress *prog)
         .progress = show_progress,
         .progress_ctx = prog,
         .path = sc->path,
-        .dynamics = !!(sc->what & CT_OUT_TIME),
+        /* with a history too: an impact whose motion fails is then a failed row (skipped
+         * under on_error = skip), not a history that ends the run */
+        .dynamics = !!(sc->what & (CT_OUT_TIME | CT_OUT_HISTORY)),
     };
 }
 
