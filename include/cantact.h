@@ -1139,11 +1139,13 @@ typedef struct {
     double radius;      /* R [the surface's length unit: metres for profiles and maps, the rods'
                            unit, l0's unit for Cantor surfaces], > 0 for a curved body */
     double position[2]; /* the apex: x, or x and y [length]; NaN: the middle of the surface */
+    int periodic;       /* 1: the surface repeats as far as the face reaches (surface.periodic) */
 } ct_body;
 size_t ct_body_count(void);
 const char *ct_body_name(size_t k);    /* "flat", "cylinder", "sphere" */
 const char *ct_body_summary(size_t k); /* one line */
-/* The rows of section [body] (shape, radius, position): offsets into ct_body. */
+/* The rows of section [body] (shape, radius, position) and surface.periodic: offsets into
+ * ct_body. */
 const ct_key *ct_body_keys_table(size_t *n);
 /* The flat body (shape 0, radius 0, position NaN). */
 void ct_body_defaults(ct_body *body);

@@ -351,6 +351,13 @@ const ct_layer *ct_bundle_layer(const ct_bundle *b)
     return &b->layer;
 }
 
+double ct_bundle_reach(const ct_bundle *b, char *why, size_t len)
+{
+    if (len)
+        why[0] = '\0';
+    return b->kind && b->kind->reach ? b->kind->reach(b->meta, why, len) : INFINITY;
+}
+
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
 {
     CT_NEED(b);

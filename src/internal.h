@@ -58,6 +58,9 @@ typedef struct {
     void (*rod_info)(const void *meta, size_t k, ct_rod_info *info);
     void *(*clone)(const void *meta); /* NULL on failure */
     void (*free)(void *meta);
+    /* optional: the largest u_max [length] at which the rods still describe what the body
+     * meets (beyond it the face reaches past the surface's border), with why in words */
+    double (*reach)(const void *meta, char *why, size_t len);
 } ct_rod_meta_kind;
 
 /* A bundle of n rods with uninitialised arrays (filled by the caller through
@@ -70,6 +73,8 @@ void ct_bundle_arrays(ct_bundle *b, double **top, double **length, double **area
 void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double length, double area);
 /* Hands the surface's metadata to the bundle (freed with it); omitted rods are counted. */
 void ct_bundle_set_surface(ct_bundle *b, const ct_rod_meta_kind *kind, void *meta, size_t omitted);
+/* The largest u_max [length] b's rods describe (INFINITY: no limit) and, when finite, why. */
+double ct_bundle_reach(const ct_bundle *b, char *why, size_t len);
 /* The metadata if b was made by this kind of surface, else NULL. */
 const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_rod_meta_kind *kind);
 /* Events a curve of b's state would hold (two per run of identical rods): one pass. */

@@ -446,6 +446,30 @@ static int use_rods(const ct_bundle *b, const ct_sweep_spec *s)
 }
 
 /* The first failed row in order, under stop_on_error. */
+/* Rows whose u_max passes what the rods describe (a curved body's face reaching past the
+ * surface's border) fail, naming the reach; a later impact of the same speed is not run. */
+static void reach_check(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
+{
+    char why[200];
+    const double limit = ct_bundle_reach(b, why, sizeof why);
+    if (!(limit < INFINITY))
+        return;
+    const size_t impacts = (size_t)s->impacts;
+    const double h0 = ct_bundle_layer(b)->h0;
+    for (size_t v = 0; v < s->nvel; v++)
+        for (size_t i = 0, failed = 0; i < impacts; i++) {
+            ct_sweep_row *row = &rows[v * impacts + i];
+            if (failed && row->status != CT_ESKIPPED)
+                fail_row(row, CT_ESKIPPED, "not run: an earlier impact of this speed failed");
+            else if (!failed && row->status == CT_OK && row->r.u_max > limit) {
+                char msg[sizeof row->message];
+                snprintf(msg, sizeof msg, "u_max/h0 = %.6g: %s", row->r.u_max / h0, why);
+                fail_row(row, CT_ERANGE, msg);
+            }
+            failed |= row->status != CT_OK && row->status != CT_ESKIPPED;
+        }
+}
+
 static int first_failure(const ct_sweep_row *rows, size_t n)
 {
     for (size_t k = 0; k < n; k++)
@@ -895,6 +919,7 @@ static int sweep_block(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row 
         need_state = w->by_state[v];
     if (need_state && (st = sweep_by_state(b, s, rows, w, fast)))
         goto done;
+    reach_check(b, s, rows);
     if (s->stop_on_error)
         st = first_failure(rows, nrows);
 done:
@@ -914,6 +939,7 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
         rows_not_run(s, rows);
         if ((st = sweep_by_rods(b, s, rows)))
             return st;
+        reach_check(b, s, rows);
         return s->stop_on_error ? first_failure(rows, s->nvel * (size_t)s->impacts) : CT_OK;
     }
     sweep_ws w = {0};

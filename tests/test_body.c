@@ -373,6 +373,91 @@ static void profile_intervals_met_at_their_nearest_point(void **state)
     unlink(path);
 }
 
+/* ---- periodic surfaces and the border ---- */
+
+/* A line profile file of `copies` periods of 16 samples 0.1 mm apart (heights a fixed
+ * pattern in um), levelled not at all: the same surface laid out copies times by hand. */
+static ct_surface *tiled_profile(const char *path, int copies, int periodic)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("x (mm), z (um)\n", f);
+    for (int c = 0; c < copies; c++)
+        for (int j = 0; j < 16; j++)
+            fprintf(f, "%.17g,%.17g\n", (c * 16 + j) * 0.1, 0.5 * ((j * 7) % 16) + (j == 5));
+    fclose(f);
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "profile"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "detrend", "none", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "2e11", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "sigma_y", "4e8", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    (void)periodic;
+    return s;
+}
+
+/* e and u_max [m] of one impact of energy W [J/m] under body on s */
+static int impact_of(const ct_surface *s, const ct_body *body, double W, double *e, double *u,
+                     char *msg, size_t len)
+{
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    const double V = sqrt(W / sc.physical_energy_scale);
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    int st = ct_surface_build(s, &req, &b, NULL);
+    if (st)
+        return st;
+    ct_sweep_row row;
+    ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 1, .opts = req.opts};
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    ct_bundle_free(b);
+    *e = row.r.e;
+    *u = row.r.u_max; /* the layer's unit: metres */
+    snprintf(msg, len, "%s", row.message);
+    return row.status;
+}
+
+static void periodic_as_laid_out_by_hand(void **state)
+{
+    (void)state;
+    char p1[64], p3[64], msg[300];
+    snprintf(p1, sizeof p1, "/tmp/ct_per1_%d.csv", (int)getpid());
+    snprintf(p3, sizeof p3, "/tmp/ct_per3_%d.csv", (int)getpid());
+    ct_surface *one = tiled_profile(p1, 1, 1), *three = tiled_profile(p3, 3, 0);
+    /* a cylinder R = 5 mm landing 0.25 mm into the period (the middle copy of the three) */
+    ct_body periodic = body_of(1, 5e-3, 0.25e-3, NAN), laid = body_of(1, 5e-3, 1.85e-3, NAN);
+    periodic.periodic = 1;
+    const double W = 5.0; /* J/m: u_max 20 um, the face 0.45 mm wide either side: into both
+                           neighbouring periods */
+    double e1, u1, e3, u3;
+    assert_int_equal(impact_of(one, &periodic, W, &e1, &u1, msg, sizeof msg), CT_OK);
+    assert_int_equal(impact_of(three, &laid, W, &e3, &u3, msg, sizeof msg), CT_OK);
+    assert_true(fabs(e1 - e3) <= 1e-12 * e3 && fabs(u1 - u3) <= 1e-12 * u3);
+    assert_true(e1 < 0.99); /* a plastic impact, reached into the neighbours */
+    /* and near the period's other end, into the copy on the right */
+    periodic.position[0] = 1.45e-3;
+    laid.position[0] = 3.05e-3;
+    assert_int_equal(impact_of(one, &periodic, W, &e1, &u1, msg, sizeof msg), CT_OK);
+    assert_int_equal(impact_of(three, &laid, W, &e3, &u3, msg, sizeof msg), CT_OK);
+    assert_true(fabs(e1 - e3) <= 1e-12 * e3 && fabs(u1 - u3) <= 1e-12 * u3);
+    laid.position[0] = 1.85e-3;
+    /* without the repetition the same impact reaches the border of the one period: refused */
+    assert_int_equal(impact_of(one, &laid, W, &e1, &u1, msg, sizeof msg), CT_EINVAL);
+    ct_body here = body_of(1, 5e-3, 0.25e-3, NAN);
+    assert_int_equal(impact_of(one, &here, W, &e1, &u1, msg, sizeof msg), CT_ERANGE);
+    assert_non_null(strstr(msg, "reaches the border of the surface"));
+    /* a gentle one stays inside */
+    assert_int_equal(impact_of(one, &here, 1e-9, &e1, &u1, msg, sizeof msg), CT_OK);
+    ct_surface_free(one);
+    ct_surface_free(three);
+    unlink(p1);
+    unlink(p3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -380,6 +465,7 @@ int main(void)
         cmocka_unit_test(sphere_e_against_the_continuum),
         cmocka_unit_test(one_rod_at_an_offset),
         cmocka_unit_test(profile_intervals_met_at_their_nearest_point),
+        cmocka_unit_test(periodic_as_laid_out_by_hand),
         cmocka_unit_test(flat_body_changes_nothing),
         cmocka_unit_test(shapes_a_surface_cannot_carry),
     };

@@ -447,6 +447,7 @@ typedef struct {
     int shape;
     double radius;
     double position[2];
+    int periodic;
 } ct_body;
 size_t ct_body_count(void);
 const char *ct_body_name(size_t k);

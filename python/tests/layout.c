@@ -253,5 +253,6 @@ int main(void)
     FIELD(ct_body, shape);
     FIELD(ct_body, radius);
     FIELD(ct_body, position);
+    FIELD(ct_body, periodic);
     return 0;
 }

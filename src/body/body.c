@@ -41,6 +41,10 @@ static const ct_key body_keys[] = {
     {"body", "position", CT_KEY_POINT, 0, 0, 0, NULL, "must be x, or x and y (finite numbers)",
      "the middle of the surface", "where the apex lands: x on a line, x and y on a plane [length]",
      AT(position)},
+    {"surface", "periodic", CT_KEY_WORD, 0, 0, 0, "false|true", "must be false or true", "false",
+     "true: the surface repeats as measured (a Cantor surface with period l0) as far as a curved "
+     "body's face reaches; false: a contact that reaches its border fails",
+     AT(periodic)},
 };
 #undef AT
 
@@ -55,6 +59,7 @@ void ct_body_defaults(ct_body *body)
     body->shape = 0;
     body->radius = 0.0;
     body->position[0] = body->position[1] = NAN;
+    body->periodic = 0;
 }
 
 double ct_body_gap(const ct_body *body, double r)
@@ -72,10 +77,16 @@ double ct_body_gap(const ct_body *body, double r)
 /* ---- the rods under a curved body ---- */
 
 /* The shifted bundle's metadata: the bundle as built (the footprints, stages and x-extents of
- * its rods) and which of its rods each kept rod is. */
+ * its rods), which of its rods each kept rod is and, on a periodic surface, by how many
+ * periods its copy lies; the largest u_max the rods describe, and why. */
 typedef struct {
     ct_bundle *built;
+    size_t n;
     size_t *index;
+    int *copy_x, *copy_y; /* NULL: not periodic */
+    double period_x, period_y;
+    double reach;
+    char why[240];
 } body_meta;
 
 static void body_meta_free(void *meta)
@@ -84,21 +95,44 @@ static void body_meta_free(void *meta)
     if (m) {
         ct_bundle_free(m->built);
         free(m->index);
+        free(m->copy_x);
+        free(m->copy_y);
         free(m);
     }
+}
+
+static body_meta *body_meta_new(size_t n, int periodic)
+{
+    body_meta *m = calloc(1, sizeof *m);
+    const size_t k = n ? n : 1;
+    if (!m || !(m->index = malloc(k * sizeof *m->index)) ||
+        (periodic && (!(m->copy_x = malloc(k * sizeof *m->copy_x)) ||
+                      !(m->copy_y = malloc(k * sizeof(int)))))) {
+        body_meta_free(m);
+        return NULL;
+    }
+    m->n = n;
+    return m;
 }
 
 static void *body_meta_clone(const void *meta)
 {
     const body_meta *m = meta;
-    body_meta *c = calloc(1, sizeof *c);
-    const size_t n = ct_bundle_size(m->built);
-    if (!c || ct_bundle_clone(&c->built, m->built) ||
-        !(c->index = malloc((n ? n : 1) * sizeof *c->index))) {
+    body_meta *c = body_meta_new(m->n, m->copy_x != NULL);
+    if (!c || ct_bundle_clone(&c->built, m->built)) {
         body_meta_free(c);
         return NULL;
     }
-    memcpy(c->index, m->index, (n ? n : 1) * sizeof *c->index);
+    const size_t k = m->n ? m->n : 1;
+    memcpy(c->index, m->index, k * sizeof *c->index);
+    if (m->copy_x) {
+        memcpy(c->copy_x, m->copy_x, k * sizeof *c->copy_x);
+        memcpy(c->copy_y, m->copy_y, k * sizeof *c->copy_y);
+    }
+    c->period_x = m->period_x;
+    c->period_y = m->period_y;
+    c->reach = m->reach;
+    memcpy(c->why, m->why, sizeof c->why);
     return c;
 }
 
@@ -107,25 +141,39 @@ static void body_rod_info(const void *meta, size_t k, ct_rod_info *info)
     const body_meta *m = meta;
     ct_rod_info built;
     ct_bundle_rod(m->built, m->index[k], &built);
+    const double sx = m->copy_x ? m->copy_x[k] * m->period_x : 0.0,
+                 sy = m->copy_y ? m->copy_y[k] * m->period_y : 0.0;
     info->stage = built.stage;
-    info->x_left = built.x_left;
-    info->x_right = built.x_right;
+    info->x_left = built.x_left + sx;
+    info->x_right = built.x_right + sx;
     info->footprint = built.footprint;
+    info->footprint.x_lo += sx;
+    info->footprint.x_hi += sx;
+    info->footprint.y_lo += sy;
+    info->footprint.y_hi += sy;
 }
 
-static const ct_rod_meta_kind body_rods = {"body", body_rod_info, body_meta_clone, body_meta_free};
+static double body_reach(const void *meta, char *why, size_t len)
+{
+    const body_meta *m = meta;
+    snprintf(why, len, "%s", m->why);
+    return m->reach;
+}
+
+static const ct_rod_meta_kind body_rods = {"body", body_rod_info, body_meta_clone, body_meta_free,
+                                           body_reach};
 
 /* The surface's extent (over every footprint) and whether it is a line (1), a plane (2), or
- * holds rods that stand at no single place (0). */
+ * holds rods that stand at no single place (0); whether any rod is a point. */
 typedef struct {
     double x_lo, x_hi, y_lo, y_hi;
-    int dims;
+    int dims, points;
     size_t placeless;
 } extent;
 
 static void extent_of(const ct_bundle *b, extent *e)
 {
-    *e = (extent){INFINITY, -INFINITY, INFINITY, -INFINITY, 0, 0};
+    *e = (extent){INFINITY, -INFINITY, INFINITY, -INFINITY, 0, 0, 0};
     int line = 0, plane = 0;
     for (size_t k = 0; k < ct_bundle_size(b); k++) {
         ct_rod_info r;
@@ -135,6 +183,7 @@ static void extent_of(const ct_bundle *b, extent *e)
             e->placeless++;
             continue;
         }
+        e->points |= f->shape == CT_FOOTPRINT_POINT;
         const int areal = f->shape == CT_FOOTPRINT_RECTANGLE ||
                           (f->shape == CT_FOOTPRINT_POINT && !isnan(f->y_lo));
         plane |= areal;
@@ -147,21 +196,25 @@ static void extent_of(const ct_bundle *b, extent *e)
         }
     }
     e->dims = e->placeless || (line && plane) ? 0 : plane ? 2 : 1;
+    if (e->dims < 2)
+        e->y_lo = e->y_hi = 0.0;
 }
 
-/* The distance [the rods' horizontal unit] from the apex (px, py) to the nearest point of f:
- * along x alone (dims 1) or in the plane (dims 2). 0 when f holds the apex. */
-static double distance(const ct_footprint *f, int dims, double px, double py)
+/* The distance [the rods' horizontal unit] from the apex (px, py) to the nearest point of f
+ * moved by (sx, sy): along x alone (dims 1) or in the plane (dims 2); 0 when f holds it. */
+static double distance(const ct_footprint *f, int dims, double px, double py, double sx, double sy)
 {
-    const double dx = f->x_lo > px ? f->x_lo - px : f->x_hi < px ? px - f->x_hi : 0.0;
+    const double lo = f->x_lo + sx, hi = f->x_hi + sx;
+    const double dx = lo > px ? lo - px : hi < px ? px - hi : 0.0;
     if (dims == 1)
         return dx;
-    const double dy = f->y_lo > py ? f->y_lo - py : f->y_hi < py ? py - f->y_hi : 0.0;
+    const double ylo = f->y_lo + sy, yhi = f->y_hi + sy;
+    const double dy = ylo > py ? ylo - py : yhi < py ? py - yhi : 0.0;
     return hypot(dx, dy);
 }
 
 /* The apex in the rods' horizontal unit: the position given (the body's unit, hx of it per
- * rods' unit), else the middle of the surface. */
+ * rods' unit), else the middle of the surface; on the surface unless it repeats. */
 static int apex_of(const ct_body *body, const ct_body_kind *d, const extent *e, double hx,
                    double *px, double *py)
 {
@@ -175,6 +228,12 @@ static int apex_of(const ct_body *body, const ct_body_kind *d, const extent *e, 
         return ct_error_set(CT_EINVAL, "body.position = %g: a sphere's apex needs x and y", pos[0]);
     *px = isnan(pos[0]) ? 0.5 * (e->x_lo + e->x_hi) : pos[0] / hx;
     *py = d->dims < 2 ? 0.0 : isnan(pos[1]) ? 0.5 * (e->y_lo + e->y_hi) : pos[1] / hx;
+    if (!body->periodic && !e->points &&
+        (*px < e->x_lo || *px > e->x_hi || (d->dims == 2 && (*py < e->y_lo || *py > e->y_hi))))
+        return ct_error_set(CT_EINVAL,
+                            "body.position: the apex lands off the surface, which spans x %g .. "
+                            "%g%s (surface.periodic = true if it repeats)",
+                            e->x_lo * hx, e->x_hi * hx, d->dims == 2 ? " and y as given" : "");
     return CT_OK;
 }
 
@@ -192,98 +251,175 @@ static int check_body(const ct_body *body, const ct_body_kind **d)
     return CT_OK;
 }
 
-/* The kept rods of b (gap[k] < INFINITY and top + gap below the crushed limit H) into a new
- * bundle whose layer's H* is H. */
-static int shifted(ct_bundle *b, const double *gap, double H, ct_bundle **out, size_t *kept)
+/* How a curved body meets a bundle: the apex, the units, the copies of a periodic surface
+ * (offsets -K .. K periods each way). */
+typedef struct {
+    const ct_body *body;
+    const ct_body_kind *d;
+    const ct_bundle *b;
+    extent e;
+    double hx, hz, px, py;
+    double period_x, period_y;
+    int kx, ky;
+} meeting;
+
+/* The gap [the rods' vertical unit] at rod k's footprint in copy (cx, cy). */
+static double gap_of(const meeting *m, const ct_rod_info *r, int cx, int cy)
 {
-    const size_t n = ct_bundle_size(b);
-    size_t m = 0;
-    for (size_t k = 0; k < n; k++) {
-        ct_rod_info r;
-        ct_bundle_rod(b, k, &r);
-        m += r.top + gap[k] < H;
-    }
-    ct_layer layer = *ct_bundle_layer(b);
+    const double r_apex =
+        distance(&r->footprint, m->d->dims, m->px, m->py, cx * m->period_x, cy * m->period_y);
+    return ct_body_gap(m->body, r_apex * m->hx) * m->hz;
+}
+
+/* 1 when rod r touches the border of the surface (not periodic). */
+static int on_border(const meeting *m, const ct_rod_info *r)
+{
+    const ct_footprint *f = &r->footprint;
+    return f->x_lo <= m->e.x_lo || f->x_hi >= m->e.x_hi ||
+           (m->d->dims == 2 && (f->y_lo <= m->e.y_lo || f->y_hi >= m->e.y_hi));
+}
+
+/* Pass 1: the crushed limit H (the first rod bottom the face reaches) and the rods kept (their
+ * top below H). */
+static double crushed_limit(const meeting *m)
+{
+    double H = INFINITY;
+    for (int cy = -m->ky; cy <= m->ky; cy++)
+        for (int cx = -m->kx; cx <= m->kx; cx++)
+            for (size_t k = 0; k < ct_bundle_size(m->b); k++) {
+                ct_rod_info r;
+                ct_bundle_rod(m->b, k, &r);
+                H = fmin(H, r.top + gap_of(m, &r, cx, cy) + r.length);
+            }
+    return H;
+}
+
+/* Pass 2: the kept rods into *out (layer H* = H) with their metadata, and the reach: on a
+ * surface that does not repeat, the face may go on until it touches a border rod where it
+ * would reach past the surface's edge. */
+static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out)
+{
+    const size_t n = ct_bundle_size(m->b);
+    const int periodic = m->kx || m->ky;
+    size_t kept = 0;
+    for (int cy = -m->ky; cy <= m->ky; cy++)
+        for (int cx = -m->kx; cx <= m->kx; cx++)
+            for (size_t k = 0; k < n; k++) {
+                ct_rod_info r;
+                ct_bundle_rod(m->b, k, &r);
+                kept += r.top + gap_of(m, &r, cx, cy) < H;
+            }
+    ct_layer layer = *ct_bundle_layer(m->b);
     layer.Hstar = H;
-    body_meta *meta = calloc(1, sizeof *meta);
-    if (!meta || !(meta->index = malloc((m ? m : 1) * sizeof *meta->index))) {
-        body_meta_free(meta);
-        return ct_error_set(CT_ENOMEM, "body: out of memory for %zu rods", m);
-    }
-    int st = ct_bundle_create(out, &layer, m, "rods under the body");
+    body_meta *meta = body_meta_new(kept, periodic);
+    if (!meta)
+        return ct_error_set(CT_ENOMEM, "body: out of memory for %zu rods", kept);
+    int st = ct_bundle_create(out, &layer, kept, "rods under the body");
     if (st) {
         body_meta_free(meta);
         return st;
     }
-    double *top, *length, *area, *eps_p;
+    double *top, *length, *area, *eps_p, border = INFINITY;
     ct_bundle_arrays(*out, &top, &length, &area, &eps_p);
     size_t j = 0;
-    for (size_t k = 0; k < n; k++) {
-        ct_rod_info r;
-        ct_bundle_rod(b, k, &r);
-        if (!(r.top + gap[k] < H))
-            continue;
-        top[j] = r.top + gap[k];
-        length[j] = r.length;
-        area[j] = r.area;
-        eps_p[j] = r.plastic_strain;
-        meta->index[j++] = k;
-    }
-    meta->built = b;
-    ct_bundle_set_surface(*out, &body_rods, meta, ct_bundle_omitted(b) + (n - m));
-    *kept = m;
+    for (int cy = -m->ky; cy <= m->ky; cy++)
+        for (int cx = -m->kx; cx <= m->kx; cx++)
+            for (size_t k = 0; k < n; k++) {
+                ct_rod_info r;
+                ct_bundle_rod(m->b, k, &r);
+                const double t = r.top + gap_of(m, &r, cx, cy);
+                if (!(t < H))
+                    continue;
+                top[j] = t;
+                length[j] = r.length;
+                area[j] = r.area;
+                eps_p[j] = r.plastic_strain;
+                meta->index[j] = k;
+                if (periodic) {
+                    meta->copy_x[j] = cx;
+                    meta->copy_y[j] = cy;
+                } else if (on_border(m, &r))
+                    border = fmin(border, t);
+                j++;
+            }
+    /* the face reaches past the surface once u_max passes its gap at the nearest edge and a
+     * border rod is touched */
+    double edge = fmin(m->px - m->e.x_lo, m->e.x_hi - m->px);
+    if (m->d->dims == 2)
+        edge = fmin(edge, fmin(m->py - m->e.y_lo, m->e.y_hi - m->py));
+    edge = fmax(edge, 0.0); /* an apex off a set of points: the border is already reached */
+    meta->reach = periodic ? INFINITY : fmax(border, ct_body_gap(m->body, edge * m->hx) * m->hz);
+    snprintf(meta->why, sizeof meta->why,
+             "the %s's contact reaches the border of the surface (x %.6g .. %.6g%s): beyond it "
+             "the surface is not known (surface.periodic = true if it repeats)",
+             m->d->name, m->e.x_lo * m->hx, m->e.x_hi * m->hx,
+             m->d->dims == 2 ? ", y as well" : "");
+    meta->period_x = m->period_x;
+    meta->period_y = m->period_y;
+    meta->built = built;
+    ct_bundle_set_surface(*out, &body_rods, meta, ct_bundle_omitted(built) + (n - kept));
+    return CT_OK;
+}
+
+/* The copies of a periodic surface the face can reach: K periods each way with K P > R. */
+static int copies_of(meeting *m)
+{
+    if (!m->body->periodic)
+        return CT_OK;
+    if (m->e.points)
+        return ct_error_set(CT_EINVAL,
+                            "surface.periodic = true: rods given by points have no extent to "
+                            "repeat (a profile or a map does)");
+    m->period_x = m->e.x_hi - m->e.x_lo;
+    m->period_y = m->d->dims == 2 ? m->e.y_hi - m->e.y_lo : 0.0;
+    const double R = m->body->radius / m->hx;
+    const double kx = ceil(R / m->period_x), ky = m->d->dims == 2 ? ceil(R / m->period_y) : 0.0;
+    if (!(kx < 1e4 && ky < 1e4 && (2 * kx + 1) * (2 * ky + 1) * (double)ct_bundle_size(m->b) < 1e9))
+        return ct_error_set(CT_EINVAL,
+                            "surface.periodic = true: a face of R = %g over a period of %g needs "
+                            "%.3g copies of the surface: too many",
+                            m->body->radius, m->period_x * m->hx, (2 * kx + 1) * (2 * ky + 1));
+    m->kx = (int)kx;
+    m->ky = (int)ky;
     return CT_OK;
 }
 
 int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **bp, ct_plan_info *info)
 {
-    const ct_body_kind *d = &ct_body_flat;
+    meeting m = {.body = body, .d = &ct_body_flat, .b = *bp};
     int st;
     if (!body)
         return CT_OK;
-    if ((st = check_body(body, &d)) || d->dims == 0)
+    if ((st = check_body(body, &m.d)) || m.d->dims == 0)
         return st;
-    ct_bundle *b = *bp;
-    const size_t n = ct_bundle_size(b);
-    extent e;
-    extent_of(b, &e);
-    if (e.placeless)
+    const size_t n = ct_bundle_size(m.b);
+    extent_of(m.b, &m.e);
+    if (m.e.placeless)
         return ct_error_set(CT_EINVAL,
                             "body.shape = %s: %zu of the %zu rods stand at no single place (a "
                             "Cantor surface's stage rods merge the pieces of a stage: give "
                             "surface.representation = segments)",
-                            d->name, e.placeless, n);
-    if (e.dims != d->dims)
-        return ct_error_set(CT_EINVAL, "body.shape = %s: %s", d->name, d->needs);
+                            m.d->name, m.e.placeless, n);
+    if (m.e.dims != m.d->dims)
+        return ct_error_set(CT_EINVAL, "body.shape = %s: %s", m.d->name, m.d->needs);
     /* the rods' units against the body's: x in the rods' unit is hx of the body's, a gap in
      * the body's unit is hz of the rods' (a Cantor surface is built per l0 and h0) */
-    const double hx = sc->physical.l0 / sc->layer.l0, hz = sc->layer.h0 / sc->physical.h0;
-    double px = 0.0, py = 0.0;
-    if ((st = apex_of(body, d, &e, hx, &px, &py)))
+    m.hx = sc->physical.l0 / sc->layer.l0;
+    m.hz = sc->layer.h0 / sc->physical.h0;
+    if ((st = apex_of(body, m.d, &m.e, m.hx, &m.px, &m.py)) || (st = copies_of(&m)))
         return st;
-    double *gap = malloc((n ? n : 1) * sizeof *gap);
-    if (!gap)
-        return ct_error_set(CT_ENOMEM, "body: out of memory for %zu rods", n);
-    double H = INFINITY; /* the crushed limit: the first rod bottom the face reaches */
-    for (size_t k = 0; k < n; k++) {
-        ct_rod_info r;
-        ct_bundle_rod(b, k, &r);
-        gap[k] = ct_body_gap(body, distance(&r.footprint, d->dims, px, py) * hx) * hz;
-        H = fmin(H, r.top + gap[k] + r.length);
-    }
-    size_t kept = 0;
+    const double H = crushed_limit(&m);
+    if (!isfinite(H))
+        return ct_error_set(CT_EINVAL,
+                            "body.shape = %s: the face (R = %g) reaches no rod from its apex at "
+                            "x = %g",
+                            m.d->name, body->radius, m.px * m.hx);
     ct_bundle *out = NULL;
-    st = isfinite(H) ? shifted(b, gap, H, &out, &kept)
-                     : ct_error_set(CT_EINVAL,
-                                    "body.shape = %s: the face (R = %g) reaches no rod from its "
-                                    "apex at x = %g",
-                                    d->name, body->radius, px * hx);
-    free(gap);
-    if (st)
+    if ((st = shifted(&m, H, *bp, &out)))
         return st;
-    *bp = out; /* at least the rod whose bottom fixes H is kept; b belongs to out's metadata */
+    *bp = out; /* at least the rod whose bottom fixes H is kept; the built one is out's now */
     if (info) {
-        info->rods = kept;
+        info->rods = ct_bundle_size(out);
         info->omitted = ct_bundle_omitted(out);
     }
     return CT_OK;

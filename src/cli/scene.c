@@ -65,18 +65,16 @@ static const ct_key cli_keys[] = {
 
 const ct_key *ct_scene_key_row(size_t i)
 {
-    static const char *const sections[] = {"surface", "impact", "solver",
-                                           "output",  "table",  "ensemble"};
-    size_t nrun;
-    const ct_key *run = ct_run_keys_table(&nrun);
-    for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++) {
-        for (size_t r = 0; r < NCLI; r++)
-            if (!strcmp(cli_keys[r].section, sections[s]) && i-- == 0)
-                return &cli_keys[r];
-        for (size_t r = 0; r < nrun; r++)
-            if (!strcmp(run[r].section, sections[s]) && i-- == 0)
-                return &run[r];
-    }
+    static const char *const sections[] = {"surface", "body",  "impact",  "solver",
+                                           "output",  "table", "ensemble"};
+    size_t n[3];
+    const ct_key *table[3] = {cli_keys, ct_body_keys_table(&n[1]), ct_run_keys_table(&n[2])};
+    n[0] = NCLI;
+    for (size_t s = 0; s < sizeof sections / sizeof sections[0]; s++)
+        for (size_t t = 0; t < 3; t++)
+            for (size_t r = 0; r < n[t]; r++)
+                if (!strcmp(table[t][r].section, sections[s]) && i-- == 0)
+                    return &table[t][r];
     return NULL;
 }
 
@@ -137,8 +135,8 @@ static int key_known(const char *section, const char *key)
 /* The sections: the usual ones in their usual order, then any other a table has. */
 static void section_list(char *buf, size_t len)
 {
-    static const char *const usual[] = {"surface", "material", "impact", "solver",
-                                        "output",  "ensemble", "table",  "fit"};
+    static const char *const usual[] = {"surface", "body",     "material", "impact", "solver",
+                                        "output",  "ensemble", "table",    "fit"};
     size_t n = 0;
     buf[0] = '\0';
     for (size_t k = 0; k < sizeof usual / sizeof usual[0]; k++)
@@ -389,14 +387,16 @@ static int bad(const entry *e, const char *why)
 }
 
 /* Parses every entry of the CLI's own keys into k, in file order. */
-static int cli_values(parse_state *s, ct_scene_keys *k)
+static int cli_values(parse_state *s, ct_scene_keys *k, ct_body *body)
 {
+    ct_body_defaults(body);
     for (size_t i = 0; i < s->n; i++) {
         entry *e = &s->entries[i];
         const ct_key *row = cli_key(e->section, e->key);
         if (!row || !strcmp(e->section, "surface"))
             continue;
-        int st = ct_key_parse(row, e->value, k);
+        /* the body's rows point into the body, the others into the keys */
+        int st = ct_key_parse(row, e->value, !strcmp(e->section, "body") ? (void *)body : k);
         if (st == CT_ENOMEM)
             return scene_error(st, "scene: out of memory");
         if (st)
@@ -593,7 +593,7 @@ static int interpret(parse_state *s, ct_scene *sc)
     keys_defaults(&k);
     snprintf(sc->name, sizeof sc->name, "%s", s->name);
     int st;
-    if (!(st = surface_values(s, sc)) && !(st = cli_values(s, &k)) &&
+    if (!(st = surface_values(s, sc)) && !(st = cli_values(s, &k, &sc->body)) &&
         !(st = impact_values(s, sc, &k)) && !(st = solver_values(s, sc, &k)) &&
         !(st = ensemble_values(s, sc, &k)) && !(st = output_values(s, sc, &k)))
         table_values(s, sc, &k);
@@ -811,7 +811,8 @@ void ct_scene_request(const ct_scene *sc, int keep_all, ct_build_request *req)
                               .opts = sc->opts,
                               .keep_all_rods = keep_all,
                               .threads = sc->threads,
-                              .depth_tolerance = sc->depth_tolerance};
+                              .depth_tolerance = sc->depth_tolerance,
+                              .body = &sc->body};
 }
 
 void ct_scene_free(ct_scene *scene)

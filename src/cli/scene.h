@@ -51,6 +51,7 @@ typedef struct {
     double table_V_min, table_V_max; /* 0: the range of the speeds */
     ct_interp table_interpolation;
     long table_max_nodes, table_check_points;
+    ct_body body;    /* [body]: what strikes the rods (flat by default) */
     char *inputs[8]; /* the files this run reads: the scene, the surface's files */
     const char *input_what[8];
     size_t ninputs;
@@ -74,8 +75,8 @@ void ct_scene_free(ct_scene *scene);
 /* Returns the message of the last scene error in this thread. */
 const char *ct_scene_message(void);
 /* Row i of the scene's keys that are not the surface's, in section order (surface.type, then
- * impact, solver, output, table, ensemble): the library's run keys and the CLI's output keys.
- * NULL past the last. */
+ * body, impact, solver, output, table, ensemble): the library's body and run keys and the
+ * CLI's output keys. NULL past the last. */
 const ct_key *ct_scene_key_row(size_t i);
 /* The build request of a scene for its speeds (keep_all: the whole surface is written). */
 void ct_scene_request(const ct_scene *sc, int keep_all, ct_build_request *req);

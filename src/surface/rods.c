@@ -645,7 +645,7 @@ static void rods_rod_info(const void *meta, size_t k, ct_rod_info *info)
 }
 
 static const ct_rod_meta_kind rods_meta_kind = {"rods", rods_rod_info, rods_meta_clone,
-                                                rods_meta_free};
+                                                rods_meta_free, NULL};
 
 static int rods_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
                       ct_plan_info *info)

@@ -85,7 +85,7 @@ static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
 }
 
 static const ct_rod_meta_kind profile_kind = {"profile", profile_rod_info, profile_meta_clone,
-                                              profile_meta_free};
+                                              profile_meta_free, NULL};
 
 int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sigma_y, double Hstar)
 {
