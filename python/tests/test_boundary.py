@@ -269,8 +269,8 @@ def _fitted_inf(real, *args):
     return status
 
 
-def _plan_nan(real, plan, out, info):
-    status = real(plan, out, info)
+def _build_nan(real, surface, request, out, info):
+    status = real(surface, request, out, info)
     info.bound = math.nan
     return status
 
@@ -296,7 +296,7 @@ def _plan_nan(real, plan, out, info):
      r"^force\(u = 0.5\) = nan"),
     ("_api", {"ct_curve_first_yield": lambda real, c: math.inf},
      lambda s, rc, p: cantact.load_curve(s, V_star=[1e-3]), r"^first_yield = inf"),
-    ("_surfaces", {"ct_cantor_plan_build": _plan_nan},
+    ("_surfaces", {"ct_surface_build": _build_nan},
      lambda s, rc, p: cantact.restitution(s, V_star=[1e-3]), r"^info bound = nan"),
     ("_surfaces", {"ct_profile_fit_of": _fit_nan}, lambda s, rc, p: p.fit(),
      r"^D_spectrum = nan"),
