@@ -131,10 +131,12 @@ class Surface:
         return out[0]
 
     def _row(self, key):
-        for r in self._rows:
-            if key in (r.name, f"{r.section}.{r.name}"):
-                return r
-        raise invalid(f"{key}: not a key of type = {self.kind}")
+        if isinstance(key, str):
+            for r in self._rows:
+                if key in (r.name, f"{r.section}.{r.name}"):
+                    return r
+        raise invalid(f"{chk._text(key)}: not a key of type = {self.kind} (its keys: "
+                      f"{', '.join(r.name for r in self._rows)})")
 
     def is_set(self, key):
         """True when the key was given."""
@@ -145,8 +147,9 @@ class Surface:
         """(True, None), or (False, why) when the kind does not give the output ("ensemble",
         "compare", ...: ct_surface_kind_supports)."""
         why = ffi.new("const char **")
+        given = output.encode(errors="replace") if isinstance(output, str) else b""
         ok = lib.ct_surface_kind_supports(lib.ct_surface_kind_index(self._surface),
-                                          output.encode(), why)
+                                          given.replace(b"\0", b" "), why)
         return (True, None) if ok else (False, _keys._text_of(why[0]))
 
     @property

@@ -380,6 +380,11 @@ def test_hostile_arguments_raise_only_the_module_errors(tmp_path, monkeypatch):
     # (callable, positional arguments, keyword arguments) that work
     calls = [
         (cantact.Cantor, (1.5, 1.3, 10, 500), {"depth": 6}),
+        (cantact.Surface, ("random_cantor",), {"fx": 1.5, "fz": 1.3, "H": 10, "E": 500,
+                                              "depth": 3, "seed": 2, "threads": 1}),
+        (cantact.Surface, ("rods",), {"rods": "0:1, 0.5:1", "Hstar": 2, "unit": "mm",
+                                      "E": 10}),
+        (s.value, ("surface.depth",), {}), (s.supports, ("ensemble",), {}),
         (cantact.RandomCantor, (1.5, 1.3, 10, 500, 3), {"fx_spread": 0.1}),
         (cantact.Rods, ([0.0, 0.5], [1.0, 1.0]), {"E": 10, "Hstar": 2}),
         (cantact.Profile, (), {"z": np.sin(np.arange(32.0)) * 1e-7, "dx": 1e-6, "E": 2e11,
