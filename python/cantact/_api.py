@@ -38,12 +38,11 @@ TABLE_KEYS = {"mass": "impact.mass", "quadrature": "solver.quadrature", "nodes":
 
 
 def _run_keys(where, names, **given):
-    """The run's keys with the keyword arguments given (None: the row's default) parsed
-    through their rows (names: argument -> "section.name")."""
+    """The run's keys with the keyword arguments given parsed through their rows (names:
+    argument -> "section.name"); where names the call in the library's messages."""
     keys = _keys.RunKeys(where)
     for name, value in given.items():
-        if value is not None:
-            keys.set(names[name], value, name)
+        keys.set(names[name], value, name)
     return keys
 
 

@@ -36,6 +36,16 @@ def _info(b, depth=-1, bound=0.0):
             "omitted": int(lib.ct_bundle_omitted(b))}
 
 
+class _Default:
+    """An argument not given: the library's default."""
+
+    def __repr__(self):
+        return "the library's default"
+
+
+_DEFAULT = _Default()
+
+
 class Surface:
     """A surface of one kind of the library: Surface(kind, **keys), kind one of
     cantact.KINDS (cantor, random_cantor, profile, rods), every keyword one of that kind's
@@ -48,12 +58,13 @@ class Surface:
     physical: the layer as built and as given; value(key): a key's value as parsed; note: what
     the library says of the surface prepared ("" when nothing)."""
 
-    def __init__(self, kind, *, threads=None, depth_tolerance=None, **keys):
+    def __init__(self, kind, *, threads=_DEFAULT, depth_tolerance=_DEFAULT, **keys):
         self._setup(kind, keys, threads, depth_tolerance)
 
     # ---- the handle ----
 
-    def _setup(self, kind, keys, threads=None, depth_tolerance=None, prepare=True, names=None):
+    def _setup(self, kind, keys, threads=_DEFAULT, depth_tolerance=_DEFAULT, prepare=True,
+               names=None):
         """The handle of kind with keys set, checked and (prepare) prepared; the run's keys a
         build takes. names: the keyword argument that gave a key, where it is not the key's
         own name (for the messages of a value's type)."""
@@ -69,9 +80,9 @@ class Surface:
         self._surface = s
         self._rows = _keys.KINDS[name]
         run = _keys.RunKeys(where.decode())
-        if threads is not None:
+        if threads is not _DEFAULT:
             run.set("solver.threads", threads, "threads")
-        if depth_tolerance is not None:
+        if depth_tolerance is not _DEFAULT:
             run.set("solver.depth_tolerance", depth_tolerance, "depth_tolerance")
         solver = run.solver()
         self.threads = int(solver.threads)
