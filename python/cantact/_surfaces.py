@@ -558,6 +558,7 @@ class Profile(Surface):
 
     @property
     def physical(self):
+        """The layer as given: a profile's is the layer as built."""
         return self.layer
 
     @property

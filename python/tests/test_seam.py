@@ -304,6 +304,23 @@ def test_profile_trim_is_the_kinds_trim_k(profile_file):
                     library_surface("profile", "Profile()", lib_keys), value)
 
 
+def test_profile_arrays_keys_are_the_kinds(profile_file):
+    """Heights as arrays (which the kind does not read) have their keys judged by the kind as
+    a file's are."""
+    z = np.sin(0.37 * np.arange(200)) * 1e-7
+    for bad in ({"H": 1.0}, {"Hstar": 0.0}, {"H": 10.0, "Hstar": 1e-6}, {"H": None},
+                {"E": 3e8}, {"sigma_y": -1.0}, {"detrend": "cubic"}, {"trim": 0.0},
+                {"trim": math.inf}, {"threads": 1025}):
+        keys = dict(bases(profile_file)["profile"], **bad)
+        del keys["file"]
+        keys = {k: v for k, v in keys.items() if v is not None}
+        with pytest.raises(IN) as a:
+            cantact.Profile(z=z, dx=1e-6, **keys)
+        with pytest.raises(IN) as f:
+            cantact.Profile(profile_file, **keys)
+        assert a.value.message == f.value.message, bad
+
+
 # ---- the run's keys ---------------------------------------------------------------------------
 
 
