@@ -16,13 +16,16 @@ from ._errors import guard as _guard
 from ._errors import (Error, InvalidInput, IOFailure, NoConvergence, NotRun, OutOfMemory,
                       OutsideModel, strerror)
 from ._ffi import LIBRARY_PATH, ffi, lib
-from ._surfaces import Cantor, Profile, RandomCantor, Rods
-from ._api import (COLUMNS, DAMPING_LAWS, ROW_FIELDS, Ensemble, LoadCurve, Restitution, Table,
-                   asym_load, asym_unload, e_of_zeta, ensemble, law_restitution, load_curve,
-                   read_table, restitution, series_load, series_unload, table, zeta_of_e)
+from ._keys import KINDS, RUN_ROWS
+from ._results import COLUMNS, ROW_FIELDS, Restitution
+from ._surfaces import Cantor, Profile, RandomCantor, Rods, Surface
+from ._api import (DAMPING_LAWS, Ensemble, LoadCurve, Table, asym_load, asym_unload, e_of_zeta,
+                   ensemble, law_restitution, load_curve, read_table, restitution, series_load,
+                   series_unload, table, zeta_of_e)
 
 __all__ = [
-    "Cantor", "RandomCantor", "Rods", "Profile", "restitution", "Restitution", "ensemble", "Ensemble",
+    "Surface", "Cantor", "RandomCantor", "Rods", "Profile", "KINDS", "RUN_ROWS",
+    "restitution", "Restitution", "ensemble", "Ensemble",
     "load_curve", "LoadCurve", "series_load", "series_unload", "asym_load", "asym_unload",
     "law_restitution", "table", "Table", "read_table", "Error", "InvalidInput", "OutOfMemory",
     "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS", "COLUMNS",

@@ -9,113 +9,55 @@ import stat
 import numpy as np
 
 from . import _check as chk
+from . import _keys
 from ._errors import check as _ok, error, invalid, memory, size_text
 from ._ffi import ffi, lib
-from ._surfaces import Cantor, RandomCantor, surface_of
+from ._results import Restitution, finite_info
+from ._surfaces import Surface, cantor_params, random_cantor, surface_of
 
-QUADRATURES = {"breakpoints": lib.CT_QUAD_BREAKPOINTS, "trapezoid": lib.CT_QUAD_TRAPEZOID,
-               "simpson": lib.CT_QUAD_SIMPSON, "gauss": lib.CT_QUAD_GAUSS,
-               "closed": lib.CT_QUAD_CLOSED}
-PATHS = {
-    "auto": lib.CT_PATH_AUTO,
-    "curve": lib.CT_PATH_CURVE,
-    "rods": lib.CT_PATH_RODS,
-    "lean": lib.CT_PATH_LEAN,
-}
-SPLITS = {"auto": lib.CT_SPLIT_AUTO, "realisations": lib.CT_SPLIT_REALISATIONS,
-          "rods": lib.CT_SPLIT_RODS}
-LAWS = {"series": lib.CT_LAW_SERIES, "asymptotic": lib.CT_LAW_ASYMPTOTIC,
-        "asymptotic_consistent": lib.CT_LAW_ASYMPTOTIC_CONSISTENT}
-INTERPOLATIONS = {"monotone_cubic": lib.CT_INTERP_MONOTONE_CUBIC,
-                  "linear": lib.CT_INTERP_LINEAR}
-ERRORS = {"raise": "raise", "rows": "rows"}
+# The paper's laws by the library's names (ct_law_name).
+LAWS = {ffi.string(lib.ct_law_name(k)).decode(): k
+        for k in (lib.CT_LAW_SERIES, lib.CT_LAW_ASYMPTOTIC, lib.CT_LAW_ASYMPTOTIC_CONSISTENT)}
 
-# The per-row results are the library's output columns (ct_sweep_columns, src/columns.c):
-# every column of type 'd' but V_star is an attribute of Restitution with the column's name,
-# made dimensionless as ct_column_value makes it (the value / the unit's factor in the
-# bundle's layer when that is not 1, then / the column's divisor when that is not 1), so the
-# module's numbers are the bits of `cantact run`'s e table and time columns. The sweep's
-# times are t / tau already (its mass is E l0 / h0); the "time" group is NaN unless
-# restitution(..., time=True).
-_UNIT_NAMES = {lib.CT_UNIT_ONE: "one", lib.CT_UNIT_LENGTH: "length",
-               lib.CT_UNIT_FORCE: "force", lib.CT_UNIT_ENERGY: "energy",
-               lib.CT_UNIT_TIME: "time", lib.CT_UNIT_COUNT: "count"}
-# ROW_FIELDS' unit codes, as before the table: "1" dimensionless as computed (times too),
-# "u" a length (/ h0), "P" a force (/ P_Y = sigma_y l0), "W" an energy (/ P_Y h0)
-_UNIT_CODES = {"one": "1", "time": "1", "length": "u", "force": "P", "energy": "W",
-               "count": "1"}
+# Python's keyword arguments of a run are the library's run keys (ct_run_keys_table), parsed
+# through their rows (_keys.RunKeys): impacts and mass are [impact]'s; quadrature, nodes,
+# tolerance, check, path, threads, errors (on_error, in Python's words raise and rows) the
+# [solver]'s; a table's tolerance, interpolation, max_nodes, check_points and V_star range the
+# [table]'s; realisations and split the [ensemble]'s. Speeds (V_star, speed) are arrays, each
+# number finite and > 0 (the speeds rows' rule), V* from mass and speed by ct_V_star_of.
+RESTITUTION_KEYS = {"impacts": "impact.impacts", "mass": "impact.mass",
+                    "quadrature": "solver.quadrature", "nodes": "solver.nodes",
+                    "tolerance": "solver.tolerance", "check": "solver.check",
+                    "path": "solver.path", "errors": "solver.on_error"}
+ENSEMBLE_KEYS = dict(RESTITUTION_KEYS, threads="solver.threads", split="ensemble.split",
+                     realisations="ensemble.realisations")
+TABLE_KEYS = {"mass": "impact.mass", "quadrature": "solver.quadrature", "nodes": "solver.nodes",
+              "check": "solver.check", "path": "solver.path", "tolerance": "table.tolerance",
+              "interpolation": "table.interpolation", "max_nodes": "table.max_nodes",
+              "check_points": "table.check_points", "V_star": "table.V_star"}
 
 
-def _field_of(offset):
-    """The ct_sweep_row field ("r.e", "dyn.t_contact", "V_star") at a byte offset."""
-    for name, f in ffi.typeof("ct_sweep_row").fields:
-        if f.type.kind == "struct":
-            for sub, g in f.type.fields:
-                if f.offset + g.offset == offset:
-                    return f"{name}.{sub}"
-        elif f.offset == offset:
-            return name
-    return None
+def _run_keys(where, names, **given):
+    """The run's keys with the keyword arguments given parsed through their rows (names:
+    argument -> "section.name"); where names the call in the library's messages."""
+    keys = _keys.RunKeys(where)
+    for name, value in given.items():
+        keys.set(names[name], value, name)
+    return keys
 
 
-def _read_columns():
-    """The library's column table as a tuple of dicts (name, group, unit, type, digits,
-    physical, divisor, offset, field, doc)."""
-    p = ffi.new("const ct_column **")
-    n = lib.ct_sweep_columns(p)
-    out = []
-    for k in range(n):
-        c = p[0][k]
-
-        def text(ptr):
-            return ffi.string(ptr).decode() if ptr != ffi.NULL else None
-
-        out.append({"name": text(c.name), "group": text(c.group),
-                    "unit": _UNIT_NAMES.get(int(c.unit), str(int(c.unit))),
-                    "type": c.type.decode(), "digits": int(c.digits),
-                    "physical": text(c.physical), "divisor": float(c.divisor),
-                    "offset": int(c.offset), "field": _field_of(int(c.offset)),
-                    "doc": text(c.doc)})
-    return tuple(out)
-
-
-# Every column of the library's table (the e table, the time columns and the row-only ones).
-COLUMNS = _read_columns()
-# The columns that are Restitution's per-row float attributes.
-_ROW_COLUMNS = tuple(c for c in COLUMNS if c["type"] == "d" and c["name"] != "V_star")
-# (attribute, field of ct_sweep_row, unit code) of each, derived from the table: kept for
-# compatibility; COLUMNS has the rest (e.g. dem_time_step_over_tau's divisor, 50).
-ROW_FIELDS = tuple((c["name"], c["field"], _UNIT_CODES[c["unit"]]) for c in _ROW_COLUMNS)
-# The columns whose NaN is the library's "not computed" in a row that succeeded (the
-# closed-form check did not cover the row: the program writes them empty). Any other number
-# of a row that succeeded must be finite: Restitution refuses it otherwise (OutsideModel).
-_MAY_BE_NAN = frozenset({"e_closed_form", "quadrature_error"})
-
-
-def _unit_factors(L):
-    """The factors that make each unit dimensionless in layer L, as ct_column_value's."""
-    return {"one": 1.0, "time": 1.0, "count": 1.0, "length": L.h0,
-            "force": L.sigma_y * L.l0, "energy": L.sigma_y * L.l0 * L.h0}
-
-
-def _units(b):
-    """Library units of b's outputs: the factors that make them dimensionless."""
-    L = lib.ct_bundle_layer(b)
-    PY = L.sigma_y * L.l0
-    return {"1": 1.0, "u": L.h0, "P": PY, "W": PY * L.h0}
-
-
-def _speeds(surface, V_star, mass, speed, name="V_star"):
-    """V* from V_star, or from mass and speed as the CLI computes it: the library's
-    ct_V_star_of(m, v, l0, E, h0) = sqrt(m / (2 l0 E h0)) v with the surface's physical l0, E
-    and h0 (its parameters as given)."""
+def _speeds(surface, V_star, mass, speed, keys, name="V_star"):
+    """V* from V_star, or from mass (impact.mass, parsed into keys) and speed as the CLI
+    computes it: the library's ct_V_star_of(m, v, l0, E, h0) = sqrt(m / (2 l0 E h0)) v with
+    the surface's physical l0, E and h0 (its parameters as given)."""
     if V_star is not None:
         if mass is not None or speed is not None:
             raise invalid("give either V_star or mass and speed, not both")
         return chk.array(name, V_star, positive=True)
     if mass is None or speed is None:
         raise invalid("needs V_star, or both mass and speed")
-    m = chk.real("mass", mass, 0.0)
+    keys.set("impact.mass", mass, "mass")
+    m = keys.values.mass
     v = chk.array("speed", speed, positive=True)
     l0, E, h0 = surface._physical_scales()
     with memory(f"speed: V* of {v.size} speeds ({size_text(v.size, 8)})"):
@@ -127,97 +69,6 @@ def _speeds(surface, V_star, mass, speed, name="V_star"):
         raise invalid(f"speed[{k}] = {v[k]!r} with mass {m!r} gives V* = {V[k]!r}: not a "
                       "finite number > 0")
     return V
-
-
-def _finite_info(info):
-    """info (what a surface's build found: its depth's truncation bound, ...), its numbers
-    checked finite."""
-    for k, v in info.items():
-        if isinstance(v, float):
-            chk.finite_result(f"info {k}", v)
-    return info
-
-
-def _opts(quadrature, nodes, tolerance, check_):
-    o = ffi.new("ct_impact_opts *")
-    lib.ct_impact_opts_default(o)
-    o.rule = chk.choice("quadrature", quadrature, QUADRATURES)
-    o.nodes = chk.integer("nodes", nodes, 3, 100000000)
-    o.tolerance = chk.real("tolerance", tolerance, 1e-15, 1e-3, lo_closed=True)
-    o.check = 1 if chk.flag("check", check_) else 0
-    return o
-
-
-def _row_view(rows, n, offset, dtype):
-    """The field at byte offset of n ct_sweep_rows, as a strided NumPy view."""
-    buf = ffi.buffer(rows)
-    return np.ndarray(shape=(n,), dtype=dtype, buffer=buf, offset=offset,
-                      strides=(ffi.sizeof("ct_sweep_row"),))
-
-
-class Restitution:
-    """The rows of a restitution sweep. Every per-row array has shape (len(V_star), impacts):
-    [speed, impact - 1]. Attributes: V_star; the library's output columns (cantact.COLUMNS)
-    of type double, with their names: e, u_max_over_h0, e_closed_form, quadrature_error (NaN
-    with check=False), V_star_crit, u_release_over_h0, u_contact_over_h0, W_load_over_PY_h0,
-    W_unload_over_PY_h0, e_rounding, and the time columns t_contact_over_tau,
-    t_load_over_tau, t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
-    dem_time_step_over_tau (NaN without time=True) (floats; NaN where a row failed);
-    kinetic_energy (the impact's energy in the library's units of the surface's rods: for a
-    Cantor surface the dimensionless l0 E h0 V*^2); elastic (bool); status (int: 0, or the
-    library's status of a failed or not-run row); message (str); info (depth, bound, rods,
-    omitted of the surface built)."""
-
-    def __init__(self, V_star, impacts, rows, layer, info, surface=None, time=True):
-        self.V_star = V_star
-        self.impacts = impacts
-        self.info = _finite_info(info)
-        self._surface = surface
-        shape = (V_star.size, impacts)
-        n = V_star.size * impacts
-
-        def field(name, dtype):
-            return np.array(_row_view(rows, n, ffi.offsetof("ct_sweep_row", *name.split(".")),
-                                      dtype)).reshape(shape)
-
-        self.status = field("status", np.intc).astype(int)
-        failed = self.status != 0
-
-        def finite(name, x, may_be_nan=False):
-            """x, or OutsideModel naming a non-finite number of a row that succeeded."""
-            return chk.finite_result(
-                name, x, ~failed, may_be_nan,
-                lambda k: f"V* = {V_star[k[0]]!r}, impact {k[1] + 1}: {name}")
-
-        factors = _unit_factors(layer)
-        for c in _ROW_COLUMNS:
-            if c["group"] == "time" and not time:
-                setattr(self, c["name"], np.full(shape, np.nan))
-                continue
-            x = np.array(_row_view(rows, n, c["offset"], np.float64)).reshape(shape)
-            u = factors[c["unit"]]
-            if u != 1.0:
-                x = x / u
-            if c["divisor"] != 1.0:
-                x = x / c["divisor"]
-            finite(c["name"], x, c["name"] in _MAY_BE_NAN)
-            x[failed] = np.nan
-            setattr(self, c["name"], x)
-        self.kinetic_energy = finite("kinetic_energy", field("r.kinetic_energy", np.float64))
-        self.kinetic_energy[failed] = np.nan
-        self._u_max = field("r.u_max", np.float64)  # library units: a profile's refit
-        self._u_max[failed] = np.nan
-        self.elastic = (field("r.elastic", np.intc) != 0) & ~failed
-        # a message is a C string sharing its bytes with the row's results (cantact.h): it ends
-        # at its first NUL ("" where the row succeeded: the results follow message[0])
-        size = dict(ffi.typeof("ct_sweep_row").fields)["message"].type.length
-        msg = _row_view(rows, n, ffi.offsetof("ct_sweep_row", "message"), f"S{size}")
-        self.message = np.array([m.partition(b"\0")[0].decode(errors="replace") for m in msg],
-                                dtype=object).reshape(shape)
-
-    def __repr__(self):
-        return (f"<Restitution: {self.V_star.size} speeds x {self.impacts} impacts, "
-                f"{int((self.status != 0).sum())} failed>")
 
 
 def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
@@ -232,26 +83,26 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
     t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
     dem_time_step_over_tau; MODEL.md §11)."""
     surface = surface_of("surface", surface)
-    V = _speeds(surface, V_star, mass, speed)
-    impacts = chk.integer("impacts", impacts, 1, 1000000)
-    opts = _opts(quadrature, nodes, tolerance, check)
-    how = chk.choice("path", path, PATHS)
-    mode = chk.choice("errors", errors, ERRORS)
+    keys = _run_keys("restitution()", RESTITUTION_KEYS, impacts=impacts, quadrature=quadrature,
+                     nodes=nodes, tolerance=tolerance, check=check, path=path, errors=errors)
+    V = _speeds(surface, V_star, mass, speed, keys)
+    solver = keys.solver()
+    impacts = int(keys.values.impacts)
     time = chk.flag("time", time)
     # the rows and the arrays made of them: a request too large is OutOfMemory naming its size
     n = V.size * impacts
     with memory(f"restitution: {n} result rows ({V.size} speeds x {impacts} impacts; "
                 f"{size_text(n, ffi.sizeof('ct_sweep_row'))} for the library's rows)"):
         rows = ffi.new("ct_sweep_row[]", n)
-        b, info = surface._build(V, impacts, opts)
+        b, info = surface._build(V, impacts, solver.opts)
         spec = ffi.new("ct_sweep_spec *")
         speeds = ffi.from_buffer("double[]", V)
         spec.V_star = speeds
         spec.nvel = V.size
         spec.impacts = impacts
-        spec.opts = opts[0]
-        spec.stop_on_error = 1 if mode == "raise" else 0
-        spec.path = how
+        spec.opts = solver.opts
+        spec.stop_on_error = 0 if solver.skip_failed else 1
+        spec.path = solver.path
         spec.dynamics = 1 if time else 0
         _ok(lib.ct_sweep(b, spec, rows))
         return Restitution(V, impacts, rows, lib.ct_bundle_layer(b), info, surface, bool(time))
@@ -330,28 +181,32 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, realisations, first
     swept and dropped by the library (ct_ensemble: the samples do not depend on the thread
     count or the split). errors="raise" raises the lowest failing realisation's error;
     errors="rows" keeps failed samples as NaN with their status."""
-    if not isinstance(surface, RandomCantor):
-        raise invalid(f"surface: an ensemble needs a RandomCantor surface, got "
-                      f"{type(surface).__name__}")
-    V = _speeds(surface, V_star, mass, speed)
-    impacts = chk.integer("impacts", impacts, 1, 1000000)
-    count = chk.integer("realisations", realisations, 1, 2**63 - 1)
+    surface = surface_of("surface", surface)
+    ok, why = surface.supports("ensemble")
+    if not ok:  # the kind's reason
+        raise invalid(f"surface: a {type(surface).__name__} of type = {surface.kind}: {why}")
+    keys = _run_keys("ensemble()", ENSEMBLE_KEYS, impacts=impacts, quadrature=quadrature,
+                     nodes=nodes, tolerance=tolerance, check=check, path=path, threads=threads,
+                     split=split, errors=errors, realisations=realisations)
+    V = _speeds(surface, V_star, mass, speed, keys)
+    solver = keys.solver()
+    impacts = int(keys.values.impacts)
+    count = int(keys.values.realisations)
     first = chk.integer("first", first, 0, 2**64 - 1 - count)
-    opts = _opts(quadrature, nodes, tolerance, check)
-    mode = chk.choice("errors", errors, ERRORS)
+    rc, _ = random_cantor(surface)
     spec = ffi.new("ct_ensemble_spec *")
-    spec.surface = surface._rc[0]
+    spec.surface = rc[0]
     spec.first = first
     spec.count = count
     speeds = ffi.from_buffer("double[]", V)
     spec.V_star = speeds
     spec.nvel = V.size
     spec.impacts = impacts
-    spec.opts = opts[0]
-    spec.path = chk.choice("path", path, PATHS)
-    spec.stop_on_error = 1 if mode == "raise" else 0
-    spec.threads = chk.integer("threads", threads, 0, 1024)
-    spec.split = chk.choice("split", split, SPLITS)
+    spec.opts = solver.opts
+    spec.path = solver.path
+    spec.stop_on_error = 0 if solver.skip_failed else 1
+    spec.threads = solver.threads
+    spec.split = keys.values.split
     nrows = V.size * impacts
     # 3 doubles and a status per sample, in the library and again in the arrays returned
     with memory(f"ensemble: {count * nrows} samples ({count} realisations x {nrows} rows; "
@@ -361,7 +216,7 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, realisations, first
         _ok(lib.ct_ensemble_samples_alloc(out, first, count, nrows))
         s = ffi.gc(out[0], lib.ct_ensemble_samples_free)
         _ok(lib.ct_ensemble(spec, s))
-        return Ensemble(V, impacts, s, surface._rc.params.h0)
+        return Ensemble(V, impacts, s, surface._units()["u"])
 
 
 # ---- the load curve ----------------------------------------------------------------------
@@ -376,15 +231,17 @@ class LoadCurve:
     def __init__(self, surface, V_star=None, after=None):
         surface = surface_of("surface", surface)
         if V_star is None:
-            if isinstance(surface, Cantor) and surface.depth in ("auto", "fractal"):
-                raise invalid(f"depth = {surface.depth!r} is chosen for the smallest impact: "
+            word = surface._depth_word()
+            if word is not None:
+                raise invalid(f"depth = {word!r} is chosen for the smallest impact: "
                               "give V_star (the speeds the curve is for)")
             V_star = [1.0]
         V = chk.array("V_star", V_star, positive=True)
-        opts = _opts("breakpoints", 64, 1e-14, False)
-        b, info = surface._build(V, 1, opts, keep_all=True)
-        self.info = _finite_info(info)
-        self._units = _units(b)
+        keys = _keys.RunKeys("load_curve()")
+        keys.set("solver.check", False, "check")
+        b, info = surface._build(V, 1, keys.solver().opts, keep_all=True)
+        self.info = finite_info(info)
+        self._units = surface._units()
         if after is not None:
             u_adv = chk.real("after", after, 0.0, lo_closed=True) * self._units["u"]
             out = ffi.new("ct_bundle **")
@@ -447,10 +304,12 @@ def load_curve(surface, V_star=None, after=None):
 
 
 def _law_surface(surface):
-    if not isinstance(surface, Cantor):
-        raise invalid(f"surface: the paper's laws model the deterministic Cantor surface, got "
-                      f"{type(surface).__name__}")
-    return surface._params
+    """The dimensionless ct_params of a surface of type = cantor (the laws' parameters)."""
+    if not isinstance(surface, Surface) or surface.kind != "cantor":
+        raise invalid(f"surface: the paper's laws model the deterministic Cantor surface "
+                      f"(type = cantor), got {type(surface).__name__}"
+                      + (f" of type = {surface.kind}" if isinstance(surface, Surface) else ""))
+    return cantor_params(surface)[1]
 
 
 def _pointwise(what, fn, x, errors):
@@ -511,7 +370,7 @@ def law_restitution(surface, V_star=None, *, mass=None, speed=None, law="asympto
     (ct_law_impact): "series", "asymptotic" (Eq. 38 as printed) or "asymptotic_consistent".
     Returns (e, u_max_over_h0); errors="nan" gives NaN where the law does not apply."""
     p = _law_surface(surface)
-    V = _speeds(surface, V_star, mass, speed)
+    V = _speeds(surface, V_star, mass, speed, _keys.RunKeys("law_restitution()"))
     which = chk.choice("law", law, LAWS)
     scale = lib.ct_energy_scale(p)
     mode = chk.choice("errors", errors, {"raise": "raise", "nan": "nan"})
@@ -797,23 +656,27 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
     `cantact table` writes it from [impact] mass (1 / ct_V_star_of(m, 1, l0, E, h0)). Raises
     NoConvergence when max_nodes would not do."""
     surface = surface_of("surface", surface)
+    keys = _run_keys("table()", TABLE_KEYS, tolerance=tolerance, interpolation=interpolation,
+                     max_nodes=max_nodes, check_points=check_points, quadrature=quadrature,
+                     nodes=nodes, check=check, path=path)
     if V_star is not None and mass is not None and speed is None:
-        V = _speeds(surface, V_star, None, None)  # the range in V*; the mass for v_per_V_star
+        V = _speeds(surface, V_star, None, None, keys)  # the range in V*; the mass for
+        keys.set("impact.mass", mass, "mass")           # v_per_V_star
     else:
-        V = _speeds(surface, V_star, mass, speed)
-    if V.size != 2 or not V[0] < V[1]:
-        raise invalid(f"V_star (or speed): the range (from, to) with from < to, got {V!r}")
+        V = _speeds(surface, V_star, mass, speed, keys)
+    keys.set("table.V_star", V, "V_star")  # the range (from, to) of V*
+    k = keys.values
+    solver = keys.solver()
     spec = ffi.new("ct_table_spec *")
     lib.ct_table_spec_default(spec)
-    spec.V_min, spec.V_max = V[0], V[1]
-    spec.tolerance = chk.real("tolerance", tolerance, 1e-13, 1.0, lo_closed=True)
-    spec.interpolation = chk.choice("interpolation", interpolation, INTERPOLATIONS)
-    spec.max_nodes = chk.integer("max_nodes", max_nodes, 2, 10**9)
-    spec.check_points = chk.integer("check_points", check_points, 1, 100000)
-    opts = _opts(quadrature, nodes, 1e-14, check)
-    spec.opts = opts[0]
-    spec.path = chk.choice("path", path, PATHS)
-    b, _ = surface._build(V, 1, opts)
+    spec.V_min, spec.V_max = k.table_range[0], k.table_range[1]
+    spec.tolerance = k.table_tolerance
+    spec.interpolation = k.interpolation
+    spec.max_nodes = k.max_nodes
+    spec.check_points = k.check_points
+    spec.opts = solver.opts
+    spec.path = solver.path
+    b, _ = surface._build(np.array([spec.V_min, spec.V_max]), 1, solver.opts)
     out = ffi.new("ct_table **")
     _ok(lib.ct_table_build(out, b, spec))
     t = Table(ffi.gc(out[0], lib.ct_table_free), spec.tolerance)
@@ -821,7 +684,7 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
     t.header["worst_at_none"] = not math.isfinite(t.info["worst_V_star"])
     if mass is not None:
         l0, E, h0 = surface._physical_scales()
-        t.v_per_V_star = 1.0 / lib.ct_V_star_of(chk.real("mass", mass, 0.0), 1.0, l0, E, h0)
+        t.v_per_V_star = 1.0 / lib.ct_V_star_of(k.mass, 1.0, l0, E, h0)
     return t
 
 

@@ -186,9 +186,10 @@ def _unreadable(name, value):
     return out_of_memory(f"{name}: an array of {n}")
 
 
-def array(name, value, positive=False, nonnegative=False, allow_empty=False):
+def array(name, value, positive=False, nonnegative=False, allow_empty=False, finite=True):
     """A 1-D float64 C-contiguous copy of a number or sequence of real numbers, all finite
-    (and > 0 or >= 0 when asked). A scalar becomes one element."""
+    (and > 0 or >= 0 when asked; finite=False: any double, for the library to judge). A scalar
+    becomes one element."""
     a = _reals(name, value)
     if a.ndim == 0:
         a = a.reshape(1)
@@ -196,6 +197,8 @@ def array(name, value, positive=False, nonnegative=False, allow_empty=False):
         raise invalid(f"{name}: must be one-dimensional, got shape {a.shape}")
     if a.size == 0 and not allow_empty:
         raise invalid(f"{name}: must not be empty")
+    if not finite:
+        return a
     with memory(f"{name}: checking {a.size} numbers (a mask of {size_text(a.size, 1)})"):
         bad = ~np.isfinite(a)
         if bad.any():

@@ -419,12 +419,81 @@ typedef struct {
 } ct_column;
 size_t ct_sweep_columns(const ct_column **cols);
 double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer);
+typedef enum {
+    CT_KEY_NUMBER = 0,
+    CT_KEY_INTEGER,
+    CT_KEY_COUNT,
+    CT_KEY_WORD,
+    CT_KEY_WORDS,
+    CT_KEY_TEXT,
+    CT_KEY_DEPTH,
+    CT_KEY_SPEEDS,
+    CT_KEY_RANGE,
+} ct_key_type;
+enum {
+    CT_KEY_LO_CLOSED = 1,
+    CT_KEY_HI_CLOSED = 2,
+    CT_KEY_REQUIRED = 4,
+    CT_KEY_FILE = 8,
+};
+typedef struct {
+    const char *section;
+    const char *name;
+    ct_key_type type;
+    double lo, hi;
+    unsigned flags;
+    const char *words;
+    const char *range;
+    const char *def;
+    const char *doc;
+    size_t offset;
+} ct_key;
+typedef struct {
+    double *v;
+    size_t n;
+} ct_speeds;
+int ct_key_parse(const ct_key *row, const char *text, void *settings);
+void ct_key_describe(const ct_key *row, char *buf, size_t len);
+void ct_key_clear(const ct_key *row, void *settings);
+int ct_word_index(const char *words, const char *word);
+typedef struct {
+    ct_speeds V_star, velocity;
+    double mass, drop_height, gravity, stop_speed;
+    long impacts;
+    int sequence;
+    int quadrature;
+    long nodes;
+    double tolerance, depth_tolerance;
+    long threads;
+    int on_error, check, path;
+    double table_tolerance, table_range[2];
+    int interpolation;
+    long max_nodes, check_points;
+    long realisations;
+    int split;
+} ct_run_keys;
+const ct_key *ct_run_keys_table(size_t *n);
+void ct_run_keys_defaults(ct_run_keys *k);
+void ct_run_keys_clear(ct_run_keys *k);
+typedef struct {
+    ct_impact_opts opts;
+    ct_sweep_path path;
+    int threads;
+    int skip_failed;
+    double depth_tolerance;
+} ct_run_solver;
+int ct_run_keys_solver(const ct_run_keys *k, ct_run_solver *out);
 typedef struct ct_surface ct_surface;
 size_t ct_surface_kind_count(void);
 const char *ct_surface_kind_name(size_t k);
+const char *ct_surface_kind_summary(size_t k);
+const ct_key *ct_surface_kind_keys(size_t k, size_t *n);
+int ct_surface_kind_supports(size_t k, const char *output, const char **why);
 int ct_surface_new(ct_surface **out, const char *kind);
 void ct_surface_free(ct_surface *s);
+size_t ct_surface_kind_index(const ct_surface *s);
 const char *ct_surface_kind(const ct_surface *s);
+const ct_key *ct_surface_key(const ct_surface *s, const char *section, const char *name);
 int ct_surface_set(ct_surface *s, const char *section, const char *name, const char *value,
                    const char *where);
 int ct_surface_value(const ct_surface *s, const char *section, const char *name, double *out);
@@ -468,6 +537,9 @@ int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle
                      ct_plan_info *info);
 int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,
                         const double *length);
+const char *ct_surface_note(ct_surface *s);
+int ct_surface_random_cantor(const ct_surface *s, ct_random_cantor *rc, uint64_t *realisation);
+int ct_surface_profile(const ct_surface *s, const ct_profile **p, ct_profile_fit *fit);
 """
 
 ffi = cffi.FFI()

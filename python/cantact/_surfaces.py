@@ -1,48 +1,34 @@
-"""Surfaces: each describes itself and builds its rods (a bundle) for the speeds asked.
+"""Surfaces: one generic Surface(kind, **keys) over the library's surface handle, and the
+named classes as conveniences over it.
+
+A Surface is a kind of the library (ct_surface_kind_name: cantor, random_cantor, profile, rods)
+set up by that kind's keys: each keyword argument is the row of the same name
+(ct_surface_kind_keys; "section.name" as well), given to ct_surface_set as text, then the keys
+are checked together (ct_surface_check) and the surface prepared (ct_surface_prepare: a file
+read and levelled, the scales fixed), and built into rods for the speeds asked
+(ct_surface_build with a ct_build_request). Its keys, ranges, defaults and messages are the
+kind's own, the same as a scene's (the program's `surface.type = kind`): the module types
+none of them. threads and depth_tolerance are the run's rows (solver.threads,
+solver.depth_tolerance) that a build takes.
 
 A Cantor or random Cantor surface is computed in dimensionless form, as the cantact program
-does (l0 = h0 = sigma_y = 1, H* = H, E = E/sigma_y): the model depends on its dimensionless
-groups alone, and the results (u/h0, P/P_Y, V*) are the same bits as `cantact run`'s. A rod set
-(Rods) is the library's kind `rods` (ct_surface_*: its keys, defaults and checks are the
-program's `surface.type = rods`), computed in the units given; its results are made
-dimensionless by its h0, sigma_y and l0. A new kind of surface is a class with the same four
-members: kind, _params (or None), _physical_scales() (l0, E, h0 as given: V* from mass and
-speed), _build()."""
+does (l0 = h0 = sigma_y = 1, H* = H, E = E/sigma_y): the results (u/h0, P/P_Y, V*) are the
+same bits as `cantact run`'s. Other kinds are computed in the units given; their results are
+made dimensionless by their layer's h0, sigma_y and l0."""
+import re
+
 import numpy as np
 
 from . import _check as chk
-from ._errors import check, invalid
-from ._ffi import (CT_DEPTH_AUTO, CT_DEPTH_FRACTAL, CT_MAX_RANDOM_DEPTH,
-                   CT_MAX_SEGMENTS_DEPTH, CT_MAX_STAGES_DEPTH, CT_MAX_THREADS, ffi, lib)
-
-REPRESENTATIONS = {"stages": lib.CT_REP_STAGES, "segments": lib.CT_REP_SEGMENTS}
-DISTRIBUTIONS = {"lognormal": lib.CT_RATIO_LOGNORMAL, "uniform": lib.CT_RATIO_UNIFORM}
+from . import _keys
+from ._errors import check, error, invalid
+from ._ffi import ffi, lib
+from ._results import Restitution
 
 
-def _cantor_params(fx, fz, H, E, sigma_y, h0, l0):
-    """(physical, dimensionless) ct_params, validated, computed as the CLI computes them."""
-    fx = chk.real("fx", fx, 1.0)
-    fz = chk.real("fz", fz, 1.0, 2.0)
-    H = chk.real("H", H, 1.0)
-    E = chk.real("E", E, 0.0)
-    sigma_y = chk.real("sigma_y", sigma_y, 0.0)
-    h0 = chk.real("h0", h0, 0.0)
-    l0 = chk.real("l0", l0, 0.0)
-    if not E > sigma_y:
-        raise invalid(f"E = {E!r}: must be > sigma_y = {sigma_y!r} (yield strain < 1)")
-    physical = ffi.new("ct_params *", {"fx": fx, "fz": fz, "l0": l0, "h0": h0,
-                                       "Hstar": H * h0, "E": E, "sigma_y": sigma_y})
-    check(lib.ct_params_validate(physical))
-    p = physical[0]
-    dimensionless = ffi.new("ct_params *", {"fx": fx, "fz": fz, "l0": 1.0, "h0": 1.0,
-                                            "Hstar": p.Hstar / p.h0, "E": p.E / p.sigma_y,
-                                            "sigma_y": 1.0})
-    check(lib.ct_params_validate(dimensionless))  # E/sigma_y times H may overflow
-    return physical, dimensionless
-
-
-def _threads(threads):
-    return chk.integer("threads", threads, 0, CT_MAX_THREADS)
+def _plan_info(info):
+    return {"depth": int(info.depth), "bound": float(info.bound), "rods": int(info.rods),
+            "omitted": int(info.omitted)}
 
 
 def _info(b, depth=-1, bound=0.0):
@@ -50,31 +36,230 @@ def _info(b, depth=-1, bound=0.0):
             "omitted": int(lib.ct_bundle_omitted(b))}
 
 
-class Cantor:
-    """The deterministic Cantor surface (MODEL.md §2): f_x, f_z, H = H*/h0, E and sigma_y
-    (only E/sigma_y matters), h0 and l0 (scales only). depth: an integer N >= 0, "auto" (the
-    smallest depth whose truncation changes forces and energies by less than depth_tolerance,
-    relative to the smallest impact asked) or "fractal" (the limit to double precision);
-    representation: "stages" (one rod per stage) or "segments" (one per piece, depth <= 40)."""
+class _Default:
+    """An argument not given: the library's default."""
 
-    kind = "cantor"
+    def __repr__(self):
+        return "the library's default"
+
+
+_DEFAULT = _Default()
+
+
+class Surface:
+    """A surface of one kind of the library: Surface(kind, **keys), kind one of
+    cantact.KINDS (cantor, random_cantor, profile, rods), every keyword one of that kind's
+    keys (cantact.KINDS[kind]: its rows, with their ranges, defaults and docs; "section.name"
+    names one too), set as the program sets `surface.type = kind` and its keys from a scene:
+    the same values accepted, the same refused with the same words. threads (solver.threads)
+    and depth_tolerance (solver.depth_tolerance) are the run's keys a build takes. E.g.
+    Surface("cantor", fx=1.5, fz=1.3, H=10, E=500), Surface("rods", rods="0:1, 0.5:1",
+    Hstar=2, E=10), Surface("profile", file="scan.csv", H=10, E=2e11, sigma_y=4e8). layer and
+    physical: the layer as built and as given; value(key): a key's value as parsed; note: what
+    the library says of the surface prepared ("" when nothing)."""
+
+    def __init__(self, kind, *, threads=_DEFAULT, depth_tolerance=_DEFAULT, **keys):
+        self._setup(kind, keys, threads, depth_tolerance)
+
+    # ---- the handle ----
+
+    def _setup(self, kind, keys, threads=_DEFAULT, depth_tolerance=_DEFAULT, prepare=True,
+               names=None):
+        """The handle of kind with keys set, checked and (prepare) prepared; the run's keys a
+        build takes. names: the keyword argument that gave a key, where it is not the key's
+        own name (for the messages of a value's type)."""
+        name = kind if isinstance(kind, str) and "\0" not in kind else None
+        self.kind = name
+        where = self._scene().encode()
+        out = ffi.new("ct_surface **")
+        st = lib.ct_surface_new(out, name.encode(errors="replace") if name is not None else b"")
+        if st != lib.CT_OK:  # the library names the kinds
+            shown = _keys.shown(kind if name is not None else chk._text(kind))
+            raise error(st, f"{where.decode()}: surface.type = {shown}: {_keys.message()}")
+        s = ffi.gc(out[0], lib.ct_surface_free)
+        self._surface = s
+        self._rows = _keys.KINDS[name]
+        run = _keys.RunKeys(where.decode())
+        if threads is not _DEFAULT:
+            run.set("solver.threads", threads, "threads")
+        if depth_tolerance is not _DEFAULT:
+            run.set("solver.depth_tolerance", depth_tolerance, "depth_tolerance")
+        solver = run.solver()
+        self.threads = int(solver.threads)
+        self.depth_tolerance = float(solver.depth_tolerance)
+        by_name = {}
+        for r in self._rows:
+            by_name.setdefault(r.name, r)
+            by_name[f"{r.section}.{r.name}"] = r
+        given = {}
+        for key, value in keys.items():
+            row = by_name.get(key)
+            if row is None:  # not this kind's: the library says which kinds take it
+                self._set_other(key, value, where)
+            given[(row.section, row.name)] = (key, value)
+        for r in self._rows:  # in the table's order, as a scene's keys
+            if (r.section, r.name) in given:
+                key, value = given[(r.section, r.name)]
+                check(lib.ct_surface_set(s, r.section.encode(), r.name.encode(),
+                                         _keys.text(r, (names or {}).get(key, key), value),
+                                         where))
+        self._given = {f"{sec}.{nm}": v[1] for (sec, nm), v in given.items()}
+        self._before_check(s)
+        check(lib.ct_surface_check(s, where))
+        if prepare:
+            check(lib.ct_surface_prepare(s, ffi.NULL))
+            self._scales = ffi.new("ct_scales *")
+            lib.ct_surface_scales(s, self._scales)
+
+    def _set_other(self, key, value, where):
+        """A key of no row of this kind: the library's refusal (which kinds take it, or that
+        none does)."""
+        section, _, name = key.rpartition(".")
+        if not section:
+            section = next((r.section for rows in _keys.KINDS.values() for r in rows
+                            if r.name == name), "surface")
+        shown = value if isinstance(value, str) else chk._text(value)
+        check(lib.ct_surface_set(self._surface, section.encode(errors="replace"),
+                                 name.encode(errors="replace"),
+                                 shown.encode(errors="replace"), where))
+        raise invalid(f"{key}: not a key of type = {self.kind}")  # the library refused it
+
+    def _before_check(self, s):
+        """What a named class gives the handle besides keys (Rods: its arrays)."""
+
+    def _scene(self):
+        """Where the keys are given, for the library's messages (as a scene's file:line)."""
+        return f"Surface({self.kind!r})" if self.kind is not None else "Surface()"
+
+    # ---- what the library says of it ----
+
+    def value(self, key):
+        """A key's value as parsed ("section.name" or its name), its default when not given:
+        a number, an integer, a depth (auto -1, fractal -2), a count or a word's index."""
+        row = self._row(key)
+        out = ffi.new("double *")
+        check(lib.ct_surface_value(self._surface, row.section.encode(), row.name.encode(), out))
+        return out[0]
+
+    def _row(self, key):
+        if isinstance(key, str):
+            for r in self._rows:
+                if key in (r.name, f"{r.section}.{r.name}"):
+                    return r
+        raise invalid(f"{chk._text(key)}: not a key of type = {self.kind} (its keys: "
+                      f"{', '.join(r.name for r in self._rows)})")
+
+    def is_set(self, key):
+        """True when the key was given."""
+        r = self._row(key)
+        return bool(lib.ct_surface_is_set(self._surface, r.section.encode(), r.name.encode()))
+
+    def supports(self, output):
+        """(True, None), or (False, why) when the kind does not give the output ("ensemble",
+        "compare", ...: ct_surface_kind_supports)."""
+        why = ffi.new("const char **")
+        given = output.encode(errors="replace") if isinstance(output, str) else b""
+        ok = lib.ct_surface_kind_supports(lib.ct_surface_kind_index(self._surface),
+                                          given.replace(b"\0", b" "), why)
+        return (True, None) if ok else (False, _keys._text_of(why[0]))
+
+    @property
+    def note(self):
+        """What the library says of the surface prepared (what was read, levelled, clipped),
+        "" when nothing."""
+        return ffi.string(lib.ct_surface_note(self._surface)).decode(errors="replace")
+
+    @property
+    def layer(self):
+        """E, sigma_y, Hstar, l0 and h0 of the rods as built (a Cantor surface's:
+        dimensionless; a rod set's in metres when a unit is given)."""
+        L = self._scales.layer
+        return {k: getattr(L, k) for k in ("E", "sigma_y", "Hstar", "l0", "h0")}
+
+    @property
+    def physical(self):
+        """E, sigma_y, Hstar, l0 and h0 as given (the units of mass and speed)."""
+        L = self._scales.physical
+        return {k: getattr(L, k) for k in ("E", "sigma_y", "Hstar", "l0", "h0")}
+
+    def _physical_scales(self):
+        L = self._scales.physical
+        return L.l0, L.E, L.h0
+
+    def _units(self):
+        """What makes the rods' lengths, forces and energies dimensionless: h0, P_Y = sigma_y
+        l0 and P_Y h0 of the layer as built (ct_scales)."""
+        sc = self._scales
+        return {"1": 1.0, "u": sc.layer.h0, "P": sc.force_unit, "W": sc.energy_unit}
+
+    def _depth_word(self):
+        """The word of a depth chosen from the speeds (a Cantor surface's "auto" or
+        "fractal"), None for a depth given or a kind without one."""
+        for r in self._rows:
+            if r.type == lib.CT_KEY_DEPTH:
+                v = int(self.value(f"{r.section}.{r.name}"))
+                if v < 0:
+                    return r.words[-1 - v]
+        return None
+
+    def _request(self, V, impacts, opts, keep_all):
+        req = ffi.new("ct_build_request *")
+        speeds = ffi.from_buffer("double[]", V)
+        req.V_star = speeds
+        req.nvel = V.size
+        req.impacts = impacts
+        req.opts = opts
+        req.keep_all_rods = 1 if keep_all else 0
+        req.threads = self.threads
+        req.depth_tolerance = self.depth_tolerance
+        return req, speeds
+
+    def _build(self, V_star, impacts, opts, keep_all=False):
+        """The rods for speeds V_star (impacts each, options opts: a ct_impact_opts) and what
+        the build found (depth, bound, rods, omitted)."""
+        V = np.ascontiguousarray(V_star, dtype=np.float64)
+        req, speeds = self._request(V, impacts, opts, keep_all)
+        out = ffi.new("ct_bundle **")
+        info = ffi.new("ct_plan_info *")
+        check(lib.ct_surface_build(self._surface, req, out, info))
+        return ffi.gc(out[0], lib.ct_bundle_free), _plan_info(info)
+
+    def __repr__(self):
+        keys = ", ".join(f"{k}={v!r}" for k, v in self._given.items())
+        return f"Surface({self.kind!r}{', ' if keys else ''}{keys})"
+
+
+def cantor_params(surface):
+    """(physical, dimensionless) ct_params of a Cantor or random Cantor surface, as the kind
+    computed them: its ratios and its layer as given and as built (l0 = h0 = sigma_y = 1, H*
+    = H, E = E/sigma_y)."""
+    fx, fz = surface.value("surface.fx"), surface.value("surface.fz")
+    out = []
+    for L in (surface._scales.physical, surface._scales.layer):
+        out.append(ffi.new("ct_params *", {"fx": fx, "fz": fz, "l0": L.l0, "h0": L.h0,
+                                           "Hstar": L.Hstar, "E": L.E, "sigma_y": L.sigma_y}))
+    return tuple(out)
+
+
+class Cantor(Surface):
+    """The deterministic Cantor surface (MODEL.md §2), Surface("cantor", ...): f_x, f_z, H =
+    H*/h0, E and sigma_y (only E/sigma_y matters), h0 and l0 (scales only). depth: an integer
+    N >= 0, "auto" (the smallest depth whose truncation changes forces and energies by less
+    than depth_tolerance, relative to the smallest impact asked) or "fractal" (the limit to
+    double precision); representation: "stages" (one rod per stage) or "segments" (one per
+    piece, depth <= 40)."""
 
     def __init__(self, fx, fz, H, E, sigma_y=1.0, h0=1.0, l0=1.0, depth="auto",
                  representation="stages", depth_tolerance=1e-12, threads=0):
-        self._physical, self._params = _cantor_params(fx, fz, H, E, sigma_y, h0, l0)
-        if isinstance(depth, str):
-            self._depth = chk.choice("depth", depth, {"auto": CT_DEPTH_AUTO,
-                                                      "fractal": CT_DEPTH_FRACTAL})
-        else:
-            self._depth = chk.integer("depth", depth, 0, CT_MAX_STAGES_DEPTH)
-        self._rep = chk.choice("representation", representation, REPRESENTATIONS)
-        if self._rep == lib.CT_REP_SEGMENTS and not 0 <= self._depth <= CT_MAX_SEGMENTS_DEPTH:
-            raise invalid(f"representation = 'segments': needs an integer depth 0 .. "
-                          f"{CT_MAX_SEGMENTS_DEPTH}, got {depth!r}")
-        self.depth_tolerance = chk.real("depth_tolerance", depth_tolerance, 0.0, 1e-2)
-        self.threads = _threads(threads)
+        self._setup("cantor", dict(fx=fx, fz=fz, H=H, h0=h0, l0=l0, depth=depth,
+                                   representation=representation, E=E, sigma_y=sigma_y),
+                    threads, depth_tolerance)
+        self._physical, self._params = cantor_params(self)
         self.depth = depth
         self.representation = representation
+
+    def _scene(self):
+        return "Cantor()"
 
     @property
     def params(self):
@@ -97,30 +282,30 @@ class Cantor:
         """The fractal dimension D (Eq. 3)."""
         return lib.ct_dimension(self._params)
 
-    def _physical_scales(self):
-        p = self._physical[0]
-        return p.l0, p.E, p.h0
-
     def _build(self, V_star, impacts, opts, keep_all=False):
+        if not keep_all:
+            return super()._build(V_star, impacts, opts)
+        # The whole surface (the load curve's): the kind's build refuses to keep every rod
+        # beyond depth 20, a limit of what = profile, which writes every piece; the curve needs
+        # every rod at any depth, planned as the kind plans them (ct_cantor_plan_build) from
+        # the kind's own parameters and settings.
         V = np.ascontiguousarray(V_star, dtype=np.float64)
         plan = ffi.new("ct_cantor_plan *")
         plan.params = self._params[0]
-        plan.depth = self._depth
-        plan.representation = self._rep
+        plan.depth = int(self.value("surface.depth"))
+        plan.representation = int(self.value("surface.representation"))
         plan.depth_tolerance = self.depth_tolerance
         speeds = ffi.from_buffer("double[]", V)
         plan.V_star = speeds
         plan.nvel = V.size
         plan.impacts = impacts
-        plan.opts = opts[0]
-        plan.keep_all_rods = 1 if keep_all else 0
+        plan.opts = opts
+        plan.keep_all_rods = 1
         plan.threads = self.threads
         out = ffi.new("ct_bundle **")
         info = ffi.new("ct_plan_info *")
         check(lib.ct_cantor_plan_build(plan, out, info))
-        b = ffi.gc(out[0], lib.ct_bundle_free)
-        return b, {"depth": int(info.depth), "bound": float(info.bound), "rods": int(info.rods),
-                   "omitted": int(info.omitted)}
+        return ffi.gc(out[0], lib.ct_bundle_free), _plan_info(info)
 
     def __repr__(self):
         p = self._params[0]
@@ -128,46 +313,50 @@ class Cantor:
                 f"depth={self.depth!r}, representation={self.representation!r})")
 
 
-class RandomCantor:
-    """A random Cantor surface (MODEL.md §10): every split draws its ratios around fx and fz
-    (distribution "lognormal" or "uniform", spreads fx_spread, fz_spread), Philox keyed by
-    (seed, realisation): one realisation is a pure function of them. depth: an integer
-    0 .. 30 (2^(depth+1) - 1 rods). ensemble() runs many realisations."""
+def random_cantor(surface):
+    """The generator settings (ct_random_cantor) and realisation of a random Cantor surface."""
+    rc = ffi.new("ct_random_cantor *")
+    realisation = ffi.new("uint64_t *")
+    check(lib.ct_surface_random_cantor(surface._surface, rc, realisation))
+    return rc, int(realisation[0])
 
-    kind = "random_cantor"
+
+class RandomCantor(Surface):
+    """A random Cantor surface (MODEL.md §10), Surface("random_cantor", ...): every split
+    draws its ratios around fx and fz (distribution "lognormal" or "uniform", spreads
+    fx_spread, fz_spread), Philox keyed by (seed, realisation): one realisation is a pure
+    function of them. depth: an integer 0 .. 30 (2^(depth+1) - 1 rods). ensemble() runs many
+    realisations."""
 
     def __init__(self, fx, fz, H, E, depth, sigma_y=1.0, h0=1.0, l0=1.0,
                  distribution="lognormal", fx_spread=0.0, fz_spread=0.0, seed=0, realisation=0,
                  threads=0):
-        self._physical, self._params = _cantor_params(fx, fz, H, E, sigma_y, h0, l0)
-        self._rc = ffi.new("ct_random_cantor *")
-        self._rc.params = self._params[0]
-        self._rc.dist = chk.choice("distribution", distribution, DISTRIBUTIONS)
-        self._rc.fx_spread = chk.real("fx_spread", fx_spread, 0.0, lo_closed=True)
-        self._rc.fz_spread = chk.real("fz_spread", fz_spread, 0.0, lo_closed=True)
-        self._rc.depth = chk.integer("depth", depth, 0, CT_MAX_RANDOM_DEPTH)
-        self._rc.seed = chk.integer("seed", seed, 0, 2**64 - 1)
-        check(lib.ct_random_cantor_validate(self._rc))
-        self.realisation = chk.integer("realisation", realisation, 0, 2**64 - 1)
-        self.threads = _threads(threads)
+        self._setup("random_cantor", dict(fx=fx, fz=fz, H=H, h0=h0, l0=l0, depth=depth,
+                                          distribution=distribution, fx_spread=fx_spread,
+                                          fz_spread=fz_spread, seed=seed,
+                                          realisation=realisation, E=E, sigma_y=sigma_y),
+                    threads)
+        self._physical, self._params = cantor_params(self)
+        self._rc, _ = random_cantor(self)
         self.distribution = distribution
+
+    @property
+    def realisation(self):
+        """The realisation this surface is (surface.realisation)."""
+        return random_cantor(self)[1]
+
+    def _scene(self):
+        return "RandomCantor()"
 
     params = Cantor.params
     alpha = Cantor.alpha
     beta = Cantor.beta
     dimension = Cantor.dimension
 
-    def _physical_scales(self):
-        p = self._physical[0]
-        return p.l0, p.E, p.h0
-
     def _build(self, V_star, impacts, opts, keep_all=False):
-        out = ffi.new("ct_bundle **")
-        check(lib.ct_random_cantor_bundle(out, self._rc, self.realisation, self.threads))
-        b = ffi.gc(out[0], lib.ct_bundle_free)
+        b, info = super()._build(V_star, impacts, opts, keep_all)
         fx, fz, draws = ffi.new("uint64_t *"), ffi.new("uint64_t *"), ffi.new("uint64_t *")
         check(lib.ct_random_cantor_clipped(b, fx, fz, draws))
-        info = _info(b, self._rc.depth)
         info.update(fx_clipped=int(fx[0]), fz_clipped=int(fz[0]), draws=int(draws[0]))
         return b, info
 
@@ -179,111 +368,49 @@ class RandomCantor:
                 f"fz_spread={rc.fz_spread!r}, seed={rc.seed}, realisation={self.realisation})")
 
 
-ROD_UNITS = ("m", "mm", "um", "nm")
+def _given(**keys):
+    """The keys given (not None)."""
+    return {k: v for k, v in keys.items() if v is not None}
 
 
-def _optional(name, value, lo, lo_closed=False):
-    return None if value is None else chk.real(name, value, lo, lo_closed=lo_closed)
-
-
-class Rods:
-    """Your own surface as rods (MODEL.md §3-4, docs/model.md §12), the library's kind `rods`
-    (as `surface.type = rods` of the cantact program): top[k] is rod k's depth below the
-    reference plane (0 <= top, and top < H* for rods without lengths), area[k] its area (> 0),
-    length[k] (optional, > 0) its length (default H* - top), in one Winkler layer with E and
-    sigma_y. The layer's thickness:
-    Hstar, or H = H*/h0, or, for rods that give their lengths, none of them (H* is then the
-    shallowest rod bottom, min(top + length), where the first rod reaches strain 1). l0 and h0
-    are the reference length and depth of the outputs (V*, u/h0, P/P_Y = P/(sigma_y l0)):
-    by default l0 is the total area and h0 the deepest top (H* when every top is 0). unit
-    ("m", "mm", "um", "nm"): the unit of tops, areas, lengths, Hstar, h0 and l0, converted to
-    metres (default: none, the units given). Computed in those units."""
-
-    kind = "rods"
-    _params = None
+class Rods(Surface):
+    """Your own surface as rods (MODEL.md §3-4, docs/model.md §12), Surface("rods", ...) with
+    the rods as arrays (ct_surface_set_rods) instead of surface.file or surface.rods: top[k]
+    is rod k's depth below the reference plane (0 <= top, and top < H* for rods without
+    lengths), area[k] its area (> 0), length[k] (optional, > 0) its length (default H* - top),
+    in one Winkler layer with E and sigma_y. The layer's thickness: Hstar, or H = H*/h0, or,
+    for rods that give their lengths, none of them (H* is then the shallowest rod bottom,
+    min(top + length), where the first rod reaches strain 1). l0 and h0 are the reference
+    length and depth of the outputs (V*, u/h0, P/P_Y = P/(sigma_y l0)): by default l0 is the
+    total area and h0 the deepest top (H* when every top is 0). unit ("m", "mm", "um", "nm"):
+    the unit of tops, areas, lengths, Hstar, h0 and l0, converted to metres (default: none,
+    the units given). Computed in those units; every check is the kind's."""
 
     def __init__(self, top, area, E, Hstar=None, sigma_y=1.0, l0=None, h0=None, H=None,
                  length=None, unit=None, threads=0):
-        # every argument checked before the library sees any of them
-        top = chk.array("top", top, nonnegative=True)
-        area = chk.array("area", area, positive=True)
+        # the arrays' types and shapes here, their values (and every key) the kind's
+        top = chk.array("top", top, finite=False)
+        area = chk.array("area", area, finite=False)
         if top.size != area.size:
             raise invalid(f"top and area: {top.size} and {area.size} rods: must be as many")
         if length is not None:
-            length = chk.array("length", length, positive=True)
+            length = chk.array("length", length, finite=False)
             if length.size != top.size:
                 raise invalid(f"top and length: {top.size} and {length.size} rods: must be as "
                               "many")
-        E = chk.real("E", E, 0.0)
-        sigma_y = chk.real("sigma_y", sigma_y, 0.0)
-        if not E > sigma_y:
-            raise invalid(f"E = {E!r}: must be > sigma_y = {sigma_y!r} (yield strain < 1)")
-        Hstar = _optional("Hstar", Hstar, 0.0)
-        H = _optional("H", H, 1.0)
-        h0 = _optional("h0", h0, 0.0)
-        l0 = _optional("l0", l0, 0.0)
-        if unit is not None:
-            chk.choice("unit", unit, dict.fromkeys(ROD_UNITS))
-        if Hstar is not None and H is not None:
-            raise invalid("H (a multiple of h0) or Hstar (a length): give one, not both")
-        if length is not None and (Hstar is not None or H is not None):
-            raise invalid(f"{'Hstar' if Hstar is not None else 'H'}: not with rods that give "
-                          "their lengths (H* is where the first of them reaches strain 1)")
-        if length is None and Hstar is None and H is None:
-            raise invalid("Hstar or H (or a length for every rod): give one")
-        if Hstar is not None and (top >= Hstar).any():
-            k = int(np.flatnonzero(top >= Hstar)[0])
-            raise invalid(f"top[{k}] = {top[k]!r}: must be < Hstar = {Hstar!r}")
-        self.threads = _threads(threads)
-        out = ffi.new("ct_surface **")
-        check(lib.ct_surface_new(out, b"rods"))
-        s = ffi.gc(out[0], lib.ct_surface_free)
-        where = b"Rods()"
-        check(lib.ct_surface_set_rods(
-            s, top.size, ffi.from_buffer("double[]", top), ffi.from_buffer("double[]", area),
-            ffi.NULL if length is None else ffi.from_buffer("double[]", length)))
-        for key, value in (("Hstar", Hstar), ("H", H), ("h0", h0), ("l0", l0)):
-            if value is not None:
-                check(lib.ct_surface_set(s, b"surface", key.encode(),
-                                         repr(float(value)).encode(), where))
-        if unit is not None:
-            check(lib.ct_surface_set(s, b"surface", b"unit", unit.encode(), where))
-        for key, value in (("E", E), ("sigma_y", sigma_y)):
-            check(lib.ct_surface_set(s, b"material", key.encode(),
-                                     repr(float(value)).encode(), where))
-        check(lib.ct_surface_check(s, where))
-        check(lib.ct_surface_prepare(s, ffi.NULL))
-        self._surface = s
-        self._scales = ffi.new("ct_scales *")
-        lib.ct_surface_scales(s, self._scales)
         self.top, self.area, self.length, self.unit = top, area, length, unit
+        self._setup("rods", _given(unit=unit, Hstar=Hstar, H=H, h0=h0, l0=l0, E=E,
+                                   sigma_y=sigma_y), threads)
 
-    @property
-    def layer(self):
-        """E, sigma_y, Hstar, l0 and h0 of the rods as built (in metres when a unit is given)."""
-        L = self._scales.layer
-        return {k: getattr(L, k) for k in ("E", "sigma_y", "Hstar", "l0", "h0")}
+    def _before_check(self, s):
+        length = self.length
+        check(lib.ct_surface_set_rods(
+            s, self.top.size, ffi.from_buffer("double[]", self.top),
+            ffi.from_buffer("double[]", self.area),
+            ffi.NULL if length is None else ffi.from_buffer("double[]", length)))
 
-    def _physical_scales(self):
-        L = self._scales.physical
-        return L.l0, L.E, L.h0
-
-    def _build(self, V_star, impacts, opts, keep_all=False):
-        V = np.ascontiguousarray(V_star, dtype=np.float64)
-        req = ffi.new("ct_build_request *")
-        speeds = ffi.from_buffer("double[]", V)
-        req.V_star = speeds
-        req.nvel = V.size
-        req.impacts = impacts
-        req.opts = opts[0]
-        req.keep_all_rods = 1 if keep_all else 0
-        req.threads = self.threads
-        req.depth_tolerance = 1e-12
-        out = ffi.new("ct_bundle **")
-        info = ffi.new("ct_plan_info *")
-        check(lib.ct_surface_build(self._surface, req, out, info))
-        b = ffi.gc(out[0], lib.ct_bundle_free)
-        return b, _info(b)
+    def _scene(self):
+        return "Rods()"
 
     def __repr__(self):
         L = self._scales.layer
@@ -291,24 +418,15 @@ class Rods:
                 f"Hstar={L.Hstar!r}, l0={L.l0!r}, h0={L.h0!r})")
 
 
-DETRENDS = {"none": lib.CT_DETREND_NONE, "mean": lib.CT_DETREND_MEAN,
-            "linear": lib.CT_DETREND_LINEAR, "quadratic": lib.CT_DETREND_QUADRATIC}
-UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "nm": 1e-9}
-DIMENSIONS = {"variation": lib.CT_DIM_VARIATION, "structure": lib.CT_DIM_STRUCTURE,
-              "spectrum": lib.CT_DIM_SPECTRUM}
-
-
 def _band(name, band):
+    """A fit's band (lo, hi) as two doubles ((0, 0): the default); the library judges it."""
     if band is None:
         return 0.0, 0.0
     try:
         lo, hi = band
     except (TypeError, ValueError):
         raise invalid(f"{name} = {band!r}: must be None or a pair (lo, hi)") from None
-    lo, hi = chk.real(f"{name}[0]", lo, 0.0), chk.real(f"{name}[1]", hi, 0.0)
-    if not hi > lo:
-        raise invalid(f"{name} = ({lo!r}, {hi!r}): must have lo < hi")
-    return lo, hi
+    return chk._double(f"{name}[0]", lo), chk._double(f"{name}[1]", hi)
 
 
 def _line(f):
@@ -316,110 +434,132 @@ def _line(f):
             "intercept": f.intercept, "r2": f.r2, "rms_residual_ln": f.residual}
 
 
-class Profile:
-    """A measured surface (MODEL.md §9) as one rod per sample, as `surface.type = profile` of
-    the cantact program: a line profile or an X3P grid read from `file` (text/CSV, a Dektak
-    export, X3P; lengths converted to metres: `unit` (or x_unit, z_unit) "m", "mm", "um",
-    "nm", default what the file's column names state; `spacing` for a file of one column of
+class Profile(Surface):
+    """A measured surface (MODEL.md §9) as one rod per sample: a file, Surface("profile", ...)
+    as `surface.type = profile` of the cantact program reads it (text/CSV, a Dektak export,
+    X3P; lengths converted to metres: `unit` (or x_unit, z_unit) "m", "mm", "um", "nm",
+    default what the file's column names state; `spacing` for a file of one column of
     heights, in its x unit), or arrays: `z` 1-D with `x` (increasing) or `dx`, or `z` 2-D
     (rows along x, z[j, i] at x = i dx, y = j dy; NaN: invalid) with `dx` and `dy`, in
     lengths of your choice (E and sigma_y in matching units). Levelled by `detrend` ("none",
     "mean", "linear", "quadratic"), optionally trimmed (`trim` = k: heights above mean + k Rq
-    cut there), in a layer of thickness `H` times Rt or `Hstar`. Its h0 is Rt and its l0 the
-    length (a grid: the area), so mass and speed give V* = v sqrt(m / (2 l0 E h0)) with m per
-    unit depth (a grid: the mass). Computed in the units given; results dimensionless by h0,
-    sigma_y and l0 as for Rods."""
-
-    kind = "profile"
-    _params = None
+    cut there: surface.trim = rq, trim_k = k), in a layer of thickness `H` times Rt or `Hstar`
+    (in the unit of the heights as given: the file's z unit, or the arrays'). Its h0 is Rt and
+    its l0 the length (a grid: the area), so mass and speed give V* = v sqrt(m / (2 l0 E h0))
+    with m per unit depth (a grid: the mass). Computed in metres (a file) or the arrays'
+    units; results dimensionless by h0, sigma_y and l0 as for Rods. Every key and its check is
+    the kind's; arrays, which the kind does not take, are levelled, trimmed and made rods by
+    the same library calls its preparation makes."""
 
     def __init__(self, file=None, *, E, sigma_y, H=None, Hstar=None, x=None, z=None, dx=None,
                  dy=None, unit=None, x_unit=None, z_unit=None, spacing=None, detrend="linear",
                  trim=None, threads=0):
-        # every argument checked before the library sees any of them
-        E = chk.real("E", E, 0.0)
-        sigma_y = chk.real("sigma_y", sigma_y, 0.0)
-        how = chk.choice("detrend", detrend, DETRENDS)
-        if (H is None) == (Hstar is None):
-            raise invalid("H (a multiple of Rt) or Hstar (a length): give exactly one")
-        H = None if H is None else chk.real("H", H, 1.0)
-        Hstar = None if Hstar is None else chk.real("Hstar", Hstar, 0.0)
-        trim = None if trim is None else chk.real("trim", trim, 0.0)
-        threads = _threads(threads)
-        out = ffi.new("ct_profile **")
+        keys = _given(H=H, Hstar=Hstar, detrend=detrend, E=E, sigma_y=sigma_y)
+        if trim is not None:
+            keys.update(trim="rq", trim_k=trim)
+        self.detrend = detrend
         if file is not None:
-            path = chk.path("file", file)
             if z is not None or x is not None or dx is not None or dy is not None:
                 raise invalid("file, or x/z/dx/dy arrays: give one of them")
-            if unit is not None and (x_unit is not None or z_unit is not None):
-                raise invalid("unit, or x_unit and z_unit: give one of them")
-            opts = ffi.new("ct_profile_read_opts *")
-            opts.x_unit = chk.choice("x_unit", x_unit or unit, UNITS) if (x_unit or unit) else 0.0
-            opts.z_unit = chk.choice("z_unit", z_unit or unit, UNITS) if (z_unit or unit) else 0.0
-            opts.dx = 0.0 if spacing is None else chk.real("spacing", spacing, 0.0)
-            check(lib.ct_profile_read(path, opts, out))
+            keys.update(_given(file=file, unit=unit, x_unit=x_unit, z_unit=z_unit,
+                               spacing=spacing))
+            self._setup("profile", keys, threads, names={"trim_k": "trim"})
+            p = ffi.new("const ct_profile **")
+            check(lib.ct_surface_profile(self._surface, p, ffi.NULL))
+            self._profile = p[0]
+            self._bundle = None
+            m = re.search(r", (\d+) heights clipped at mean", self.note)
+            self.clipped = int(m.group(1)) if m else 0
         else:
-            if z is None:
-                raise invalid("a profile needs a file or heights z")
-            if unit is not None or x_unit is not None or z_unit is not None or spacing is not None:
-                raise invalid("unit, x_unit, z_unit, spacing: for files only (arrays are read "
-                              "in their own units)")
-            # a line: finite heights; a grid (rows along x): NaN marks an invalid point
-            zz = chk.real_array("z", z, ndims=(1, 2), nan_ndims=(2,))
-            if zz.ndim == 1:
-                if dy is not None:
-                    raise invalid("a line profile z (1-D): dy is for a grid (2-D z)")
-                if (x is None) == (dx is None):
-                    raise invalid("a line profile z: give x (positions) or dx (spacing), "
-                                  + ("not both" if x is not None else "one of them"))
-                if x is not None:
-                    xx = chk.real_array("x", x, ndims=(1,))
-                    if xx.shape != zz.shape:
-                        raise invalid(f"x and z: {xx.size} and {zz.size} points: must be as many")
-                    down = np.flatnonzero(np.diff(xx) <= 0)
-                    if down.size:
-                        k = int(down[0]) + 1
-                        raise invalid(f"x[{k}] = {xx[k]!r}: not increasing: must be > "
-                                      f"x[{k - 1}] = {xx[k - 1]!r}")
-                    check(lib.ct_profile_from_line(out, zz.size, ffi.from_buffer("double[]", xx),
-                                                   0.0, ffi.from_buffer("double[]", zz)))
-                else:
-                    check(lib.ct_profile_from_line(out, zz.size, ffi.NULL,
-                                                   chk.real("dx", dx, 0.0),
-                                                   ffi.from_buffer("double[]", zz)))
-            else:
-                if x is not None:
-                    raise invalid("a grid z (2-D): x is for a line profile; give dx and dy")
-                if dx is None or dy is None:
-                    raise invalid("a grid z (2-D): give dx and dy (missing: "
-                                  + " and ".join(n for n, v in (("dx", dx), ("dy", dy)) if v is None)
-                                  + ")")
-                check(lib.ct_profile_from_grid(out, zz.shape[1], zz.shape[0],
-                                               chk.real("dx", dx, 0.0), chk.real("dy", dy, 0.0),
-                                               ffi.from_buffer("double[]", zz)))
-        self._profile = ffi.gc(out[0], lib.ct_profile_free)
-        check(lib.ct_profile_level(self._profile, how))
-        self.clipped = 0
-        if trim is not None:
-            clipped = ffi.new("size_t *")
-            check(lib.ct_profile_trim(self._profile, trim, clipped))
-            self.clipped = int(clipped[0])
+            self._from_arrays(keys, threads, x, z, dx, dy, unit, x_unit, z_unit, spacing)
         st = ffi.new("ct_profile_stats *")
         check(lib.ct_profile_stats_of(self._profile, st))
         self.stats = {k: getattr(st, k) for k in ("mean", "Ra", "Rq", "Rt", "length")}
-        hs = H * st.Rt if H is not None else Hstar
+
+    def _scene(self):
+        return "Profile()"
+
+    def _from_arrays(self, keys, threads, x, z, dx, dy, unit, x_unit, z_unit, spacing):
+        """A profile of arrays: the keys set and checked by the kind (its surface.file, which
+        the kind requires and never reads here, stands for the arrays), then the profile made,
+        levelled, trimmed and made rods as the kind's preparation makes them."""
+        if z is None:
+            raise invalid("a profile needs a file or heights z")
+        if unit is not None or x_unit is not None or z_unit is not None or spacing is not None:
+            raise invalid("unit, x_unit, z_unit, spacing: for files only (arrays are read "
+                          "in their own units)")
+        # a line: finite heights; a grid (rows along x): NaN marks an invalid point
+        zz = chk.real_array("z", z, ndims=(1, 2), nan_ndims=(2,))
+        out = ffi.new("ct_profile **")
+        if zz.ndim == 1:
+            if dy is not None:
+                raise invalid("a line profile z (1-D): dy is for a grid (2-D z)")
+            if (x is None) == (dx is None):
+                raise invalid("a line profile z: give x (positions) or dx (spacing), "
+                              + ("not both" if x is not None else "one of them"))
+            if x is not None:
+                xx = chk.real_array("x", x, ndims=(1,))
+                if xx.shape != zz.shape:
+                    raise invalid(f"x and z: {xx.size} and {zz.size} points: must be as many")
+                down = np.flatnonzero(np.diff(xx) <= 0)
+                if down.size:
+                    k = int(down[0]) + 1
+                    raise invalid(f"x[{k}] = {xx[k]!r}: not increasing: must be > "
+                                  f"x[{k - 1}] = {xx[k - 1]!r}")
+                line = (xx, 0.0)
+            else:
+                line = (None, chk.real("dx", dx, 0.0))
+        else:
+            if x is not None:
+                raise invalid("a grid z (2-D): x is for a line profile; give dx and dy")
+            if dx is None or dy is None:
+                raise invalid("a grid z (2-D): give dx and dy (missing: "
+                              + " and ".join(n for n, v in (("dx", dx), ("dy", dy)) if v is None)
+                              + ")")
+            grid = (chk.real("dx", dx, 0.0), chk.real("dy", dy, 0.0))
+        keys["file"] = "arrays"
+        self._setup("profile", keys, threads, prepare=False, names={"trim_k": "trim"})
+        if zz.ndim == 1:
+            xx, step = line
+            at = ffi.NULL if xx is None else ffi.from_buffer("double[]", xx)
+            check(lib.ct_profile_from_line(out, zz.size, at, step,
+                                           ffi.from_buffer("double[]", zz)))
+        else:
+            check(lib.ct_profile_from_grid(out, zz.shape[1], zz.shape[0], grid[0], grid[1],
+                                           ffi.from_buffer("double[]", zz)))
+        self._profile = ffi.gc(out[0], lib.ct_profile_free)
+        check(lib.ct_profile_level(self._profile, int(self.value("surface.detrend"))))
+        self.clipped = 0
+        trim_k = self.value("surface.trim_k")  # 0 without surface.trim = rq
+        if trim_k > 0.0:
+            clipped = ffi.new("size_t *")
+            check(lib.ct_profile_trim(self._profile, trim_k, clipped))
+            self.clipped = int(clipped[0])
+        st = ffi.new("ct_profile_stats *")
+        check(lib.ct_profile_stats_of(self._profile, st))
+        hs = self.value("surface.H") * st.Rt if self.is_set("H") else self.value("surface.Hstar")
         b = ffi.new("ct_bundle **")
-        check(lib.ct_profile_bundle(b, self._profile, E, sigma_y, hs))
+        check(lib.ct_profile_bundle(b, self._profile, self.value("material.E"),
+                                    self.value("material.sigma_y"), hs))
         self._bundle = ffi.gc(b[0], lib.ct_bundle_free)
-        self.threads = threads
         lib.ct_bundle_set_threads(self._bundle, self.threads)
-        self.detrend = detrend
+
+    def _layer(self):
+        """The rods' layer (const ct_layer *)."""
+        if self._bundle is not None:
+            return lib.ct_bundle_layer(self._bundle)
+        return ffi.addressof(self._scales[0], "layer")
 
     @property
     def layer(self):
         """E, sigma_y, Hstar, l0 (the length or area) and h0 (= Rt) of the rods."""
-        L = lib.ct_bundle_layer(self._bundle)
+        L = self._layer()
         return {k: getattr(L, k) for k in ("E", "sigma_y", "Hstar", "l0", "h0")}
+
+    @property
+    def physical(self):
+        """The layer as given: a profile's is the layer as built."""
+        return self.layer
 
     @property
     def source(self):
@@ -452,7 +592,6 @@ class Profile:
 
     def _own_rows(self, name, result):
         """result, checked to be a Restitution of this profile."""
-        from ._api import Restitution  # _api imports this module
         if not isinstance(result, Restitution):
             raise invalid(f"{name}: must be a Restitution (cantact.restitution of this "
                           f"profile), got {type(result).__name__}")
@@ -469,7 +608,8 @@ class Profile:
         which band its bearing fit is on ("given", "impacts", "default") and the library's
         reason when the refit was not made ("" otherwise)."""
         f = ffi.new("ct_profile_fit *")
-        f.dimension = chk.choice("dimension", dimension, DIMENSIONS)
+        f.dimension = _keys.parse(self._row("fit.dimension"), dimension, "dimension",
+                                  self._scene())
         d_lo, d_hi = _band("depths", depths)
         t_lo, t_hi = _band("lags", lags)
         check(lib.ct_profile_fit_of(self._profile, d_lo, d_hi, t_lo, t_hi, f))
@@ -538,7 +678,7 @@ class Profile:
         out = {k: np.full(W.size, np.nan) for k in ("e_cantor_fit", "e_asymptotic_fit",
                                                       "V_star_cantor_fit")}
         check(lib.ct_profile_fitted_e(
-            self._profile, f, lib.ct_bundle_layer(self._bundle), ffi.from_buffer("double[]", W),
+            self._profile, f, self._layer(), ffi.from_buffer("double[]", W),
             W.size, self.threads, ffi.from_buffer("double[]", out["e_cantor_fit"]),
             ffi.from_buffer("double[]", out["e_asymptotic_fit"]),
             ffi.from_buffer("double[]", out["V_star_cantor_fit"])))
@@ -547,25 +687,32 @@ class Profile:
         return {k: v.reshape(shape) for k, v in out.items()}
 
     def _physical_scales(self):
-        L = lib.ct_bundle_layer(self._bundle)
+        L = self._layer()
         return L.l0, L.E, L.h0
 
+    def _units(self):
+        if self._bundle is None:
+            return super()._units()
+        # arrays, which the kind does not prepare: its ct_scales' units of the same layer
+        L = self._layer()
+        PY = L.sigma_y * L.l0
+        return {"1": 1.0, "u": L.h0, "P": PY, "W": PY * L.h0}
+
     def _build(self, V_star, impacts, opts, keep_all=False):
+        if self._bundle is None:
+            return super()._build(V_star, impacts, opts, keep_all)
         return self._bundle, _info(self._bundle)
 
     def __repr__(self):
-        p, L = self._profile, lib.ct_bundle_layer(self._bundle)
+        p, L = self._profile, self._layer()
         shape = f"{p.nx} points" if p.ny == 1 else f"{p.nx} x {p.ny} grid"
         return (f"Profile({self.source}, {shape}, {int(p.n)} rods, Rt={L.h0!r}, "
                 f"E={L.E!r}, sigma_y={L.sigma_y!r}, Hstar={L.Hstar!r})")
 
 
-SURFACES = (Cantor, RandomCantor, Rods, Profile)
-
-
 def surface_of(name, value):
     """value, checked to be a surface."""
-    if not isinstance(value, SURFACES):
-        raise invalid(f"{name}: must be a cantact surface (Cantor, RandomCantor, Rods or Profile), got "
-                      f"{type(value).__name__}")
+    if not isinstance(value, Surface):
+        raise invalid(f"{name}: must be a cantact surface (Surface, Cantor, RandomCantor, Rods "
+                      f"or Profile), got {type(value).__name__}")
     return value

@@ -269,8 +269,8 @@ def _fitted_inf(real, *args):
     return status
 
 
-def _plan_nan(real, plan, out, info):
-    status = real(plan, out, info)
+def _build_nan(real, surface, request, out, info):
+    status = real(surface, request, out, info)
     info.bound = math.nan
     return status
 
@@ -296,7 +296,7 @@ def _plan_nan(real, plan, out, info):
      r"^force\(u = 0.5\) = nan"),
     ("_api", {"ct_curve_first_yield": lambda real, c: math.inf},
      lambda s, rc, p: cantact.load_curve(s, V_star=[1e-3]), r"^first_yield = inf"),
-    ("_surfaces", {"ct_cantor_plan_build": _plan_nan},
+    ("_surfaces", {"ct_surface_build": _build_nan},
      lambda s, rc, p: cantact.restitution(s, V_star=[1e-3]), r"^info bound = nan"),
     ("_surfaces", {"ct_profile_fit_of": _fit_nan}, lambda s, rc, p: p.fit(),
      r"^D_spectrum = nan"),
@@ -380,6 +380,11 @@ def test_hostile_arguments_raise_only_the_module_errors(tmp_path, monkeypatch):
     # (callable, positional arguments, keyword arguments) that work
     calls = [
         (cantact.Cantor, (1.5, 1.3, 10, 500), {"depth": 6}),
+        (cantact.Surface, ("random_cantor",), {"fx": 1.5, "fz": 1.3, "H": 10, "E": 500,
+                                              "depth": 3, "seed": 2, "threads": 1}),
+        (cantact.Surface, ("rods",), {"rods": "0:1, 0.5:1", "Hstar": 2, "unit": "mm",
+                                      "E": 10}),
+        (s.value, ("surface.depth",), {}), (s.supports, ("ensemble",), {}),
         (cantact.RandomCantor, (1.5, 1.3, 10, 500, 3), {"fx_spread": 0.1}),
         (cantact.Rods, ([0.0, 0.5], [1.0, 1.0]), {"E": 10, "Hstar": 2}),
         (cantact.Profile, (), {"z": np.sin(np.arange(32.0)) * 1e-7, "dx": 1e-6, "E": 2e11,

@@ -112,8 +112,9 @@ def raises(exc, match, fn, *args, **kw):
 def test_bad_input(tmp_path, dektak):
     m = dict(E=2e11, sigma_y=4e8)
     raises(cantact.IOFailure, "nothere.csv", cantact.Profile, tmp_path / "nothere.csv", H=10, **m)
-    raises(cantact.InvalidInput, "exactly one", cantact.Profile, dektak, H=10, Hstar=1e-5, **m)
-    raises(cantact.InvalidInput, "exactly one", cantact.Profile, dektak, **m)
+    raises(cantact.InvalidInput, "needs one of surface.H", cantact.Profile, dektak, H=10,
+           Hstar=1e-5, **m)
+    raises(cantact.InvalidInput, "needs one of surface.H", cantact.Profile, dektak, **m)
     raises(cantact.InvalidInput, "must exceed", cantact.Profile, dektak, Hstar=1e-7, **m)
     raises(cantact.InvalidInput, "unit", cantact.Profile, dektak, unit="furlong", H=10, **m)
     raises(cantact.InvalidInput, "give one", cantact.Profile, dektak, z=[1, 2, 3], H=10, **m)
@@ -127,7 +128,8 @@ def test_bad_input(tmp_path, dektak):
     (tmp_path / "bad.csv").write_text("x_um,z_um\n0,1\n1,oops\n2,3\n")
     raises(cantact.InvalidInput, "bad.csv:3", cantact.Profile, tmp_path / "bad.csv", H=10, **m)
     p = cantact.Profile(dektak, H=10, **m)
-    raises(cantact.InvalidInput, "depths", p.fit, depths=(2e-7, 1e-7))
+    raises(cantact.InvalidInput, r"depth band \[2e-07, 1e-07\] empty", p.fit,
+           depths=(2e-7, 1e-7))
     raises(cantact.InvalidInput, "dimension", p.fit, dimension="boxes")
     raises(cantact.InvalidInput, "ascending", p.bearing, [2e-7, 1e-7])
     assert not math.isnan(p.fit()["D"])
@@ -196,11 +198,12 @@ def test_bad_arrays_and_paths(dektak):
                **m)
         raises(IN, r"^trim = '1': must be a real number", cantact.Profile, z=z, dx=1.0,
                trim="1", **m)
-        raises(IN, r"^trim = -1.0: must be > 0", cantact.Profile, z=z, dx=1.0, trim=-1.0, **m)
+        raises(IN, r"^Profile\(\): surface.trim_k = -1.0: must be > 0", cantact.Profile, z=z,
+               dx=1.0, trim=-1.0, **m)
         raises(IN, r"^H = '2': must be a real number", cantact.Profile, z=z, dx=1.0, H="2",
                E=2e11, sigma_y=4e8)
-        raises(IN, r"^Hstar = inf: must be finite", cantact.Profile, z=z, dx=1.0,
-               Hstar=np.inf, E=2e11, sigma_y=4e8)
+        raises(IN, r"^Profile\(\): surface.Hstar = inf: not a finite number", cantact.Profile,
+               z=z, dx=1.0, Hstar=np.inf, E=2e11, sigma_y=4e8)
         # file: a str, bytes or os.PathLike naming a file
         raises(IN, r"^file = 123: must be a path \(str, bytes or os.PathLike\), got int",
                cantact.Profile, file=123, **m)
