@@ -452,6 +452,28 @@ static void periodic_as_laid_out_by_hand(void **state)
     assert_non_null(strstr(msg, "reaches the border of the surface"));
     /* a gentle one stays inside */
     assert_int_equal(impact_of(one, &here, 1e-9, &e1, &u1, msg, sizeof msg), CT_OK);
+    /* what = profile under the body: every rod kept, with its footprint and the face's gap
+     * (the copies of the periodic surface counted: 16 samples x 9 copies, ceil(R / P) = 4
+     * periods each way) */
+    const double V = 1e-3;
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &periodic};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    ct_plan_info info;
+    assert_int_equal(ct_surface_build(one, &req, &b, &info), CT_OK);
+    assert_int_equal(info.rods + info.omitted, 16 * 9);
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    assert_int_equal(ct_surface_write_profile(one, b, f), CT_OK);
+    fclose(f);
+    size_t lines = 0;
+    for (size_t k = 0; k < len; k++)
+        lines += text[k] == '\n';
+    assert_int_equal(lines, 1 + info.rods);
+    assert_non_null(strstr(text, "rod,x_lo,x_hi,top_over_h0,gap_over_h0,"));
+    free(text);
+    ct_bundle_free(b);
     ct_surface_free(one);
     ct_surface_free(three);
     unlink(p1);

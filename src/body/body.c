@@ -3,9 +3,11 @@
  * rods it cannot reach before the layer crushes are left out. After that the rods are rods:
  * the load curve, e, the impact in time and every output run unchanged. */
 #include "body/body.h"
+#include "number.h"
 
 #include <math.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -357,7 +359,8 @@ static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out
     meta->period_x = m->period_x;
     meta->period_y = m->period_y;
     meta->built = built;
-    ct_bundle_set_surface(*out, &body_rods, meta, ct_bundle_omitted(built) + (n - kept));
+    const size_t placed = n * (size_t)(2 * m->kx + 1) * (size_t)(2 * m->ky + 1);
+    ct_bundle_set_surface(*out, &body_rods, meta, ct_bundle_omitted(built) + (placed - kept));
     return CT_OK;
 }
 
@@ -423,4 +426,48 @@ int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **bp, ct_p
         info->omitted = ct_bundle_omitted(out);
     }
     return CT_OK;
+}
+
+int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f)
+{
+    const body_meta *m = ct_bundle_surface_meta(b, &body_rods);
+    if (!m)
+        return ct_error_set(CT_EINVAL, "what = profile: the rods were not met by a curved body");
+    const double hx = sc->physical.l0 / sc->layer.l0, h0 = sc->layer.h0, l0 = sc->layer.l0;
+    int areal = 0;
+    for (size_t k = 0; k < ct_bundle_size(b) && !areal; k++) {
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        areal = !isnan(r.footprint.y_lo);
+    }
+    fputs(areal ? "rod,x_lo,x_hi,y_lo,y_hi," : "rod,x_lo,x_hi,", f);
+    fputs("top_over_h0,gap_over_h0,area_over_l0,length_over_h0,residual_top_over_h0\n", f);
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        ct_rod_info r, built;
+        ct_bundle_rod(b, k, &r);
+        ct_bundle_rod(m->built, m->index[k], &built);
+        const double v[9] = {r.footprint.x_lo * hx,
+                             r.footprint.x_hi * hx,
+                             r.footprint.y_lo * hx,
+                             r.footprint.y_hi * hx,
+                             built.top / h0,
+                             (r.top - built.top) / h0,
+                             r.area / l0,
+                             r.length / h0,
+                             (r.top + r.plastic_strain * r.length) / h0};
+        ct_put_long(f, (long)k + 1);
+        for (int i = 0; i < 9; i++) {
+            if (!areal && (i == 2 || i == 3))
+                continue;
+            fputc(',', f);
+            ct_put_double(f, v[i]);
+        }
+        fputc('\n', f);
+    }
+    return CT_OK;
+}
+
+int ct_body_met(const ct_bundle *b)
+{
+    return ct_bundle_surface_meta(b, &body_rods) != NULL;
 }

@@ -393,10 +393,13 @@ static int cli_values(parse_state *s, ct_scene_keys *k, ct_body *body)
     for (size_t i = 0; i < s->n; i++) {
         entry *e = &s->entries[i];
         const ct_key *row = cli_key(e->section, e->key);
-        if (!row || !strcmp(e->section, "surface"))
+        size_t nbody;
+        const ct_key *body_rows = ct_body_keys_table(&nbody);
+        const int of_body = row >= body_rows && row < body_rows + nbody;
+        if (!row || (!strcmp(e->section, "surface") && !of_body)) /* surface.type: the kind's */
             continue;
-        /* the body's rows point into the body, the others into the keys */
-        int st = ct_key_parse(row, e->value, !strcmp(e->section, "body") ? (void *)body : k);
+        /* the body's rows (surface.periodic too) point into the body, the others into the keys */
+        int st = ct_key_parse(row, e->value, of_body ? (void *)body : k);
         if (st == CT_ENOMEM)
             return scene_error(st, "scene: out of memory");
         if (st)

@@ -457,6 +457,8 @@ int ct_surface_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
     CT_NEED(s);
     CT_NEED(b);
     CT_NEED(f);
+    if (ct_body_met(b)) /* under a curved body: the rods as it met them, whatever the kind */
+        return ct_body_write_rods(b, &s->scales, f);
     return s->kind->write_profile ? s->kind->write_profile(s, b, f) : refused(s, "profile");
 }
 
