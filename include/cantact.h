@@ -941,13 +941,15 @@ typedef enum {
     CT_UNIT_ENERGY = 3, /* an energy: divided by P_Y h0 */
     CT_UNIT_TIME = 4,   /* t / tau as computed (the sweep's mass is E l0 / h0) */
     CT_UNIT_COUNT = 5,  /* an integer */
+    CT_UNIT_SPEED = 6,  /* a speed in h0 / tau, from V*: v1 = sqrt(2) V* h0 / tau */
 } ct_unit;
 
 typedef struct {
     const char *name;  /* "u_max_over_h0" */
     const char *group; /* "e", "time" or "row" */
     ct_unit unit;
-    char type;            /* 'd' double, 'l' long, 'i' int: the field in ct_sweep_row */
+    char type;            /* 'd' double, 'l' long, 'i' int: the field in ct_sweep_row; 'w':
+                             the double at offset times the row's e (a rebound from an impact) */
     int digits;           /* 17: round trip ("%.17g"), 3: "%.3g" */
     const char *physical; /* its twin in the scene's units when a mass is given ("t_contact_s") */
     double divisor;       /* the value is divided by it last (the DEM step: period / 50) */

@@ -53,6 +53,12 @@ static const ct_column columns[] = {
      * LIGGGHTS users commonly take 1/20 to 1/50 of it */
     {"dem_time_step_over_tau", "time", CT_UNIT_TIME, 'd', 17, "dem_time_step_s", 50.0,
      D(period_min), "unload_period / 50: a DEM time step that resolves the contact"},
+    /* with a mass and speeds, the e table carries the speeds themselves (in the scene's units:
+     * m/s for SI scenes) */
+    {"v_impact_over_h0_per_tau", "speed", CT_UNIT_SPEED, 'd', 17, "v_impact_m_per_s", 1.0,
+     offsetof(ct_sweep_row, V_star), "the impact speed v1 = sqrt(2) V* h0 / tau"},
+    {"v_rebound_over_h0_per_tau", "speed", CT_UNIT_SPEED, 'w', 17, "v_rebound_m_per_s", 1.0,
+     offsetof(ct_sweep_row, V_star), "the rebound speed v2 = e v1"},
 };
 #undef R
 #undef D
@@ -73,6 +79,8 @@ static double unit_of(ct_unit u, const ct_layer *L)
         return L->sigma_y * L->l0;
     case CT_UNIT_ENERGY:
         return L->sigma_y * L->l0 * L->h0;
+    case CT_UNIT_SPEED:
+        return 0.70710678118654752440; /* 1/sqrt(2): V* over it is sqrt(2) V*, v in h0/tau */
     default:
         return 1.0;
     }
@@ -93,7 +101,7 @@ static double raw(const ct_column *c, const ct_sweep_row *row)
     }
     double v;
     memcpy(&v, at, sizeof v);
-    return v;
+    return c->type == 'w' ? v * row->r.e : v;
 }
 
 double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer)
@@ -121,6 +129,9 @@ double ct_column_physical(const ct_column *c, const ct_sweep_row *row, const ct_
         break;
     case CT_UNIT_TIME:
         y = x * tau;
+        break;
+    case CT_UNIT_SPEED:
+        y = x * physical->h0 / tau;
         break;
     default:
         break;

@@ -147,5 +147,22 @@ near "rod file P_peak_N_per_m" "$(col "$tmp/rf.csv" P_peak_N_per_m 1)" 0.5
 near "rod file P_peak_over_PY (l0 = 3 m)" "$(col "$tmp/rf.csv" P_peak_over_PY 1)" \
     0.16666666666666667
 
+# --- with a mass and a speed the e table carries the speeds: v_impact is the velocity given
+# (0.05 m/s), v_rebound is e times it; a plastic impact (1.2 m/s, e < 1) checks the product
+"$ct" run -q "$tmp/rods.ini" --set impact.velocity=0.05,1.2 -o "$tmp/speeds.csv" ||
+    bad "speeds exited $?"
+near "v_impact_m_per_s" "$(col "$tmp/speeds.csv" v_impact_m_per_s 1)" 0.05
+near "v_rebound_m_per_s (elastic)" "$(col "$tmp/speeds.csv" v_rebound_m_per_s 1)" 0.05
+near "v_impact_m_per_s" "$(col "$tmp/speeds.csv" v_impact_m_per_s 2)" 1.2
+e2=$(col "$tmp/speeds.csv" e 2)
+awk -v e="$e2" 'BEGIN { exit !(e > 0 && e < 0.999) }' || bad "the second impact is not plastic: e = $e2"
+near "v_rebound_m_per_s = e v_impact" "$(col "$tmp/speeds.csv" v_rebound_m_per_s 2)" \
+    "$(awk -v e="$e2" 'BEGIN { printf "%.17g", 1.2 * e }')"
+# given V* alone there is no mass: no speeds in the scene's units
+sed '/^mass/d; s/^velocity = .*/V_star = 0.01/' "$tmp/rods.ini" >"$tmp/vstar.ini"
+"$ct" run -q "$tmp/vstar.ini" -o "$tmp/nospeed.csv" || bad "V* scene exited $?"
+head -1 "$tmp/nospeed.csv" | grep -q "elastic$" && ok ||
+    bad "a scene given in V* has other columns: $(head -1 "$tmp/nospeed.csv")"
+
 echo "kinds-cli: $pass passed, $failn failed"
 [ $failn -eq 0 ]

@@ -405,6 +405,7 @@ typedef enum {
     CT_UNIT_ENERGY = 3,
     CT_UNIT_TIME = 4,
     CT_UNIT_COUNT = 5,
+    CT_UNIT_SPEED = 6,
 } ct_unit;
 typedef struct {
     const char *name;

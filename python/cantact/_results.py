@@ -15,11 +15,12 @@ from ._ffi import ffi, lib
 # The names of the library's units (ct_unit), as COLUMNS shows them.
 _UNIT_NAMES = {lib.CT_UNIT_ONE: "one", lib.CT_UNIT_LENGTH: "length",
                lib.CT_UNIT_FORCE: "force", lib.CT_UNIT_ENERGY: "energy",
-               lib.CT_UNIT_TIME: "time", lib.CT_UNIT_COUNT: "count"}
+               lib.CT_UNIT_TIME: "time", lib.CT_UNIT_COUNT: "count",
+               lib.CT_UNIT_SPEED: "speed"}
 # ROW_FIELDS' unit codes, as before the table: "1" dimensionless as computed (times too),
 # "u" a length (/ h0), "P" a force (/ P_Y = sigma_y l0), "W" an energy (/ P_Y h0)
 _UNIT_CODES = {"one": "1", "time": "1", "length": "u", "force": "P", "energy": "W",
-               "count": "1"}
+               "count": "1", "speed": "1"}
 
 
 def _field_of(offset):
@@ -57,7 +58,7 @@ def _read_columns():
 
 _TABLE, COLUMNS = _read_columns()  # every column: the e table, the time columns, the row's
 # The columns that are Restitution's per-row float attributes.
-_ROW_COLUMNS = tuple(c for c in COLUMNS if c["type"] == "d" and c["name"] != "V_star")
+_ROW_COLUMNS = tuple(c for c in COLUMNS if c["type"] in "dw" and c["name"] != "V_star")
 # (attribute, field of ct_sweep_row, unit code) of each, derived from the table: kept for
 # compatibility; COLUMNS has the rest (e.g. dem_time_step_over_tau's divisor, 50).
 ROW_FIELDS = tuple((c["name"], c["field"], _UNIT_CODES[c["unit"]]) for c in _ROW_COLUMNS)

@@ -29,7 +29,7 @@ def same(a, b):
 
 def test_attributes_are_the_tables_columns():
     cols = table()
-    names = [c["name"] for c in cols if c["type"] == "d" and c["name"] != "V_star"]
+    names = [c["name"] for c in cols if c["type"] in "dw" and c["name"] != "V_star"]
     assert "dem_time_step_over_tau" in names
     assert [f[0] for f in cantact.ROW_FIELDS] == names
     assert [c["name"] for c in cantact.COLUMNS] == [c["name"] for c in cols]

@@ -512,7 +512,7 @@ def test_restitution_columns_are_the_librarys():
     attrs = sorted(k for k, v in vars(r).items() if not k.startswith("_")
                    and isinstance(v, np.ndarray) and v.dtype == np.float64 and v.shape == r.e.shape)
     columns = [text(p[0][k].name) for k in range(n)
-               if p[0][k].type == b"d" and text(p[0][k].name) != "V_star"]
+               if p[0][k].type in (b"d", b"w") and text(p[0][k].name) != "V_star"]
     assert attrs == sorted(columns + ["kinetic_energy"])
 
 

@@ -250,6 +250,9 @@ static void write_e_header(FILE *f, const ct_scene *sc)
     }
     if (sc->what & CT_OUT_TIME)
         ct_cli_time_header(f, sc);
+    for (size_t k = 0; k < n && sc->mass > 0.0; k++) /* with a mass, the speeds themselves */
+        if (!strcmp(cols[k].group, "speed"))
+            fprintf(f, ",%s", cols[k].physical);
     fprintf(f, "%s\n", sc->skip_failed ? ",error" : "");
 }
 
@@ -257,8 +260,8 @@ static void write_e_header(FILE *f, const ct_scene *sc)
  * solver.on_error = skip) the error; a failed impact has its impact and V* and empty fields
  * up to its reason. */
 static void write_e_row(FILE *f, const ct_scene *sc, const ct_cli_columns *ec,
-                        const ct_cli_columns *tc, const ct_sweep_row *row, const double *cmp,
-                        size_t ncmp)
+                        const ct_cli_columns *tc, const ct_cli_columns *sp, const ct_sweep_row *row,
+                        const double *cmp, size_t ncmp)
 {
     const ct_column *cols = ec->cols;
     const size_t *at = ec->at, n = ec->n;
@@ -282,6 +285,15 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_cli_columns *ec,
         field(l, row->status ? NAN : cmp[q], 17);
     if (sc->what & CT_OUT_TIME)
         ct_cli_time_row(l, sc, tc, row);
+    if (sc->mass > 0.0) { /* the speeds in the scene's units */
+        const double tau = ct_time_scale(&sc->scales, sc->mass);
+        for (size_t q = 0; q < sp->n; q++)
+            field(l,
+                  row->status
+                      ? NAN
+                      : ct_column_physical(&cols[sp->at[q]], row, L, &sc->scales.physical, tau),
+                  17);
+    }
     if (row->status) {
         ct_line_str(l, ",\"");
         for (const char *m = row->message; *m; m++)
@@ -307,8 +319,9 @@ static int write_e_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, s
                         const double *cmp, size_t ncmp, row_tally *t)
 {
     char err[512];
-    ct_cli_columns ec, tc;
-    if (f && (ct_cli_columns_of(&ec, "e") || ct_cli_columns_of(&tc, "time"))) {
+    ct_cli_columns ec, tc, sp;
+    if (f && (ct_cli_columns_of(&ec, "e") || ct_cli_columns_of(&tc, "time") ||
+              ct_cli_columns_of(&sp, "speed"))) {
         ct_cli_fail("the e table has more than %d columns of a group", CT_CLI_COLUMNS);
         return EXIT_FAILED;
     }
@@ -329,7 +342,7 @@ static int write_e_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, s
         t->checked += row->status == CT_OK && !isnan(row->r.e_closed);
         t->checked_speeds += row->impact == 1 && row->status == CT_OK && !isnan(row->r.e_closed);
         if (f)
-            write_e_row(f, sc, &ec, &tc, row, cmp ? cmp + ncmp * k : NULL, ncmp);
+            write_e_row(f, sc, &ec, &tc, &sp, row, cmp ? cmp + ncmp * k : NULL, ncmp);
     }
     return EXIT_DONE;
 }
