@@ -141,7 +141,7 @@ const ct_layer *ct_bundle_layer(const ct_bundle *b); /* E, sigma_y, H*, l0, h0 *
 const char *ct_bundle_surface(const ct_bundle *b);
 
 /* Where a rod stands on the surface, the part of the plane its top face covers: what a curved
- * body meets first (docs/model.md §12). An interval [x_lo, x_hi] of a line surface (a Cantor
+ * body meets first (docs/model.md §14). An interval [x_lo, x_hi] of a line surface (a Cantor
  * piece, a profile sample's share of the x-axis), a rectangle of an areal one (an X3P pixel),
  * or a point (x_lo = x_hi, y_lo = y_hi; y NaN on a line) where a rod is given by its position.
  * CT_FOOTPRINT_NONE: the rod stands for pieces at several places (a merged Cantor stage) or
@@ -1025,15 +1025,15 @@ int ct_word_index(const char *words, const char *word);
 /* The keys of a run that are not the surface's (sections impact, solver, table, ensemble),
  * where their rows (ct_run_keys_table) store them. */
 typedef struct {
-    ct_speeds V_star, velocity;                  /* [impact] */
+    ct_speeds V_star, velocity;                    /* [impact] */
     double mass, drop_height, gravity, stop_speed; /* [impact], the scene's units */
     long impacts;
-    int sequence; /* 0 sweep, 1 bounce */
-    int quadrature;                 /* [solver]: ct_quad_rule */
+    int sequence;   /* 0 sweep, 1 bounce */
+    int quadrature; /* [solver]: ct_quad_rule */
     long nodes;
     double tolerance, depth_tolerance;
     long threads;
-    int on_error, check, path; /* stop|skip; auto|all|closed|none; ct_sweep_path */
+    int on_error, check, path;              /* stop|skip; auto|all|closed|none; ct_sweep_path */
     double table_tolerance, table_range[2]; /* [table] */
     int interpolation;
     long max_nodes, check_points;
@@ -1131,7 +1131,7 @@ double ct_V_star_of(double m, double v, double l0, double E, double h0);
 /* tau = sqrt(m h0 / (E l0)) [time] of a body of mass m in the physical units. */
 double ct_time_scale(const ct_scales *sc, double m);
 
-/* ---- bodies (docs/model.md §12) -------------------------------------------------- */
+/* ---- bodies (docs/model.md §14) -------------------------------------------------- */
 /* What strikes the rods: the paper's flat strip, a cylinder with its axis across a line
  * surface, or a sphere over an areal one. A body only shifts each rod's top by the gap of its
  * face at the rod's footprint (the first point of the footprint it reaches); everything after
@@ -1155,6 +1155,8 @@ void ct_body_defaults(ct_body *body);
  * R - sqrt(R^2 - r^2) for a curved body (computed as r^2 / (R + sqrt(R^2 - r^2))), INFINITY
  * beyond R, 0 for the flat body. */
 double ct_body_gap(const ct_body *body, double r);
+/* "under a sphere of R = 0.0025, its apex at x = 1e-4, y = 2e-4" ("" for the flat body). */
+void ct_body_describe(const ct_body *body, char *buf, size_t len);
 
 /* What a build is for: the speeds it will see and how. */
 typedef struct {

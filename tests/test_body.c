@@ -1,4 +1,4 @@
-/* Bodies (src/body/, docs/model.md §12): a flat body leaves the rods bit for bit; a cylinder
+/* Bodies (src/body/, docs/model.md §14): a flat body leaves the rods bit for bit; a cylinder
  * and a sphere shift each rod's top by the gap of their face at the rod's footprint. Checked
  * against closed forms of a smooth Winkler bed (every top 0, one length L): a sphere loads as
  * P = (E/L) pi (R u^2 - u^3/3) while elastic and as pi sigma_y [2R(u - u_y) - (u - u_y)^2 +

@@ -523,6 +523,7 @@ size_t ct_body_count(void);
 const char *ct_body_name(size_t k);
 const char *ct_body_summary(size_t k);
 void ct_body_defaults(ct_body *body);
+void ct_body_describe(const ct_body *body, char *buf, size_t len);
 double ct_body_gap(const ct_body *body, double r);
 typedef struct {
     const double *V_star;

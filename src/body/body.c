@@ -1,4 +1,4 @@
-/* The registry of bodies and what a body does to the rods (docs/model.md §12): each rod's top
+/* The registry of bodies and what a body does to the rods (docs/model.md §14): each rod's top
  * is shifted by the gap of the face at the first point of the rod's footprint it reaches; the
  * rods it cannot reach before the layer crushes are left out. After that the rods are rods:
  * the load curve, e, the impact in time and every output run unchanged. */
@@ -254,7 +254,8 @@ static int check_body(const ct_body *body, const ct_body_kind **d)
 }
 
 /* How a curved body meets a bundle: the apex, the units, the copies of a periodic surface
- * (offsets -K .. K periods each way). */
+ * (offsets -K .. K periods each way), and the rods as read once (footprint, top, length, area,
+ * plastic strain: reading them through ct_bundle_rod for every copy was most of the time). */
 typedef struct {
     const ct_body *body;
     const ct_body_kind *d;
@@ -263,54 +264,93 @@ typedef struct {
     double hx, hz, px, py;
     double period_x, period_y;
     int kx, ky;
+    size_t n;
+    double *rods; /* 8 per rod: x_lo, x_hi, y_lo, y_hi, top, length, area, plastic strain */
 } meeting;
 
-/* The gap [the rods' vertical unit] at rod k's footprint in copy (cx, cy). */
-static double gap_of(const meeting *m, const ct_rod_info *r, int cx, int cy)
+enum { X_LO, X_HI, Y_LO, Y_HI, TOP, LENGTH, AREA, EPS_P, NFIELDS };
+
+static int read_rods(meeting *m)
 {
+    m->n = ct_bundle_size(m->b);
+    m->rods = malloc((m->n ? m->n : 1) * NFIELDS * sizeof(double));
+    if (!m->rods)
+        return ct_error_set(CT_ENOMEM, "body: out of memory for %zu rods", m->n);
+    for (size_t k = 0; k < m->n; k++) {
+        ct_rod_info r;
+        ct_bundle_rod(m->b, k, &r);
+        double *v = m->rods + k * NFIELDS;
+        v[X_LO] = r.footprint.x_lo;
+        v[X_HI] = r.footprint.x_hi;
+        v[Y_LO] = m->d->dims == 2 ? r.footprint.y_lo : 0.0;
+        v[Y_HI] = m->d->dims == 2 ? r.footprint.y_hi : 0.0;
+        v[TOP] = r.top;
+        v[LENGTH] = r.length;
+        v[AREA] = r.area;
+        v[EPS_P] = r.plastic_strain;
+    }
+    return CT_OK;
+}
+
+/* The gap [the rods' vertical unit] at the nearest point of the box [x_lo, x_hi] x [y_lo, y_hi]
+ * moved by copy (cx, cy). */
+static double box_gap(const meeting *m, double x_lo, double x_hi, double y_lo, double y_hi, int cx,
+                      int cy)
+{
+    const ct_footprint f = {CT_FOOTPRINT_RECTANGLE, x_lo, x_hi, y_lo, y_hi};
     const double r_apex =
-        distance(&r->footprint, m->d->dims, m->px, m->py, cx * m->period_x, cy * m->period_y);
+        distance(&f, m->d->dims, m->px, m->py, cx * m->period_x, cy * m->period_y);
     return ct_body_gap(m->body, r_apex * m->hx) * m->hz;
 }
 
-/* 1 when rod r touches the border of the surface (not periodic). */
-static int on_border(const meeting *m, const ct_rod_info *r)
+static double gap_of(const meeting *m, size_t k, int cx, int cy)
 {
-    const ct_footprint *f = &r->footprint;
-    return f->x_lo <= m->e.x_lo || f->x_hi >= m->e.x_hi ||
-           (m->d->dims == 2 && (f->y_lo <= m->e.y_lo || f->y_hi >= m->e.y_hi));
+    const double *v = m->rods + k * NFIELDS;
+    return box_gap(m, v[X_LO], v[X_HI], v[Y_LO], v[Y_HI], cx, cy);
 }
 
-/* Pass 1: the crushed limit H (the first rod bottom the face reaches) and the rods kept (their
- * top below H). */
+/* 0 when no rod of copy (cx, cy) can lie above H: the face's gap at the copy's extent is H or
+ * more, and every top is >= 0. */
+static int copy_reached(const meeting *m, int cx, int cy, double H)
+{
+    return box_gap(m, m->e.x_lo, m->e.x_hi, m->e.y_lo, m->e.y_hi, cx, cy) < H;
+}
+
+/* 1 when rod k touches the border of the surface (not periodic). */
+static int on_border(const meeting *m, size_t k)
+{
+    const double *v = m->rods + k * NFIELDS;
+    return v[X_LO] <= m->e.x_lo || v[X_HI] >= m->e.x_hi ||
+           (m->d->dims == 2 && (v[Y_LO] <= m->e.y_lo || v[Y_HI] >= m->e.y_hi));
+}
+
+/* Pass 1: the crushed limit H, the first rod bottom the face reaches: over the apex's own copy,
+ * then the copies that can still lower it. */
 static double crushed_limit(const meeting *m)
 {
     double H = INFINITY;
+    for (size_t k = 0; k < m->n; k++)
+        H = fmin(H,
+                 m->rods[k * NFIELDS + TOP] + gap_of(m, k, 0, 0) + m->rods[k * NFIELDS + LENGTH]);
     for (int cy = -m->ky; cy <= m->ky; cy++)
         for (int cx = -m->kx; cx <= m->kx; cx++)
-            for (size_t k = 0; k < ct_bundle_size(m->b); k++) {
-                ct_rod_info r;
-                ct_bundle_rod(m->b, k, &r);
-                H = fmin(H, r.top + gap_of(m, &r, cx, cy) + r.length);
-            }
+            for (size_t k = 0; (cx || cy) && copy_reached(m, cx, cy, H) && k < m->n; k++)
+                H = fmin(H, m->rods[k * NFIELDS + TOP] + gap_of(m, k, cx, cy) +
+                                m->rods[k * NFIELDS + LENGTH]);
     return H;
 }
 
-/* Pass 2: the kept rods into *out (layer H* = H) with their metadata, and the reach: on a
- * surface that does not repeat, the face may go on until it touches a border rod where it
- * would reach past the surface's edge. */
+/* Pass 2: the kept rods (their top below H) into *out (layer H* = H) with their metadata, and
+ * the reach: on a surface that does not repeat, the face may go on until it touches a border
+ * rod where it would reach past the surface's edge. */
 static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out)
 {
-    const size_t n = ct_bundle_size(m->b);
     const int periodic = m->kx || m->ky;
     size_t kept = 0;
     for (int cy = -m->ky; cy <= m->ky; cy++)
         for (int cx = -m->kx; cx <= m->kx; cx++)
-            for (size_t k = 0; k < n; k++) {
-                ct_rod_info r;
-                ct_bundle_rod(m->b, k, &r);
-                kept += r.top + gap_of(m, &r, cx, cy) < H;
-            }
+            for (size_t k = 0; copy_reached(m, cx, cy, H) && k < m->n; k++)
+                kept += m->rods[k * NFIELDS + TOP] + gap_of(m, k, cx, cy) < H;
     ct_layer layer = *ct_bundle_layer(m->b);
     layer.Hstar = H;
     body_meta *meta = body_meta_new(kept, periodic);
@@ -326,21 +366,19 @@ static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out
     size_t j = 0;
     for (int cy = -m->ky; cy <= m->ky; cy++)
         for (int cx = -m->kx; cx <= m->kx; cx++)
-            for (size_t k = 0; k < n; k++) {
-                ct_rod_info r;
-                ct_bundle_rod(m->b, k, &r);
-                const double t = r.top + gap_of(m, &r, cx, cy);
+            for (size_t k = 0; copy_reached(m, cx, cy, H) && k < m->n; k++) {
+                const double *v = m->rods + k * NFIELDS, t = v[TOP] + gap_of(m, k, cx, cy);
                 if (!(t < H))
                     continue;
                 top[j] = t;
-                length[j] = r.length;
-                area[j] = r.area;
-                eps_p[j] = r.plastic_strain;
+                length[j] = v[LENGTH];
+                area[j] = v[AREA];
+                eps_p[j] = v[EPS_P];
                 meta->index[j] = k;
                 if (periodic) {
                     meta->copy_x[j] = cx;
                     meta->copy_y[j] = cy;
-                } else if (on_border(m, &r))
+                } else if (on_border(m, k))
                     border = fmin(border, t);
                 j++;
             }
@@ -359,7 +397,7 @@ static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out
     meta->period_x = m->period_x;
     meta->period_y = m->period_y;
     meta->built = built;
-    const size_t placed = n * (size_t)(2 * m->kx + 1) * (size_t)(2 * m->ky + 1);
+    const size_t placed = m->n * (size_t)(2 * m->kx + 1) * (size_t)(2 * m->ky + 1);
     ct_bundle_set_surface(*out, &body_rods, meta, ct_bundle_omitted(built) + (placed - kept));
     return CT_OK;
 }
@@ -411,14 +449,17 @@ int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **bp, ct_p
     m.hz = sc->layer.h0 / sc->physical.h0;
     if ((st = apex_of(body, m.d, &m.e, m.hx, &m.px, &m.py)) || (st = copies_of(&m)))
         return st;
+    if ((st = read_rods(&m)))
+        return st;
     const double H = crushed_limit(&m);
-    if (!isfinite(H))
-        return ct_error_set(CT_EINVAL,
-                            "body.shape = %s: the face (R = %g) reaches no rod from its apex at "
-                            "x = %g",
-                            m.d->name, body->radius, m.px * m.hx);
     ct_bundle *out = NULL;
-    if ((st = shifted(&m, H, *bp, &out)))
+    st = isfinite(H) ? shifted(&m, H, *bp, &out)
+                     : ct_error_set(CT_EINVAL,
+                                    "body.shape = %s: the face (R = %g) reaches no rod from its "
+                                    "apex at x = %g",
+                                    m.d->name, body->radius, m.px * m.hx);
+    free(m.rods);
+    if (st)
         return st;
     *bp = out; /* at least the rod whose bottom fixes H is kept; the built one is out's now */
     if (info) {
@@ -470,4 +511,23 @@ int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f)
 int ct_body_met(const ct_bundle *b)
 {
     return ct_bundle_surface_meta(b, &body_rods) != NULL;
+}
+
+void ct_body_describe(const ct_body *body, char *buf, size_t len)
+{
+    if (!len)
+        return;
+    buf[0] = '\0';
+    if (!body || body->shape <= 0 || (size_t)body->shape >= NBODIES)
+        return;
+    const double *p = body->position;
+    char at[96];
+    if (isnan(p[0]))
+        snprintf(at, sizeof at, "the middle of the surface");
+    else if (isnan(p[1]))
+        snprintf(at, sizeof at, "x = %g", p[0]);
+    else
+        snprintf(at, sizeof at, "x = %g, y = %g", p[0], p[1]);
+    snprintf(buf, len, "under a %s of R = %g, its apex at %s%s", registry[body->shape]->name,
+             body->radius, at, body->periodic ? ", the surface repeating" : "");
 }

@@ -1,5 +1,5 @@
 /* A rigid sphere of radius R over an areal surface (an X3P map, rods with x and y): its face's
- * gap at distance r from the apex is R - sqrt(R^2 - r^2) (docs/model.md §12). */
+ * gap at distance r from the apex is R - sqrt(R^2 - r^2) (docs/model.md §14). */
 #include "body/body.h"
 
 const ct_body_kind ct_body_sphere = {

@@ -392,9 +392,11 @@ static int run_bounce(ct_scene *sc, int quiet)
         return ct_cli_status_exit(st);
     }
     if (!quiet) {
-        char what[300];
+        char what[300], body[200];
         ct_surface_describe(sc->surface, &info, what, sizeof what);
-        fprintf(stderr, "cantact: bounce sequence on %s, at most %ld impacts\n", what, sc->impacts);
+        ct_body_describe(&sc->body, body, sizeof body);
+        fprintf(stderr, "cantact: bounce sequence on %s%s%s, at most %ld impacts\n", what,
+                body[0] ? ", " : "", body, sc->impacts);
     }
     st = ct_cli_bounce(out.f, sc, b, err, sizeof err);
     ct_bundle_free(b);
@@ -702,9 +704,11 @@ static int run_sweep(ct_scene *sc, int quiet)
         return ct_cli_status_exit(st);
     }
     if (!quiet) {
-        char what[300];
+        char what[300], body[200];
         ct_surface_describe(sc->surface, &info, what, sizeof what);
-        fprintf(stderr, "cantact: %s, %d thread(s)\n", what, ct_bundle_set_threads(b, sc->threads));
+        ct_body_describe(&sc->body, body, sizeof body);
+        fprintf(stderr, "cantact: %s%s%s, %d thread(s)\n", what, body[0] ? ", " : "", body,
+                ct_bundle_set_threads(b, sc->threads));
     }
     if (fe)
         write_e_header(fe, sc);

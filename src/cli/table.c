@@ -106,8 +106,11 @@ int ct_cli_table(int argc, char **argv)
         rc = ct_cli_status_exit(st);
         goto done;
     }
-    char line[600];
-    ct_surface_table_line(sc.surface, &info, line, sizeof line);
+    char line[800], body[200];
+    ct_surface_table_line(sc.surface, &info, line, 600);
+    ct_body_describe(&sc.body, body, sizeof body);
+    if (body[0]) /* a table made for a ball says so */
+        snprintf(line + strlen(line), sizeof line - strlen(line), "; %s", body);
     ct_table_meta meta = {.version = CT_VERSION,
                           .scene = scene,
                           .surface = line,
