@@ -2,29 +2,9 @@
 # CLI behaviour: exit codes (0 done, 1 computation failed, 2 bad input), one-line errors,
 # no output file left behind on failure, --set overrides, thread-count independence.
 # Usage: test_cli.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
-
-# expect CODE DESCRIPTION -- command...
-expect() {
-    local code=$1 what=$2
-    shift 3
-    "$@" >"$tmp/out" 2>"$tmp/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then
-        bad "$what: exit $rc, expected $code; stderr: $(cat "$tmp/err")"
-        return
-    fi
-    if [ "$code" -ne 0 ] && [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
-        bad "$what: expected one line on stderr, got: $(cat "$tmp/err")"
-        return
-    fi
-    ok
-}
 
 # Device files used by the tests: as root, private copies made with mknod, so that a broken
 # build (the mutation check runs this script against deliberate mistakes, as root in CI) can
@@ -401,5 +381,4 @@ expect 0 "streamed, skip" -- "$ct" run -q "$scene" --set impact.V_star=1e-5:10:2
     --set solver.on_error=skip -o "$tmp/skip.csv"
 grep -q ',"impact energy .* crushed' "$tmp/skip.csv" && [ "$(wc -l <"$tmp/skip.csv")" -eq 20001 ] &&
     ok || bad "streamed, skip: no crushed rows with their reason"
-echo "$pass passed, $failn failed"
-[ "$failn" -eq 0 ]
+finish
