@@ -88,6 +88,7 @@
 #include <errno.h>
 #include <locale.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -313,6 +314,234 @@ static inline int ct_tab_check_slopes(const ct_tab *t, size_t *bad)
 /* Why ct_tab_read failed. */
 enum { CT_TAB_BAD_FILE = 1, CT_TAB_IO_ERROR = 2, CT_TAB_NO_MEMORY = 3 };
 
+/* The reader's steps say what is wrong with a line in what (CT_TAB_WHAT bytes); ct_tab_read
+ * puts file:line before it. */
+enum { CT_TAB_WHAT = 200 };
+
+/* The message into what: returns CT_TAB_BAD_FILE. */
+static inline int ct_tab_fail(char *what, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+static inline int ct_tab_fail(char *what, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(what, CT_TAB_WHAT, fmt, ap);
+    va_end(ap);
+    return CT_TAB_BAD_FILE;
+}
+
+/* What the reader knows between lines. */
+typedef struct {
+    size_t cap;      /* rows allocated */
+    size_t nodes;    /* # nodes (0: not given yet) */
+    unsigned seen;   /* bit k: ct_tab_keys[k] given */
+    int have_header; /* the column header was read */
+} ct_tab_reading;
+
+/* How a line that fgets read into line (size bytes, len of them) ends: 0 with its line break
+ * (a line to read), -1 a long prose line, skipped whole (the rest of it read from f),
+ * CT_TAB_BAD_FILE when no table has such a line (what says why), CT_TAB_IO_ERROR at a read
+ * error. */
+static inline int ct_tab_line_end(FILE *f, const char *line, size_t len, size_t size, char *what)
+{
+    if (len + 1 == size && line[len - 1] != '\n') {
+        /* a long header line (a long scene path): prose and keys this reader does not use
+         * are skipped whole; a key it uses, and a row, are never that long */
+        int c;
+        if (line[0] != '#' || ct_tab_key_used(line))
+            return ct_tab_fail(what, "line longer than %d characters", (int)size - 2);
+        while ((c = fgetc(f)) != EOF && c != '\n')
+            if (!c)
+                return ct_tab_fail(what, "a NUL byte: not a text file");
+        if (c == EOF && !ferror(f) && memchr(line, '\r', len))
+            return ct_tab_fail(what, "lines end in a carriage return alone: not read");
+        if (c == EOF && !ferror(f))
+            return ct_tab_fail(what, "the last line has no line break: the file is cut");
+        return -1;
+    }
+    if (!len || line[len - 1] != '\n') {
+        /* fgets stops after a line break, at the end of the file, or with its buffer full
+         * (above): this line is the last and has no break, or it holds a NUL byte */
+        if (ferror(f))
+            return CT_TAB_IO_ERROR;
+        if (feof(f) && memchr(line, '\r', len))
+            return ct_tab_fail(what, "lines end in a carriage return alone: not read");
+        if (feof(f))
+            return ct_tab_fail(what, "the last line has no line break: the file is cut");
+        return ct_tab_fail(what, "a NUL byte: not a text file");
+    }
+    return 0;
+}
+
+/* The value v of a header key (key: its index in ct_tab_keys) into t, the count of rows into
+ * *nodes. 0, or CT_TAB_BAD_FILE with what set. */
+static inline int ct_tab_key_value(ct_tab *t, int key, const char *v, size_t *nodes, char *what)
+{
+    /* a number is the whole word: strtod's ',' ends a row's field, not a value */
+    double x = NAN;
+    const int number = key != 0 && key != 5 && !strchr(v, ',') && ct_tab_number(v, &x);
+    switch (key) {
+    case 0:
+        if (!strcmp(v, "monotone_cubic"))
+            t->rule = CT_TAB_MONOTONE_CUBIC;
+        else if (!strcmp(v, "linear"))
+            t->rule = CT_TAB_LINEAR;
+        else
+            return ct_tab_fail(what, "interpolation = %s: must be monotone_cubic or linear", v);
+        break;
+    case 1:
+        if (!number || !(x >= 0.0))
+            return ct_tab_fail(what, "V_star_crit = %s: not a number >= 0", v);
+        t->V_star_crit = x;
+        break;
+    case 2:
+        if (!number || !(x > 0.0))
+            return ct_tab_fail(what, "tolerance = %s: not a number > 0", v);
+        t->tolerance = x;
+        break;
+    case 3:
+        if (!number || !(x >= 0.0))
+            return ct_tab_fail(what, "worst_error = %s: not a number >= 0", v);
+        t->worst_error = x;
+        break;
+    case 4:
+        if (!number || !(x > 0.0))
+            return ct_tab_fail(what, "v_per_V_star = %s: not a number > 0", v);
+        t->v_per_V_star = x;
+        break;
+    case 5:
+        if (!ct_tab_count(v, nodes) || *nodes < 2)
+            return ct_tab_fail(what, "nodes = %s: not a count >= 2 (the number of rows)", v);
+        break;
+    default: /* where worst_error was found, or none when no point was checked */
+        if (strcmp(v, "none") && (!number || !(x > 0.0)))
+            return ct_tab_fail(what, "worst_error_at_V_star = %s: not a number > 0 or none", v);
+        t->worst_V_star = x;
+    }
+    return 0;
+}
+
+/* A "# key = value" line of a key the reader reads (key: its index in ct_tab_keys): once, before
+ * the column header, its value's first word (a comment may follow it) into t. 0, or
+ * CT_TAB_BAD_FILE with what set. */
+static inline int ct_tab_key_line(ct_tab *t, ct_tab_reading *r, const char *line, int key,
+                                  char *what)
+{
+    if (r->seen & (1u << key))
+        return ct_tab_fail(what, "# %s given twice", ct_tab_keys[key]);
+    if (r->have_header)
+        return ct_tab_fail(what, "# %s after the column header: header keys come first",
+                           ct_tab_keys[key]);
+    r->seen |= 1u << key;
+    char v[64];
+    const char *w = strchr(line, '=') + 1;
+    size_t vl = 0;
+    while (*w == ' ')
+        w++;
+    while (w[vl] && w[vl] != ' ' && w[vl] != '\t' && w[vl] != '\n' && w[vl] != '\r')
+        if (++vl >= sizeof v)
+            return ct_tab_fail(what, "%s: value longer than %d characters", ct_tab_keys[key],
+                               (int)sizeof v - 1);
+    memcpy(v, w, vl);
+    v[vl] = '\0';
+    return ct_tab_key_value(t, key, v, &r->nodes, what);
+}
+
+/* Room for a row more: the arrays doubled (256 rows at first) into *cap. 0, or -1 out of
+ * memory (what was allocated stays in t). */
+static inline int ct_tab_grow(ct_tab *t, size_t *cap)
+{
+    size_t ncap = *cap ? 2 * *cap : 256;
+    double *a = (double *)realloc(t->V_star, ncap * sizeof(double));
+    if (a)
+        t->V_star = a;
+    double *b = a ? (double *)realloc(t->e, ncap * sizeof(double)) : NULL;
+    if (b)
+        t->e = b;
+    double *c = b ? (double *)realloc(t->slope, ncap * sizeof(double)) : NULL;
+    if (c)
+        t->slope = c;
+    if (!c)
+        return -1;
+    *cap = ncap;
+    return 0;
+}
+
+/* A row V_star,e,de_dlnV_star appended to t (room made for it). 0, or CT_TAB_BAD_FILE with
+ * what set. */
+static inline int ct_tab_row(ct_tab *t, const char *line, char *what)
+{
+    const char *c1 = strchr(line, ','), *c2 = c1 ? strchr(c1 + 1, ',') : NULL;
+    double V, e, d;
+    if (!c2 || strchr(c2 + 1, ',') || !ct_tab_number(line, &V) || !ct_tab_number(c1 + 1, &e) ||
+        !ct_tab_number(c2 + 1, &d))
+        return ct_tab_fail(what, "expected three numbers V_star,e,de_dlnV_star");
+    if (!(V > 0.0) || (t->n && !(V > t->V_star[t->n - 1])))
+        return ct_tab_fail(what, "V_star = %.17g: must be > 0 and above the previous node", V);
+    if (!(e >= 0.0 && e <= 1.0))
+        return ct_tab_fail(what, "e = %.17g: must be in [0, 1]", e);
+    t->V_star[t->n] = V;
+    t->e[t->n] = e;
+    t->slope[t->n] = d;
+    t->n++;
+    return 0;
+}
+
+/* One line with its line break into t: a header key or prose ('#'), the column header, an
+ * empty line or a row. 0, or CT_TAB_BAD_FILE or CT_TAB_NO_MEMORY with what set. */
+static inline int ct_tab_line(ct_tab *t, ct_tab_reading *r, const char *line, char *what)
+{
+    if (line[0] == '#') {
+        const int key = ct_tab_key_index(line);
+        return key < 0 ? 0 : ct_tab_key_line(t, r, line, key, what); /* prose, or a key */
+    }
+    if (!r->have_header) {
+        if (strncmp(line, "V_star,e,de_dlnV_star", 21))
+            return ct_tab_fail(what, "expected the header V_star,e,de_dlnV_star");
+        r->have_header = 1;
+        return 0;
+    }
+    if (line[0] == '\n' || (line[0] == '\r' && line[1] == '\n'))
+        return 0;
+    if (r->nodes && t->n == r->nodes)
+        return ct_tab_fail(what, "a row beyond the %lu of # nodes", (unsigned long)r->nodes);
+    if (t->n == r->cap && ct_tab_grow(t, &r->cap)) {
+        ct_tab_fail(what, "out of memory");
+        return CT_TAB_NO_MEMORY;
+    }
+    return ct_tab_row(t, line, what);
+}
+
+/* The table once every line is read: the keys that make it a cantact table, as many rows as
+ * # nodes says, and ln V* (made here) increasing. 0, or CT_TAB_BAD_FILE or CT_TAB_NO_MEMORY
+ * with what set. */
+static inline int ct_tab_whole(ct_tab *t, const ct_tab_reading *r, char *what)
+{
+    if (!(r->seen & 1u) || !(r->seen & 2u))
+        return ct_tab_fail(
+            what, "missing # interpolation = ... or # V_star_crit = ... (not a cantact table)");
+    if (!r->nodes)
+        return ct_tab_fail(what, "missing # nodes = ... (the number of rows, without which a cut "
+                                 "table cannot be told from a whole one)");
+    if (t->n != r->nodes)
+        return ct_tab_fail(what, "%lu rows where # nodes = %lu: the file is cut",
+                           (unsigned long)t->n, (unsigned long)r->nodes);
+    if (!(t->ln_V_star = (double *)malloc(t->n * sizeof(double)))) {
+        ct_tab_fail(what, "out of memory");
+        return CT_TAB_NO_MEMORY;
+    }
+    for (size_t i = 0; i < t->n; i++) {
+        t->ln_V_star[i] = log(t->V_star[i]);
+        if (i && !(t->ln_V_star[i] > t->ln_V_star[i - 1]))
+            return ct_tab_fail(what, "nodes %lu and %lu: ln V_star not increasing",
+                               (unsigned long)i, (unsigned long)i + 1);
+    }
+    return 0;
+}
+
 /* Reads a table file: "# key = value" header lines (the keys ct_tab_keys, each at most once,
  * all before the column header; other '#' lines are prose), the column header
  * V_star,e,de_dlnV_star, then exactly `# nodes` rows V_star,e,de_dlnV_star, every line ended by
@@ -324,179 +553,33 @@ enum { CT_TAB_BAD_FILE = 1, CT_TAB_IO_ERROR = 2, CT_TAB_NO_MEMORY = 3 };
 static inline int ct_tab_read(ct_tab *t, const char *path, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
-    char line[1024];
-    size_t cap = 0, lineno = 0, nodes = 0;
-    unsigned seen = 0; /* bit k: ct_tab_keys[k] given */
-    int have_header = 0, why = CT_TAB_BAD_FILE;
+    char line[1024], what[CT_TAB_WHAT];
+    size_t lineno = 0;
+    ct_tab_reading r = {0, 0, 0, 0};
+    int why;
     memset(t, 0, sizeof *t);
     t->tolerance = t->worst_error = t->v_per_V_star = t->worst_V_star = NAN;
     if (!f) {
         snprintf(err, errlen, "%s: cannot open: %s", path, strerror(errno));
         return CT_TAB_IO_ERROR;
     }
-#define CT_TAB_FAIL(...)                                                                           \
-    do {                                                                                           \
-        char what_[200];                                                                           \
-        snprintf(what_, sizeof what_, __VA_ARGS__);                                                \
-        snprintf(err, errlen, "%s:%lu: %s", path, (unsigned long)lineno, what_);                   \
-        goto fail;                                                                                 \
-    } while (0)
     while (fgets(line, sizeof line, f)) {
         lineno++;
-        size_t len = strlen(line);
-        if (len + 1 == sizeof line && line[len - 1] != '\n') {
-            /* a long header line (a long scene path): prose and keys this reader does not use
-             * are skipped whole; a key it uses, and a row, are never that long */
-            int c;
-            if (line[0] != '#' || ct_tab_key_used(line))
-                CT_TAB_FAIL("line longer than %d characters", (int)sizeof line - 2);
-            while ((c = fgetc(f)) != EOF && c != '\n')
-                if (!c)
-                    CT_TAB_FAIL("a NUL byte: not a text file");
-            if (c == EOF && !ferror(f) && memchr(line, '\r', len))
-                CT_TAB_FAIL("lines end in a carriage return alone: not read");
-            if (c == EOF && !ferror(f))
-                CT_TAB_FAIL("the last line has no line break: the file is cut");
-            continue;
-        }
-        if (!len || line[len - 1] != '\n') {
-            /* fgets stops after a line break, at the end of the file, or with its buffer full
-             * (above): this line is the last and has no break, or it holds a NUL byte */
-            if (ferror(f))
-                break;
-            if (feof(f) && memchr(line, '\r', len))
-                CT_TAB_FAIL("lines end in a carriage return alone: not read");
-            if (feof(f))
-                CT_TAB_FAIL("the last line has no line break: the file is cut");
-            CT_TAB_FAIL("a NUL byte: not a text file");
-        }
-        if (line[0] == '#') {
-            const int key = ct_tab_key_index(line);
-            if (key < 0)
-                continue; /* prose */
-            if (seen & (1u << key))
-                CT_TAB_FAIL("# %s given twice", ct_tab_keys[key]);
-            if (have_header)
-                CT_TAB_FAIL("# %s after the column header: header keys come first",
-                            ct_tab_keys[key]);
-            seen |= 1u << key;
-            char v[64]; /* the value's first word: a comment may follow it */
-            const char *w = strchr(line, '=') + 1;
-            size_t vl = 0;
-            while (*w == ' ')
-                w++;
-            while (w[vl] && w[vl] != ' ' && w[vl] != '\t' && w[vl] != '\n' && w[vl] != '\r')
-                if (++vl >= sizeof v)
-                    CT_TAB_FAIL("%s: value longer than %d characters", ct_tab_keys[key],
-                                (int)sizeof v - 1);
-            memcpy(v, w, vl);
-            v[vl] = '\0';
-            /* a number is the whole word: strtod's ',' ends a row's field, not a value */
-            double x = NAN;
-            const int number = key != 0 && key != 5 && !strchr(v, ',') && ct_tab_number(v, &x);
-            switch (key) {
-            case 0:
-                if (!strcmp(v, "monotone_cubic"))
-                    t->rule = CT_TAB_MONOTONE_CUBIC;
-                else if (!strcmp(v, "linear"))
-                    t->rule = CT_TAB_LINEAR;
-                else
-                    CT_TAB_FAIL("interpolation = %s: must be monotone_cubic or linear", v);
-                break;
-            case 1:
-                if (!number || !(x >= 0.0))
-                    CT_TAB_FAIL("V_star_crit = %s: not a number >= 0", v);
-                t->V_star_crit = x;
-                break;
-            case 2:
-                if (!number || !(x > 0.0))
-                    CT_TAB_FAIL("tolerance = %s: not a number > 0", v);
-                t->tolerance = x;
-                break;
-            case 3:
-                if (!number || !(x >= 0.0))
-                    CT_TAB_FAIL("worst_error = %s: not a number >= 0", v);
-                t->worst_error = x;
-                break;
-            case 4:
-                if (!number || !(x > 0.0))
-                    CT_TAB_FAIL("v_per_V_star = %s: not a number > 0", v);
-                t->v_per_V_star = x;
-                break;
-            case 5:
-                if (!ct_tab_count(v, &nodes) || nodes < 2)
-                    CT_TAB_FAIL("nodes = %s: not a count >= 2 (the number of rows)", v);
-                break;
-            default: /* where worst_error was found, or none when no point was checked */
-                if (strcmp(v, "none") && (!number || !(x > 0.0)))
-                    CT_TAB_FAIL("worst_error_at_V_star = %s: not a number > 0 or none", v);
-                t->worst_V_star = x;
-            }
-            continue;
-        }
-        if (!have_header) {
-            if (strncmp(line, "V_star,e,de_dlnV_star", 21))
-                CT_TAB_FAIL("expected the header V_star,e,de_dlnV_star");
-            have_header = 1;
-            continue;
-        }
-        if (line[0] == '\n' || (line[0] == '\r' && line[1] == '\n'))
-            continue;
-        if (nodes && t->n == nodes)
-            CT_TAB_FAIL("a row beyond the %lu of # nodes", (unsigned long)nodes);
-        if (t->n == cap) {
-            size_t ncap = cap ? 2 * cap : 256;
-            double *a = (double *)realloc(t->V_star, ncap * sizeof(double));
-            if (a)
-                t->V_star = a;
-            double *b = a ? (double *)realloc(t->e, ncap * sizeof(double)) : NULL;
-            if (b)
-                t->e = b;
-            double *c = b ? (double *)realloc(t->slope, ncap * sizeof(double)) : NULL;
-            if (c)
-                t->slope = c;
-            if (!c) {
-                why = CT_TAB_NO_MEMORY;
-                CT_TAB_FAIL("out of memory");
-            }
-            cap = ncap;
-        }
-        const char *c1 = strchr(line, ','), *c2 = c1 ? strchr(c1 + 1, ',') : NULL;
-        double V, e, d;
-        if (!c2 || strchr(c2 + 1, ',') || !ct_tab_number(line, &V) || !ct_tab_number(c1 + 1, &e) ||
-            !ct_tab_number(c2 + 1, &d))
-            CT_TAB_FAIL("expected three numbers V_star,e,de_dlnV_star");
-        if (!(V > 0.0) || (t->n && !(V > t->V_star[t->n - 1])))
-            CT_TAB_FAIL("V_star = %.17g: must be > 0 and above the previous node", V);
-        if (!(e >= 0.0 && e <= 1.0))
-            CT_TAB_FAIL("e = %.17g: must be in [0, 1]", e);
-        t->V_star[t->n] = V;
-        t->e[t->n] = e;
-        t->slope[t->n] = d;
-        t->n++;
+        why = ct_tab_line_end(f, line, strlen(line), sizeof line, what);
+        if (why == 0)
+            why = ct_tab_line(t, &r, line, what);
+        if (why == CT_TAB_IO_ERROR)
+            break;
+        if (why > 0)
+            goto fail_at_line;
     }
     if (ferror(f)) {
         why = CT_TAB_IO_ERROR;
-        CT_TAB_FAIL("read error");
+        snprintf(what, sizeof what, "read error");
+        goto fail_at_line;
     }
-    if (!(seen & 1u) || !(seen & 2u))
-        CT_TAB_FAIL("missing # interpolation = ... or # V_star_crit = ... (not a cantact table)");
-    if (!nodes)
-        CT_TAB_FAIL("missing # nodes = ... (the number of rows, without which a cut table "
-                    "cannot be told from a whole one)");
-    if (t->n != nodes)
-        CT_TAB_FAIL("%lu rows where # nodes = %lu: the file is cut", (unsigned long)t->n,
-                    (unsigned long)nodes);
-    if (!(t->ln_V_star = (double *)malloc(t->n * sizeof(double)))) {
-        why = CT_TAB_NO_MEMORY;
-        CT_TAB_FAIL("out of memory");
-    }
-    for (size_t i = 0; i < t->n; i++) {
-        t->ln_V_star[i] = log(t->V_star[i]);
-        if (i && !(t->ln_V_star[i] > t->ln_V_star[i - 1]))
-            CT_TAB_FAIL("nodes %lu and %lu: ln V_star not increasing", (unsigned long)i,
-                        (unsigned long)i + 1);
-    }
+    if ((why = ct_tab_whole(t, &r, what)))
+        goto fail_at_line;
     size_t bad;
     if (ct_tab_check_slopes(t, &bad)) {
         snprintf(err, errlen,
@@ -505,11 +588,13 @@ static inline int ct_tab_read(ct_tab *t, const char *path, char *err, size_t err
                  path, (unsigned long)bad + 1, (unsigned long)bad + 2, t->slope[bad],
                  bad + 1 < t->n ? t->slope[bad + 1] : NAN, t->e[bad],
                  bad + 1 < t->n ? t->e[bad + 1] : NAN);
+        why = CT_TAB_BAD_FILE;
         goto fail;
     }
-#undef CT_TAB_FAIL
     fclose(f);
     return 0;
+fail_at_line:
+    snprintf(err, errlen, "%s:%lu: %s", path, (unsigned long)lineno, what);
 fail:
     fclose(f);
     ct_tab_free(t);

@@ -7,6 +7,8 @@ CT_PACKAGES=(gcc binutils meson ninja-build pkg-config libcmocka-dev libinih-dev
     locales librandom123-dev libopenmpi-dev openmpi-bin libzip-dev libxml2-dev
     python3 python3-numpy python3-cffi python3-pytest python3-matplotlib python3-scipy
     python3-mesonpy python3-venv python3-pip)
+# what scripts/test needs besides: the formatter its format check runs
+CT_TEST_PACKAGES=(clang-format)
 
 ct_need_packages() {
     local missing=() p

@@ -112,22 +112,12 @@ static void digits(char *d, uint64_t N, int P)
     memcpy(d + 1, pairs + 2 * (v % 100u), 2);
 }
 
-/* x as "%.<P>g" writes it (P = 3 or 17) when 1e-22 <= |x| < 10^P; 0 when it is not written
- * here. */
-static size_t fast_g(char *buf, double x, int P)
+/* The decimal exponent E of ax (be: its biased binary exponent): floor((be - 1023) log10 2) by
+ * integers (78913 / 2^18 is log10 2 closely enough for |be - 1023| <= 1100), one more when ax
+ * reaches the next power of ten. The powers below 1 are rounded, so next to one E may still be
+ * off by one: exact_digits corrects it on the exact digits. */
+static int decimal_exponent(int be, double ax)
 {
-    const double ax = fabs(x);
-    if (!(ax >= 1e-22 && ax < (P == 3 ? 1e3 : 1e17)))
-        return 0;
-    uint64_t bits;
-    memcpy(&bits, &ax, sizeof bits);
-    const int be = (int)(bits >> 52);
-    const uint64_t m = (bits & ((UINT64_C(1) << 52) - 1)) | (UINT64_C(1) << 52);
-    const int e = be - 1075;
-    /* the decimal exponent: floor((be - 1023) log10 2) by integers (78913 / 2^18 is log10 2
-     * closely enough for |be - 1023| <= 1100), one more when x reaches the next power of
-     * ten. The powers below 1 are rounded, so next to one E may still be off by one: the loop
-     * below corrects it on the exact digits. */
     static const double p10[] = {1e-22, 1e-21, 1e-20, 1e-19, 1e-18, 1e-17, 1e-16, 1e-15,
                                  1e-14, 1e-13, 1e-12, 1e-11, 1e-10, 1e-9,  1e-8,  1e-7,
                                  1e-6,  1e-5,  1e-4,  1e-3,  1e-2,  1e-1,  1e0,   1e1,
@@ -137,7 +127,16 @@ static size_t fast_g(char *buf, double x, int P)
     int E = t >= 0 ? t >> 18 : -((-t + (1 << 18) - 1) >> 18);
     if (E + 1 >= -22 && E + 1 <= 17 && ax >= p10[E + 1 + 22])
         E++;
+    return E;
+}
+
+/* The P significant digits N of m 2^e (10^(P-1) <= N < 10^P), rounded to nearest with ties to
+ * even, and its decimal exponent *exponent (an estimate, corrected here); 0 when the exact
+ * path does not find them. */
+static uint64_t exact_digits(uint64_t m, int e, int P, int *exponent)
+{
     const uint64_t lo = P == 3 ? 100u : UINT64_C(10000000000000000), hi = lo * 10u;
+    int E = *exponent;
     uint64_t N = 0, T = 0;
     for (int tries = 0; tries < 4; tries++) {
         const int k = P - 1 - E;
@@ -156,17 +155,21 @@ static size_t fast_g(char *buf, double x, int P)
         }
         N = 0;
     }
-    if (!(N >= lo && N < hi))
-        return 0;
-    char d[17];
-    digits(d, N, P);
-    /* below: the digits copied 16 or 17 at a time, fixed sizes, where buf's CT_NUMBER_MAX
-     * bytes hold them (the text ends at o, what lies past it is never read) */
+    *exponent = E;
+    return N >= lo && N < hi ? N : 0;
+}
+
+/* The text %g writes for the P significant digits d and the decimal exponent E, negative or
+ * not, into buf; returns its length. The digits are copied 16 or 17 at a time, fixed sizes,
+ * where buf's CT_NUMBER_MAX bytes hold them (the text ends at o, what lies past it is never
+ * read). */
+static size_t write_g(char *buf, int negative, const char d[17], int E, int P)
+{
     int nd = P; /* significant digits left after dropping trailing zeros */
     while (nd > 1 && d[nd - 1] == '0')
         nd--;
     char *o = buf;
-    if (x < 0)
+    if (negative)
         *o++ = '-';
     if (E < -4 || E >= P) { /* %g's exponent style: -22 <= E <= 17, two digits */
         *o++ = d[0];
@@ -196,6 +199,26 @@ static size_t fast_g(char *buf, double x, int P)
     }
     *o = '\0';
     return (size_t)(o - buf);
+}
+
+/* x as "%.<P>g" writes it (P = 3 or 17) when 1e-22 <= |x| < 10^P; 0 when it is not written
+ * here. */
+static size_t fast_g(char *buf, double x, int P)
+{
+    const double ax = fabs(x);
+    if (!(ax >= 1e-22 && ax < (P == 3 ? 1e3 : 1e17)))
+        return 0;
+    uint64_t bits;
+    memcpy(&bits, &ax, sizeof bits);
+    const int be = (int)(bits >> 52);
+    const uint64_t m = (bits & ((UINT64_C(1) << 52) - 1)) | (UINT64_C(1) << 52);
+    int E = decimal_exponent(be, ax);
+    const uint64_t N = exact_digits(m, be - 1075, P, &E);
+    if (!N)
+        return 0;
+    char d[17];
+    digits(d, N, P);
+    return write_g(buf, x < 0, d, E, P);
 }
 #endif
 

@@ -4,16 +4,9 @@
 # it does not name as mislabelled, the rule no test catches as a survivor, and the rule whose
 # old text is gone as stale, naming its file. A malformed rule is refused before any build.
 # Usage: tests/mutants_selftest.sh   (from anywhere; takes about a minute)
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 root=$(cd "$(dirname "$0")/.." && pwd)
 dir=$root/tests/mutants/selftest
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fails=0
-bad() {
-    echo "FAIL: $*"
-    fails=$((fails + 1))
-}
 
 # malformed rules: refused at once (exit 2), naming the file and what is missing
 sed '/^suites:/d' "$dir/mislabelled.mut" >"$tmp/nosuites.mut"
@@ -43,5 +36,5 @@ grep -q "^survivor: survivor: " "$tmp/out" || bad "the surviving rule is not rep
 grep -q "^stale: stale: its old text occurs 0 times in src/surface/cantor.c" "$tmp/out" ||
     bad "the stale rule is not reported with its file"
 grep -q "^killed 1 of 3" "$tmp/out" || bad "the count is not 'killed 1 of 3'"
-[ $fails -eq 0 ] && echo "ok: mislabelled, surviving and stale rules fail the run" && exit 0
+[ $failn -eq 0 ] && echo "ok: mislabelled, surviving and stale rules fail the run" && exit 0
 exit 1

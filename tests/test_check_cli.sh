@@ -6,12 +6,9 @@
 # code labelled with its suite (`check`) are killed only when the check itself turns their
 # wrong e into a failed row (exit 1), which is what the default check promises.
 # Usage: test_check_cli.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$(cd "$2" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
 
 # runs NAME -- command...: exit 0, stderr kept in $tmp/NAME.err
 runs() {
@@ -53,5 +50,4 @@ runs part -- "$ct" run "$src/examples/scenes/random_cantor.ini" --set surface.de
     --realisations 1:7
 grep -q "closed-form check of none of realisations 1 .. 6" "$tmp/part.err" && ok ||
     bad "part: no note that nothing was checked: $(cat "$tmp/part.err")"
-echo "check-cli: $pass passed, $failn failed"
-[ $failn -eq 0 ]
+finish check-cli

@@ -2,29 +2,9 @@
 # CLI behaviour: exit codes (0 done, 1 computation failed, 2 bad input), one-line errors,
 # no output file left behind on failure, --set overrides, thread-count independence.
 # Usage: test_cli.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
-
-# expect CODE DESCRIPTION -- command...
-expect() {
-    local code=$1 what=$2
-    shift 3
-    "$@" >"$tmp/out" 2>"$tmp/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then
-        bad "$what: exit $rc, expected $code; stderr: $(cat "$tmp/err")"
-        return
-    fi
-    if [ "$code" -ne 0 ] && [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
-        bad "$what: expected one line on stderr, got: $(cat "$tmp/err")"
-        return
-    fi
-    ok
-}
 
 # Device files used by the tests: as root, private copies made with mknod, so that a broken
 # build (the mutation check runs this script against deliberate mistakes, as root in CI) can
@@ -557,5 +537,5 @@ rm -f "$tmp/hstop.csv" "$tmp/hstop_history.csv"
 expect 2 "history, an untimed impact, stop" -- "$ct" run -q "$def" --set material.E=1e20 \
     --set impact.V_star=3e-11 --set output.what=e,history -o "$tmp/hstop.csv"
 [ ! -e "$tmp/hstop.csv" ] && [ ! -e "$tmp/hstop_history.csv" ] && ok || bad "history, stop: a file left behind"
-echo "$pass passed, $failn failed"
-[ "$failn" -eq 0 ]
+
+finish

@@ -9,11 +9,9 @@
 # table's tolerance (1e-6). With gravity (the default drop) e_measured is below e_table by the
 # weight's impulse during the contact: checked to be < 2 g t_c / v_impact.
 # Usage: test_dem.sh CANTACT DEM_DROP SOURCE_ROOT
-set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
+set -eo pipefail
 cantact=$1 dem=$2 src=$3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
 
 "$cantact" table -q "$src/scripts/scenes/dem_table.ini" -o "$tmp/e.csv" || fail "cantact table"
 speeds="0.02 0.08 0.15 0.3 0.7 1.5 3 6"

@@ -3,15 +3,9 @@
 # --markdown` prints from the key tables, every "docs/model.md §N" the sources cite is a
 # section of docs/model.md, and every docs/ page the README and docs link to exists.
 # Usage: test_docs.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$(cd "$2" && pwd)
-failn=0
-bad() {
-    failn=$((failn + 1))
-    echo "FAIL: $*"
-    [ -z "${CT_FAIL_FAST:-}" ] || exit 1
-}
 if ! "$ct" keys --markdown | cmp -s - "$src/docs/scene-keys.md"; then
     bad "docs/scene-keys.md is not what cantact keys --markdown prints (regenerate it:" \
         "build/cantact keys --markdown > docs/scene-keys.md)"

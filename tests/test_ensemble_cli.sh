@@ -4,29 +4,9 @@
 # parts merged back into the same bytes (and merge's refusals), a single realisation's e and
 # profile. With MPIRUN given: mpirun -n 1, 2, 3 (oversubscribed) write the same bytes.
 # Usage: test_ensemble_cli.sh CANTACT SOURCE_DIR [MPIRUN]
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 mpirun=${3:-}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
-
-# expect CODE DESCRIPTION -- command...: the exit code, and one line on stderr on failure
-expect() {
-    local code=$1 what=$2
-    shift 3
-    "$@" >"$tmp/out" 2>"$tmp/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then
-        bad "$what: exit $rc, expected $code; stderr: $(cat "$tmp/err")"
-        return
-    fi
-    if [ "$code" -ne 0 ] && [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
-        bad "$what: expected one line on stderr, got: $(cat "$tmp/err")"
-        return
-    fi
-    ok
-}
 
 cat >"$tmp/r.ini" <<INI
 [surface]
@@ -161,5 +141,4 @@ if [ -n "$mpirun" ]; then
         bad "mpirun -n 3 with a crushing speed: $(cat "$tmp/mpi.out")"
 fi
 
-echo "$pass passed, $failn failed"
-[ "$failn" -eq 0 ]
+finish

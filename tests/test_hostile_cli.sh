@@ -3,12 +3,9 @@
 # away with memory or gave a wrong number; each must now be a clear one-line refusal (exit 2,
 # nothing written, nothing replaced) or the right result.
 # Usage: test_hostile_cli.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$(cd "$2" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
 # refused WHAT NEEDLE -- command...: exit 2, one line on stderr holding NEEDLE
 refused() {
     local what=$1 needle=$2
@@ -627,5 +624,4 @@ refused "merge of a part cut short" "the parts hold 7 rows, not whole realisatio
     "$ct" merge -q "$tmp/r.ini" "$tmp/short.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
 [ -e "$tmp/x.csv" ] && bad "a refused merge wrote its output" || ok
 
-echo "hostile-cli: $pass passed, $failn failed"
-[ $failn -eq 0 ]
+finish hostile-cli

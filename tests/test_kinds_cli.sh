@@ -9,12 +9,9 @@
 # as its highest sample; its other two rods (tops 0.9 m) are never touched. Its scales:
 # l0 = 3 m (three samples, 1 m each), h0 = Rt = 0.9 m, P_Y = sigma_y l0 = 3 N/m.
 # Usage: test_kinds_cli.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$(cd "$2" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
 # near WHAT GOT WANT [REL]: |got - want| <= rel |want| (default 1e-12)
 near() {
     awk -v g="$2" -v w="$3" -v r="${4:-1e-12}" 'BEGIN { d = g - w; if (d < 0) d = -d;
@@ -164,5 +161,4 @@ sed '/^mass/d; s/^velocity = .*/V_star = 0.01/' "$tmp/rods.ini" >"$tmp/vstar.ini
 head -1 "$tmp/nospeed.csv" | grep -q "elastic$" && ok ||
     bad "a scene given in V* has other columns: $(head -1 "$tmp/nospeed.csv")"
 
-echo "kinds-cli: $pass passed, $failn failed"
-[ $failn -eq 0 ]
+finish kinds-cli

@@ -5,12 +5,9 @@
 # (the registry's reason), with exit 2 and no output file. A new kind or output joins the walk
 # by itself; a kind needs its example scene, examples/scenes/KIND.ini (docs/cli.md).
 # Usage: test_matrix.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$(cd "$2" && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
 
 "$ct" kinds --csv >"$tmp/kinds.csv" || bad "cantact kinds --csv exited $?"
 kinds=$(awk -F, 'NR > 1 { print $1 }' "$tmp/kinds.csv" | uniq)
@@ -184,5 +181,4 @@ done
 # a curved body is not refused everywhere: at least a cylinder and a sphere ran somewhere
 [ $worked -ge 2 ] && ok || bad "curved bodies ran on only $worked kind(s)"
 
-echo "matrix: $pass passed, $failn failed"
-[ $failn -eq 0 ]
+finish matrix

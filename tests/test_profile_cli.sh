@@ -6,31 +6,10 @@
 # grid, and every class of bad input: one line naming the file's line or X3P entry, exit 2, no
 # output file.
 # Usage: test_profile_cli.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$(cd "$2" && pwd)
 py=/usr/bin/python3
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
-
-# expect CODE DESCRIPTION -- command...
-expect() {
-    local code=$1 what=$2
-    shift 3
-    "$@" >"$tmp/out" 2>"$tmp/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then
-        bad "$what: exit $rc, expected $code; stderr: $(cat "$tmp/err")"
-        return
-    fi
-    if [ "$code" -ne 0 ] && [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
-        bad "$what: expected one line on stderr, got: $(cat "$tmp/err")"
-        return
-    fi
-    ok
-}
-has() { grep -q -- "$2" "$tmp/$1" && ok || bad "$3: expected '$2' in $(cat "$tmp/$1")"; }
 
 dektak=$src/tests/data/dektak-1.csv
 speeds="0.003, 0.01, 0.03, 0.1, 0.3, 1, 3"
@@ -306,5 +285,4 @@ expect 0 "run --help" -- "$ct" run --help
 has out "  profile: file unit x_unit z_unit" "run --help: profile keys"
 has out "bearing:" "run --help: bearing output"
 
-echo "$pass passed, $failn failed"
-[ "$failn" -eq 0 ]
+finish

@@ -3,30 +3,9 @@
 # file:line, exit 1 and no file when the tolerance cannot be met, a random surface, an
 # ensemble refused, the table's first node, V*_c and end against cantact run.
 # Usage: test_table_cli.sh CANTACT SOURCE_DIR
-set -u
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
 src=$2
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-source "$(dirname "${BASH_SOURCE[0]}")/checks.sh"
-
-# expect CODE DESCRIPTION -- command...
-expect() {
-    local code=$1 what=$2
-    shift 3
-    "$@" >"$tmp/out" 2>"$tmp/err"
-    local rc=$?
-    if [ "$rc" -ne "$code" ]; then
-        bad "$what: exit $rc, expected $code; stderr: $(cat "$tmp/err")"
-        return
-    fi
-    if [ "$code" -ne 0 ] && [ "$(wc -l <"$tmp/err")" -ne 1 ]; then
-        bad "$what: expected one line on stderr, got: $(cat "$tmp/err")"
-        return
-    fi
-    ok
-}
-has() { grep -q -- "$2" "$tmp/$1" && ok || bad "$3: expected '$2' in $(cat "$tmp/$1")"; }
 
 cat >"$tmp/s.ini" <<INI
 [surface]
@@ -141,5 +120,4 @@ printf '[ensemble]\nrealisations = 4\n' >>"$tmp/r.ini"
 expect 2 "ensemble refused" -- "$ct" table "$tmp/r.ini"
 has err "a table is of one surface" "ensemble message"
 
-echo "$pass passed, $failn failed"
-[ "$failn" -eq 0 ]
+finish

@@ -3,8 +3,8 @@
 # the paper claims where the paper claims it (docs/model.md §8: the asymptotic law within 10 % of
 # the series for u/h0 <= 0.04 on these soft surfaces) and stay in range elsewhere.
 # Usage: validate_smoke.sh CT_VALIDATE
-set -u
-out=$("$1" --quick) || { echo "FAIL: ct_validate --quick exited $?"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
+out=$("$1" --quick) || fail "ct_validate --quick exited $?"
 echo "$out" | awk -F, '
     NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
     { rows++

@@ -2,8 +2,8 @@
  * keys. Every subcommand parses its arguments with src/cli/args.c and asks the library's
  * tables (kinds of surface, scene keys, output columns) what exists. */
 #include "args.h"
-#include "ensemble.h"
 #include "fit.h"
+#include "merge.h"
 #include "output.h"
 #include "ranks.h"
 #include "run.h"

@@ -68,66 +68,73 @@ static int gather_array(const void *mine, uint64_t my_count, void *all, const in
     return MPI_Gatherv(mine, (int)my_count, type, all, counts, displs, type, 0, MPI_COMM_WORLD);
 }
 
-static int m_gather(const ct_ensemble_samples *mine, int status, const char *message,
-                    uint64_t first, uint64_t count, size_t nrows, ct_ensemble_samples **all,
-                    char *err, size_t errlen)
+/* This rank's report: its status and message, and its samples' failure and quadrature error. */
+static void report_of(rank_report *rep, const ct_ensemble_samples *mine, int status,
+                      const char *message)
 {
-    const int rank = m_rank(), size = m_size();
-    rank_report rep;
-    memset(&rep, 0, sizeof rep);
-    rep.status = status;
-    snprintf(rep.message, sizeof rep.message, "%s", message ? message : "");
-    rep.failed_realisation = UINT64_MAX;
-    rep.quad_error_max = NAN;
+    memset(rep, 0, sizeof *rep);
+    rep->status = status;
+    snprintf(rep->message, sizeof rep->message, "%s", message ? message : "");
+    rep->failed_realisation = UINT64_MAX;
+    rep->quad_error_max = NAN;
     if (mine) {
-        rep.failed_realisation = mine->failed_realisation;
-        rep.failed_row = mine->failed_row;
-        rep.quad_error_max = mine->quad_error_max;
-        snprintf(rep.failed_message, sizeof rep.failed_message, "%s", mine->message);
+        rep->failed_realisation = mine->failed_realisation;
+        rep->failed_row = mine->failed_row;
+        rep->quad_error_max = mine->quad_error_max;
+        snprintf(rep->failed_message, sizeof rep->failed_message, "%s", mine->message);
     }
-    rank_report *reps = rank == 0 ? calloc((size_t)size, sizeof *reps) : NULL;
-    MPI_Gather(&rep, (int)sizeof rep, MPI_BYTE, reps, (int)sizeof rep, MPI_BYTE, 0, MPI_COMM_WORLD);
-    /* from here every rank knows whether the gather goes on: rank 0 decides */
+}
+
+/* Rank 0, from every rank's report: whether the gather goes on (CT_OK: *all allocated), or the
+ * first failed rank's status, or a gather larger than MPI's int counts carry (the message in
+ * err). */
+static int gather_status(const rank_report *reps, int size, uint64_t first, uint64_t count,
+                         size_t nrows, ct_ensemble_samples **all, char *err, size_t errlen)
+{
     int st = CT_OK;
-    if (rank == 0) {
-        for (int k = 0; k < size && !st; k++)
-            if (reps[k].status) {
-                st = reps[k].status;
-                snprintf(err, errlen, "%s", reps[k].message);
-            }
-        if (!st && (double)count * (double)nrows > INT_MAX) {
-            st = CT_EINVAL;
-            snprintf(err, errlen,
-                     "MPI: %llu realisations x %zu rows exceed what one gather carries (2^31 - 1 "
-                     "values): use fewer realisations per run and cantact merge",
-                     (unsigned long long)count, nrows);
+    for (int k = 0; k < size && !st; k++)
+        if (reps[k].status) {
+            st = reps[k].status;
+            snprintf(err, errlen, "%s", reps[k].message);
         }
-        if (!st && (st = ct_ensemble_samples_alloc(all, first, count, nrows)))
-            snprintf(err, errlen, "%s", ct_error_message());
+    if (!st && (double)count * (double)nrows > INT_MAX) {
+        st = CT_EINVAL;
+        snprintf(err, errlen,
+                 "MPI: %llu realisations x %zu rows exceed what one gather carries (2^31 - 1 "
+                 "values): use fewer realisations per run and cantact merge",
+                 (unsigned long long)count, nrows);
     }
-    st = m_bcast_int(st);
-    if (st) {
-        free(reps);
-        return rank == 0 ? st : CT_OK;
+    if (!st && (st = ct_ensemble_samples_alloc(all, first, count, nrows)))
+        snprintf(err, errlen, "%s", ct_error_message());
+    return st;
+}
+
+/* Rank 0: where every rank's block lands, the same split as the caller's: four arrays of size
+ * ints, [counts | displs] in values (nrows per realisation), then [counts | displs] in
+ * realisations. */
+static int *block_layout(uint64_t first, uint64_t count, size_t nrows, int size)
+{
+    int *counts = malloc(4 * (size_t)size * sizeof(int));
+    int *displs = counts + size, *counts_r = displs + size, *displs_r = counts_r + size;
+    for (int k = 0; k < size; k++) {
+        uint64_t a = first + count * (uint64_t)k / (uint64_t)size;
+        uint64_t b = first + count * (uint64_t)(k + 1) / (uint64_t)size;
+        counts_r[k] = (int)(b - a);
+        displs_r[k] = (int)(a - first);
+        counts[k] = (int)((b - a) * nrows);
+        displs[k] = (int)((a - first) * nrows);
     }
-    /* every rank's block: the same split as the caller's */
-    int *counts = NULL, *displs = NULL, *counts_r = NULL, *displs_r = NULL;
-    if (rank == 0) {
-        counts = malloc(4 * (size_t)size * sizeof(int));
-        displs = counts + size;
-        counts_r = displs + size;
-        displs_r = counts_r + size;
-        for (int k = 0; k < size; k++) {
-            uint64_t a = first + count * (uint64_t)k / (uint64_t)size;
-            uint64_t b = first + count * (uint64_t)(k + 1) / (uint64_t)size;
-            counts_r[k] = (int)(b - a);
-            displs_r[k] = (int)(a - first);
-            counts[k] = (int)((b - a) * nrows);
-            displs[k] = (int)((a - first) * nrows);
-        }
-    }
+    return counts;
+}
+
+/* Every rank's arrays into A (rank 0; NULL and layout NULL elsewhere). */
+static void gather_samples(const ct_ensemble_samples *mine, ct_ensemble_samples *A,
+                           const int *layout, int size, int rank)
+{
+    const int *counts = layout, *displs = layout ? layout + size : NULL;
+    const int *counts_r = layout ? layout + 2 * size : NULL;
+    const int *displs_r = layout ? layout + 3 * size : NULL;
     const uint64_t my_n = mine ? mine->count * mine->nrows : 0, my_r = mine ? mine->count : 0;
-    ct_ensemble_samples *A = rank == 0 ? *all : NULL;
     gather_array(mine ? mine->e : NULL, my_n, A ? A->e : NULL, counts, displs, MPI_DOUBLE, rank);
     gather_array(mine ? mine->u_max : NULL, my_n, A ? A->u_max : NULL, counts, displs, MPI_DOUBLE,
                  rank);
@@ -139,25 +146,50 @@ static int m_gather(const ct_ensemble_samples *mine, int status, const char *mes
                  MPI_UINT64_T, rank);
     gather_array(mine ? mine->fz_clipped : NULL, my_r, A ? A->fz_clipped : NULL, counts_r, displs_r,
                  MPI_UINT64_T, rank);
-    if (rank == 0) {
-        /* the lowest failure of all: ranks hold increasing realisations, so the first rank
-         * that failed has it; the largest quadrature error: a maximum, exact in any order */
-        A->failed_realisation = UINT64_MAX;
-        A->quad_error_max = NAN;
-        A->message[0] = '\0';
-        for (int k = 0; k < size; k++) {
-            const rank_report *r = &reps[k];
-            if (r->quad_error_max > A->quad_error_max ||
-                (isnan(A->quad_error_max) && !isnan(r->quad_error_max)))
-                A->quad_error_max = r->quad_error_max;
-            if (r->failed_realisation < A->failed_realisation) {
-                A->failed_realisation = r->failed_realisation;
-                A->failed_row = (size_t)r->failed_row;
-                snprintf(A->message, sizeof A->message, "%s", r->failed_message);
-            }
+}
+
+/* Rank 0: the lowest failure of all (ranks hold increasing realisations, so the first rank
+ * that failed has it) and the largest quadrature error (a maximum, exact in any order). */
+static void combine_reports(ct_ensemble_samples *A, const rank_report *reps, int size)
+{
+    A->failed_realisation = UINT64_MAX;
+    A->quad_error_max = NAN;
+    A->message[0] = '\0';
+    for (int k = 0; k < size; k++) {
+        const rank_report *r = &reps[k];
+        if (r->quad_error_max > A->quad_error_max ||
+            (isnan(A->quad_error_max) && !isnan(r->quad_error_max)))
+            A->quad_error_max = r->quad_error_max;
+        if (r->failed_realisation < A->failed_realisation) {
+            A->failed_realisation = r->failed_realisation;
+            A->failed_row = (size_t)r->failed_row;
+            snprintf(A->message, sizeof A->message, "%s", r->failed_message);
         }
     }
-    free(counts);
+}
+
+static int m_gather(const ct_ensemble_samples *mine, int status, const char *message,
+                    uint64_t first, uint64_t count, size_t nrows, ct_ensemble_samples **all,
+                    char *err, size_t errlen)
+{
+    const int rank = m_rank(), size = m_size();
+    rank_report rep;
+    report_of(&rep, mine, status, message);
+    rank_report *reps = rank == 0 ? calloc((size_t)size, sizeof *reps) : NULL;
+    MPI_Gather(&rep, (int)sizeof rep, MPI_BYTE, reps, (int)sizeof rep, MPI_BYTE, 0, MPI_COMM_WORLD);
+    /* from here every rank knows whether the gather goes on: rank 0 decides */
+    int st = rank == 0 ? gather_status(reps, size, first, count, nrows, all, err, errlen) : CT_OK;
+    st = m_bcast_int(st);
+    if (st) {
+        free(reps);
+        return rank == 0 ? st : CT_OK;
+    }
+    int *layout = rank == 0 ? block_layout(first, count, nrows, size) : NULL;
+    ct_ensemble_samples *A = rank == 0 ? *all : NULL;
+    gather_samples(mine, A, layout, size, rank);
+    if (rank == 0)
+        combine_reports(A, reps, size);
+    free(layout);
     free(reps);
     return CT_OK;
 }
