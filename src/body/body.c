@@ -78,15 +78,15 @@ double ct_body_gap(const ct_body *body, double r)
 
 /* ---- the rods under a curved body ---- */
 
-/* The shifted bundle's metadata: the bundle as built (the footprints, stages and x-extents of
- * its rods), which of its rods each kept rod is and, on a periodic surface, by how many
- * periods its copy lies; the largest u_max the rods describe, and why. */
+/* The shifted bundle's metadata, per kept rod: where it stands (its footprint, moved to its
+ * copy on a periodic surface), its stage and x-extent as its surface gave them, and the gap the
+ * face met it with; the largest u_max the rods describe, and why. The bundle as built is not
+ * kept: a map's million rods cost their memory once. */
 typedef struct {
-    ct_bundle *built;
     size_t n;
-    size_t *index;
-    int *copy_x, *copy_y; /* NULL: not periodic */
-    double period_x, period_y;
+    ct_footprint *foot;
+    double *x_left, *x_right, *gap;
+    long *stage;
     double reach;
     char why[240];
 } body_meta;
@@ -95,21 +95,22 @@ static void body_meta_free(void *meta)
 {
     body_meta *m = meta;
     if (m) {
-        ct_bundle_free(m->built);
-        free(m->index);
-        free(m->copy_x);
-        free(m->copy_y);
+        free(m->foot);
+        free(m->x_left);
+        free(m->x_right);
+        free(m->gap);
+        free(m->stage);
         free(m);
     }
 }
 
-static body_meta *body_meta_new(size_t n, int periodic)
+static body_meta *body_meta_new(size_t n)
 {
     body_meta *m = calloc(1, sizeof *m);
     const size_t k = n ? n : 1;
-    if (!m || !(m->index = malloc(k * sizeof *m->index)) ||
-        (periodic && (!(m->copy_x = malloc(k * sizeof *m->copy_x)) ||
-                      !(m->copy_y = malloc(k * sizeof(int)))))) {
+    if (!m || !(m->foot = malloc(k * sizeof *m->foot)) ||
+        !(m->x_left = malloc(k * sizeof(double))) || !(m->x_right = malloc(k * sizeof(double))) ||
+        !(m->gap = malloc(k * sizeof(double))) || !(m->stage = malloc(k * sizeof(long)))) {
         body_meta_free(m);
         return NULL;
     }
@@ -120,19 +121,15 @@ static body_meta *body_meta_new(size_t n, int periodic)
 static void *body_meta_clone(const void *meta)
 {
     const body_meta *m = meta;
-    body_meta *c = body_meta_new(m->n, m->copy_x != NULL);
-    if (!c || ct_bundle_clone(&c->built, m->built)) {
-        body_meta_free(c);
+    body_meta *c = body_meta_new(m->n);
+    if (!c)
         return NULL;
-    }
     const size_t k = m->n ? m->n : 1;
-    memcpy(c->index, m->index, k * sizeof *c->index);
-    if (m->copy_x) {
-        memcpy(c->copy_x, m->copy_x, k * sizeof *c->copy_x);
-        memcpy(c->copy_y, m->copy_y, k * sizeof *c->copy_y);
-    }
-    c->period_x = m->period_x;
-    c->period_y = m->period_y;
+    memcpy(c->foot, m->foot, k * sizeof *c->foot);
+    memcpy(c->x_left, m->x_left, k * sizeof(double));
+    memcpy(c->x_right, m->x_right, k * sizeof(double));
+    memcpy(c->gap, m->gap, k * sizeof(double));
+    memcpy(c->stage, m->stage, k * sizeof(long));
     c->reach = m->reach;
     memcpy(c->why, m->why, sizeof c->why);
     return c;
@@ -141,18 +138,10 @@ static void *body_meta_clone(const void *meta)
 static void body_rod_info(const void *meta, size_t k, ct_rod_info *info)
 {
     const body_meta *m = meta;
-    ct_rod_info built;
-    ct_bundle_rod(m->built, m->index[k], &built);
-    const double sx = m->copy_x ? m->copy_x[k] * m->period_x : 0.0,
-                 sy = m->copy_y ? m->copy_y[k] * m->period_y : 0.0;
-    info->stage = built.stage;
-    info->x_left = built.x_left + sx;
-    info->x_right = built.x_right + sx;
-    info->footprint = built.footprint;
-    info->footprint.x_lo += sx;
-    info->footprint.x_hi += sx;
-    info->footprint.y_lo += sy;
-    info->footprint.y_hi += sy;
+    info->stage = m->stage[k];
+    info->x_left = m->x_left[k];
+    info->x_right = m->x_right[k];
+    info->footprint = m->foot[k];
 }
 
 static double body_reach(const void *meta, char *why, size_t len)
@@ -270,26 +259,45 @@ typedef struct {
 
 enum { X_LO, X_HI, Y_LO, Y_HI, TOP, LENGTH, AREA, EPS_P, NFIELDS };
 
+static void rod_fields(const meeting *m, size_t k, double *v, ct_rod_info *out)
+{
+    ct_rod_info r;
+    ct_bundle_rod(m->b, k, &r);
+    v[X_LO] = r.footprint.x_lo;
+    v[X_HI] = r.footprint.x_hi;
+    v[Y_LO] = m->d->dims == 2 ? r.footprint.y_lo : 0.0;
+    v[Y_HI] = m->d->dims == 2 ? r.footprint.y_hi : 0.0;
+    v[TOP] = r.top;
+    v[LENGTH] = r.length;
+    v[AREA] = r.area;
+    v[EPS_P] = r.plastic_strain;
+    if (out)
+        *out = r;
+}
+
+/* The rods as read once, when the surface repeats (each copy reads them again); a surface read
+ * once goes to the bundle itself (no copy of a million rods' footprints). */
 static int read_rods(meeting *m)
 {
     m->n = ct_bundle_size(m->b);
+    m->rods = NULL;
+    if (!m->kx && !m->ky)
+        return CT_OK;
     m->rods = malloc((m->n ? m->n : 1) * NFIELDS * sizeof(double));
     if (!m->rods)
         return ct_error_set(CT_ENOMEM, "body: out of memory for %zu rods", m->n);
-    for (size_t k = 0; k < m->n; k++) {
-        ct_rod_info r;
-        ct_bundle_rod(m->b, k, &r);
-        double *v = m->rods + k * NFIELDS;
-        v[X_LO] = r.footprint.x_lo;
-        v[X_HI] = r.footprint.x_hi;
-        v[Y_LO] = m->d->dims == 2 ? r.footprint.y_lo : 0.0;
-        v[Y_HI] = m->d->dims == 2 ? r.footprint.y_hi : 0.0;
-        v[TOP] = r.top;
-        v[LENGTH] = r.length;
-        v[AREA] = r.area;
-        v[EPS_P] = r.plastic_strain;
-    }
+    for (size_t k = 0; k < m->n; k++)
+        rod_fields(m, k, m->rods + k * NFIELDS, NULL);
     return CT_OK;
+}
+
+/* Rod k's fields (and, when r is not NULL, all it is) from the table or the bundle. */
+static const double *rod_of(const meeting *m, size_t k, double *v, ct_rod_info *r)
+{
+    if (m->rods && !r)
+        return m->rods + k * NFIELDS;
+    rod_fields(m, k, v, r);
+    return v;
 }
 
 /* The gap [the rods' vertical unit] at the nearest point of the box [x_lo, x_hi] x [y_lo, y_hi]
@@ -303,9 +311,9 @@ static double box_gap(const meeting *m, double x_lo, double x_hi, double y_lo, d
     return ct_body_gap(m->body, r_apex * m->hx) * m->hz;
 }
 
-static double gap_of(const meeting *m, size_t k, int cx, int cy)
+/* The gap at a rod's footprint (its fields v) in copy (cx, cy). */
+static double gap_of(const meeting *m, const double *v, int cx, int cy)
 {
-    const double *v = m->rods + k * NFIELDS;
     return box_gap(m, v[X_LO], v[X_HI], v[Y_LO], v[Y_HI], cx, cy);
 }
 
@@ -316,10 +324,9 @@ static int copy_reached(const meeting *m, int cx, int cy, double H)
     return box_gap(m, m->e.x_lo, m->e.x_hi, m->e.y_lo, m->e.y_hi, cx, cy) < H;
 }
 
-/* 1 when rod k touches the border of the surface (not periodic). */
-static int on_border(const meeting *m, size_t k)
+/* 1 when a rod (its fields v) touches the border of the surface (not periodic). */
+static int on_border(const meeting *m, const double *v)
 {
-    const double *v = m->rods + k * NFIELDS;
     return v[X_LO] <= m->e.x_lo || v[X_HI] >= m->e.x_hi ||
            (m->d->dims == 2 && (v[Y_LO] <= m->e.y_lo || v[Y_HI] >= m->e.y_hi));
 }
@@ -328,32 +335,36 @@ static int on_border(const meeting *m, size_t k)
  * then the copies that can still lower it. */
 static double crushed_limit(const meeting *m)
 {
-    double H = INFINITY;
-    for (size_t k = 0; k < m->n; k++)
-        H = fmin(H,
-                 m->rods[k * NFIELDS + TOP] + gap_of(m, k, 0, 0) + m->rods[k * NFIELDS + LENGTH]);
+    double H = INFINITY, buf[NFIELDS];
+    for (size_t k = 0; k < m->n; k++) {
+        const double *v = rod_of(m, k, buf, NULL);
+        H = fmin(H, v[TOP] + gap_of(m, v, 0, 0) + v[LENGTH]);
+    }
     for (int cy = -m->ky; cy <= m->ky; cy++)
         for (int cx = -m->kx; cx <= m->kx; cx++)
-            for (size_t k = 0; (cx || cy) && copy_reached(m, cx, cy, H) && k < m->n; k++)
-                H = fmin(H, m->rods[k * NFIELDS + TOP] + gap_of(m, k, cx, cy) +
-                                m->rods[k * NFIELDS + LENGTH]);
+            for (size_t k = 0; (cx || cy) && copy_reached(m, cx, cy, H) && k < m->n; k++) {
+                const double *v = rod_of(m, k, buf, NULL);
+                H = fmin(H, v[TOP] + gap_of(m, v, cx, cy) + v[LENGTH]);
+            }
     return H;
 }
 
 /* Pass 2: the kept rods (their top below H) into *out (layer H* = H) with their metadata, and
  * the reach: on a surface that does not repeat, the face may go on until it touches a border
  * rod where it would reach past the surface's edge. */
-static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out)
+static int shifted(const meeting *m, double H, ct_bundle **out)
 {
-    const int periodic = m->kx || m->ky;
+    double buf[NFIELDS];
     size_t kept = 0;
     for (int cy = -m->ky; cy <= m->ky; cy++)
         for (int cx = -m->kx; cx <= m->kx; cx++)
-            for (size_t k = 0; copy_reached(m, cx, cy, H) && k < m->n; k++)
-                kept += m->rods[k * NFIELDS + TOP] + gap_of(m, k, cx, cy) < H;
+            for (size_t k = 0; copy_reached(m, cx, cy, H) && k < m->n; k++) {
+                const double *v = rod_of(m, k, buf, NULL);
+                kept += v[TOP] + gap_of(m, v, cx, cy) < H;
+            }
     ct_layer layer = *ct_bundle_layer(m->b);
     layer.Hstar = H;
-    body_meta *meta = body_meta_new(kept, periodic);
+    body_meta *meta = body_meta_new(kept);
     if (!meta)
         return ct_error_set(CT_ENOMEM, "body: out of memory for %zu rods", kept);
     int st = ct_bundle_create(out, &layer, kept, "rods under the body");
@@ -367,19 +378,27 @@ static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out
     for (int cy = -m->ky; cy <= m->ky; cy++)
         for (int cx = -m->kx; cx <= m->kx; cx++)
             for (size_t k = 0; copy_reached(m, cx, cy, H) && k < m->n; k++) {
-                const double *v = m->rods + k * NFIELDS, t = v[TOP] + gap_of(m, k, cx, cy);
-                if (!(t < H))
+                const double *v = rod_of(m, k, buf, NULL), g = gap_of(m, v, cx, cy);
+                if (!(v[TOP] + g < H))
                     continue;
-                top[j] = t;
-                length[j] = v[LENGTH];
-                area[j] = v[AREA];
-                eps_p[j] = v[EPS_P];
-                meta->index[j] = k;
-                if (periodic) {
-                    meta->copy_x[j] = cx;
-                    meta->copy_y[j] = cy;
-                } else if (on_border(m, k))
-                    border = fmin(border, t);
+                ct_rod_info r;
+                rod_of(m, k, buf, &r); /* its stage and extent as its surface gives them */
+                const double sx = cx * m->period_x, sy = cy * m->period_y;
+                top[j] = r.top + g;
+                length[j] = r.length;
+                area[j] = r.area;
+                eps_p[j] = r.plastic_strain;
+                meta->gap[j] = g;
+                meta->stage[j] = r.stage;
+                meta->x_left[j] = r.x_left + sx;
+                meta->x_right[j] = r.x_right + sx;
+                meta->foot[j] = r.footprint;
+                meta->foot[j].x_lo += sx;
+                meta->foot[j].x_hi += sx;
+                meta->foot[j].y_lo += sy;
+                meta->foot[j].y_hi += sy;
+                if (!m->kx && !m->ky && on_border(m, buf))
+                    border = fmin(border, top[j]);
                 j++;
             }
     /* the face reaches past the surface once u_max passes its gap at the nearest edge and a
@@ -388,17 +407,15 @@ static int shifted(const meeting *m, double H, ct_bundle *built, ct_bundle **out
     if (m->d->dims == 2)
         edge = fmin(edge, fmin(m->py - m->e.y_lo, m->e.y_hi - m->py));
     edge = fmax(edge, 0.0); /* an apex off a set of points: the border is already reached */
-    meta->reach = periodic ? INFINITY : fmax(border, ct_body_gap(m->body, edge * m->hx) * m->hz);
+    meta->reach =
+        m->kx || m->ky ? INFINITY : fmax(border, ct_body_gap(m->body, edge * m->hx) * m->hz);
     snprintf(meta->why, sizeof meta->why,
              "the %s's contact reaches the border of the surface (x %.6g .. %.6g%s): beyond it "
              "the surface is not known (surface.periodic = true if it repeats)",
              m->d->name, m->e.x_lo * m->hx, m->e.x_hi * m->hx,
              m->d->dims == 2 ? ", y as well" : "");
-    meta->period_x = m->period_x;
-    meta->period_y = m->period_y;
-    meta->built = built;
     const size_t placed = m->n * (size_t)(2 * m->kx + 1) * (size_t)(2 * m->ky + 1);
-    ct_bundle_set_surface(*out, &body_rods, meta, ct_bundle_omitted(built) + (placed - kept));
+    ct_bundle_set_surface(*out, &body_rods, meta, ct_bundle_omitted(m->b) + (placed - kept));
     return CT_OK;
 }
 
@@ -453,7 +470,7 @@ int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **bp, ct_p
         return st;
     const double H = crushed_limit(&m);
     ct_bundle *out = NULL;
-    st = isfinite(H) ? shifted(&m, H, *bp, &out)
+    st = isfinite(H) ? shifted(&m, H, &out)
                      : ct_error_set(CT_EINVAL,
                                     "body.shape = %s: the face (R = %g) reaches no rod from its "
                                     "apex at x = %g",
@@ -461,7 +478,8 @@ int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **bp, ct_p
     free(m.rods);
     if (st)
         return st;
-    *bp = out; /* at least the rod whose bottom fixes H is kept; the built one is out's now */
+    ct_bundle_free(*bp); /* what the body needs of it is in out's metadata */
+    *bp = out;           /* at least the rod whose bottom fixes H is kept */
     if (info) {
         info->rods = ct_bundle_size(out);
         info->omitted = ct_bundle_omitted(out);
@@ -484,15 +502,14 @@ int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f)
     fputs(areal ? "rod,x_lo,x_hi,y_lo,y_hi," : "rod,x_lo,x_hi,", f);
     fputs("top_over_h0,gap_over_h0,area_over_l0,length_over_h0,residual_top_over_h0\n", f);
     for (size_t k = 0; k < ct_bundle_size(b); k++) {
-        ct_rod_info r, built;
+        ct_rod_info r;
         ct_bundle_rod(b, k, &r);
-        ct_bundle_rod(m->built, m->index[k], &built);
         const double v[9] = {r.footprint.x_lo * hx,
                              r.footprint.x_hi * hx,
                              r.footprint.y_lo * hx,
                              r.footprint.y_hi * hx,
-                             built.top / h0,
-                             (r.top - built.top) / h0,
+                             (r.top - m->gap[k]) / h0,
+                             m->gap[k] / h0,
                              r.area / l0,
                              r.length / h0,
                              (r.top + r.plastic_strain * r.length) / h0};
