@@ -185,7 +185,7 @@ def analyse(out):
     e_half = np.array([float(r["e"]) for r in e_rows["05um"]])
     e_cont = np.array([rods_e(v)[0] for v in v_cli])
     de1, de2 = np.max(np.abs(e_cli - e_cont)), np.max(np.abs(e_half - e_cont))
-    check(de1 < E_BOUND, "e on the 1 um grid against the continuum: %.3g >= %g" % (de1, E_BOUND))
+    check(de1 < E_BOUND, "e on the 1 um grid against the bed's closed form: %.3g >= %g" % (de1, E_BOUND))
     check(de2 < de1 / 2, "halving the spacing: |de| %.3g, then %.3g" % (de1, de2))
 
     # 4. slopes: loading (elastic: CLI over [0.1, 1] u_y; plastic: the top decade of u of the
@@ -206,7 +206,7 @@ def analyse(out):
     s_th = slope(v_top, [thornton_e(v) for v in v_top])
     check(abs(s_el - 2.0) < 0.01, "rods' elastic loading slope %.4f, not 2" % s_el)
     check(abs(s_rods + 0.5) < 0.02, "rods' e slope over the top decade %.4f, not -1/2" % s_rods)
-    check(abs(s_rods - s_cont) < 1e-3, "rods' e slope %.5f against the continuum's %.5f" % (s_rods, s_cont))
+    check(abs(s_rods - s_cont) < 1e-3, "rods' e slope %.5f against the closed form's %.5f" % (s_rods, s_cont))
     check(abs(s_th + 0.25) < 0.01, "Thornton's e slope over the top decade %.4f, not -1/4" % s_th)
 
     # the reference curves for the plot, and the CLI's loading in newtons
@@ -254,10 +254,10 @@ def analyse(out):
         "| P(u) error, 1 um grid (0.5 um) | " + "; ".join(
             "u/u_y in [%g, %g): %.2g (%s)" % (lo, hi, e1, "%.2g" % e2 if not math.isnan(e2) else "-")
             for (lo, hi, _), e1, e2 in zip(P_BANDS, grids["1um"], grids["05um"])) + " |",
-        "| e error against the continuum | 1 um: %.2g; 0.5 um: %.2g (largest over the speeds) |" % (de1, de2),
+        "| e error against the bed's closed form | 1 um: %.2g; 0.5 um: %.2g (largest over the speeds) |" % (de1, de2),
         "| loading slopes | rods %.4f for u in [0.1, 1] u_y (Hertz 1.5); top decade of u: rods %.4f, Thornton %.4f |"
         % (s_el, s_pl, s_th_pl),
-        "| e slopes, %g..%g m/s | rods %.4f (continuum %.4f), Thornton %.4f |"
+        "| e slopes, %g..%g m/s | rods %.4f (the bed's closed form %.4f), Thornton %.4f |"
         % (TOP_DECADE[0], TOP_DECADE[1], s_rods, s_cont, s_th),
         "| e at 0.01, 0.1, 1 m/s | rods %s; Thornton %s |" % (
             ", ".join("%.3f" % at(v)[0] for v in (0.01, 0.1, 1.0)),
