@@ -74,7 +74,8 @@ def test_column_values_are_ct_column_value_bitwise():
     s = cantact.Rods([0.0, 0.3e-3, 0.1e-3], [2e-6, 1e-6, 3e-6], E=2e11, sigma_y=4e8, H=5,
                      unit="m")
     V = np.array([1e-4, 3e-3, 2.0, 0.02])
-    opts = cantact._keys.RunKeys("test").solver().opts
+    solver = cantact._keys.RunKeys("test").solver()  # opts lives in it
+    opts = solver.opts
     b, _ = s._build(V, 2, opts)
     n = V.size * 2
     rows = ffi.new("ct_sweep_row[]", n)

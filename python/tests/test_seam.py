@@ -132,7 +132,13 @@ def bases(profile_file):
     }
 
 
+# Python's words of the body table's surface row (periodic=True is surface.periodic = true)
+PERIODIC = {True: "true", False: "false"}
+
+
 def as_text(row, value):
+    if isinstance(value, bool) and key(row) == "surface.periodic":
+        return PERIODIC[value]
     if isinstance(value, str):
         return value
     if isinstance(value, float) or row.type == lib.CT_KEY_NUMBER:
@@ -198,7 +204,7 @@ def test_surface_kinds_are_the_registry():
 NAMED = {"cantor": cantact.Cantor, "random_cantor": cantact.RandomCantor,
          "rods": cantact.Rods, "profile": cantact.Profile}
 # A named class's arguments that are data, not keys (the kind takes them another way)
-DATA = {"rods": {"top", "area", "length"}, "profile": {"x", "z", "dx", "dy"}}
+DATA = {"rods": {"top", "area", "length", "x", "y"}, "profile": {"x", "z", "dx", "dy"}}
 # Rows a named class does not take as an argument of the same name, and what takes them
 ELSEWHERE = {
     "rods": {"surface.file": "Surface('rods', file=...)",
@@ -211,6 +217,16 @@ ELSEWHERE = {
 }
 # The run's rows a surface's build takes
 BUILD = {"threads": "solver.threads", "depth_tolerance": "solver.depth_tolerance"}
+
+
+def body_rows():
+    n = ffi.new("size_t *")
+    rows = lib.ct_body_keys_table(n)
+    return {key(rows + i): rows + i for i in range(n[0])}
+
+
+# The body table's rows of section surface (periodic): every surface takes them
+SURFACE_BODY = {text(r.name): r for r in body_rows().values() if text(r.section) == "surface"}
 
 
 def stored(row, given):
@@ -248,7 +264,7 @@ def test_named_classes_take_the_kinds_rows(kind, profile_file):
         if name == "trim" and kind == "profile":
             assert p.default is None and default(rows["trim"]) == "none"
             continue
-        row = rows.get(name) or runs.get(BUILD.get(name, ""))
+        row = rows.get(name) or runs.get(BUILD.get(name, "")) or SURFACE_BODY.get(name)
         assert row is not None, f"{cls.__name__}({name}=...): an argument of its own"
         required = bool(row.flags & lib.CT_KEY_REQUIRED)
         if required and p.default is inspect.Parameter.empty:
@@ -259,6 +275,8 @@ def test_named_classes_take_the_kinds_rows(kind, profile_file):
     for r in kind_rows(kind):
         if text(r.name) not in params:
             assert key(r) in ELSEWHERE.get(kind, {}), f"{kind}: {key(r)} is no argument"
+    for name in SURFACE_BODY:  # every surface repeats or not
+        assert name in params, f"{cls.__name__}: no {name}="
     # the arguments' answers are the library's
     base = bases(profile_file)[kind]
     where = f"{cls.__name__}()"
