@@ -102,7 +102,9 @@ class Restitution:
     with check=False), V_star_crit, u_release_over_h0, u_contact_over_h0, W_load_over_PY_h0,
     W_unload_over_PY_h0, e_rounding, and the time columns t_contact_over_tau,
     t_load_over_tau, t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
-    dem_time_step_over_tau (NaN without time=True) (floats; NaN where a row failed);
+    dem_time_step_over_tau (NaN without time=True), the speed columns
+    v_impact_over_h0_per_tau (sqrt(2) V*) and v_rebound_over_h0_per_tau (e sqrt(2) V*) (floats;
+    NaN where a row failed);
     kinetic_energy (the impact's energy in the library's units of the surface's rods: for a
     Cantor surface the dimensionless l0 E h0 V*^2); elastic (bool); status (int: 0, or the
     library's status of a failed or not-run row); message (str); info (depth, bound, rods,
