@@ -961,6 +961,10 @@ typedef struct {
 size_t ct_sweep_columns(const ct_column **cols);
 /* Column c of a row, dimensionless by the layer the rows were computed in. */
 double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer);
+/* Column c of n rows into out[0 .. n-1]: out[k] is bitwise ct_column_value(c, rows + k, layer)
+ * (one call for a column of a sweep, where a front-end calling per row pays per call). */
+void ct_column_values(const ct_column *c, const ct_sweep_row *rows, size_t n, const ct_layer *layer,
+                      double *out);
 /* Column c of a row in the physical layer's units (tau [time] for times): its twin. */
 double ct_column_physical(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer,
                           const ct_layer *physical, double tau);

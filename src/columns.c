@@ -104,11 +104,26 @@ static double raw(const ct_column *c, const ct_sweep_row *row)
     return c->type == 'w' ? v * row->r.e : v;
 }
 
-double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer)
+/* The value of column c of a row over u, its unit's factor (unit_of), then over its divisor:
+ * the one formula of ct_column_value and ct_column_values. */
+static double value_over(const ct_column *c, const ct_sweep_row *row, double u)
 {
-    const double u = unit_of(c->unit, layer), v = raw(c, row);
+    const double v = raw(c, row);
     const double x = u == 1.0 ? v : v / u;
     return c->divisor == 1.0 ? x : x / c->divisor;
+}
+
+double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer)
+{
+    return value_over(c, row, unit_of(c->unit, layer));
+}
+
+void ct_column_values(const ct_column *c, const ct_sweep_row *rows, size_t n, const ct_layer *layer,
+                      double *out)
+{
+    const double u = unit_of(c->unit, layer);
+    for (size_t k = 0; k < n; k++)
+        out[k] = value_over(c, rows + k, u);
 }
 
 double ct_column_physical(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer,

@@ -8,6 +8,9 @@ rods (Cantor-fractal, random Cantor, a measured profile or your own rods), throu
     t = cantact.table(s, V_star=(1e-5, 1e-2), tolerance=1e-6)  # e(V*) with a checked error
     t(0.003)                                                   # its interpolation
     cantact.zeta_of_e(t(0.003), law="clipped")                 # the damping ratio (DEM)
+    m = cantact.Profile("map.x3p", H=10, E=2e11, sigma_y=4e8, periodic=True)  # a map that
+    r = cantact.restitution(m, mass=5.14e-4, speed=[0.01, 0.1],  # repeats, struck by a ball
+                            body=cantact.Sphere(2.5e-3))             # of R = 2.5 mm
 
 Results are dimensionless as the cantact program's (V*, u/h0, P/P_Y); errors raise
 cantact.Error subclasses carrying the library's status and message. See README.md.
@@ -16,7 +19,8 @@ from ._errors import guard as _guard
 from ._errors import (Error, InvalidInput, IOFailure, NoConvergence, NotRun, OutOfMemory,
                       OutsideModel, strerror)
 from ._ffi import LIBRARY_PATH, ffi, lib
-from ._keys import KINDS, RUN_ROWS
+from ._keys import BODIES, BODY_ROWS, KINDS, RUN_ROWS
+from ._bodies import Body, Cylinder, Flat, Sphere
 from ._results import COLUMNS, ROW_FIELDS, Restitution
 from ._surfaces import Cantor, Profile, RandomCantor, Rods, Surface
 from ._api import (DAMPING_LAWS, Ensemble, LoadCurve, Table, asym_load, asym_unload, e_of_zeta,
@@ -25,6 +29,7 @@ from ._api import (DAMPING_LAWS, Ensemble, LoadCurve, Table, asym_load, asym_unl
 
 __all__ = [
     "Surface", "Cantor", "RandomCantor", "Rods", "Profile", "KINDS", "RUN_ROWS",
+    "Body", "Flat", "Cylinder", "Sphere", "BODIES", "BODY_ROWS",
     "restitution", "Restitution", "ensemble", "Ensemble",
     "load_curve", "LoadCurve", "series_load", "series_unload", "asym_load", "asym_unload",
     "law_restitution", "table", "Table", "read_table", "Error", "InvalidInput", "OutOfMemory",

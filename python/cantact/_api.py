@@ -12,6 +12,7 @@ from . import _check as chk
 from . import _keys
 from ._errors import check as _ok, error, invalid, memory, size_text
 from ._ffi import ffi, lib
+from ._bodies import body_of, is_default
 from ._results import Restitution, finite_info
 from ._surfaces import Surface, cantor_params, random_cantor, surface_of
 
@@ -71,18 +72,23 @@ def _speeds(surface, V_star, mass, speed, keys, name="V_star"):
     return V
 
 
-def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
+def restitution(surface, V_star=None, *, mass=None, speed=None, body=None, impacts=1,
                 quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True, path="auto",
                 errors="raise", time=False):
     """e and the rest of each impact: for each speed, `impacts` impacts from the virgin surface
     (the plastic strain carried from one to the next). Speeds as V_star (dimensionless) or as
-    mass and speed (in the units of the surface's parameters: V* = sqrt(m v^2/(2 l0 E h0))).
+    mass and speed (in the units of the surface's parameters: V* = sqrt(m v^2/(2 l0 E h0));
+    the body's mass: per unit depth for a strip or cylinder on a line, its mass on a map).
+    body: what strikes the rods (cantact.Flat, Cylinder, Sphere or Body; None: the flat
+    strip), met by the library's build (docs/model.md §14); a surface that cannot carry it is
+    refused in the library's words.
     errors="raise" raises the first failed impact's error (the library's message, its V* and
     impact); errors="rows" returns failed rows with their status and message instead.
     time=True adds each impact in time (t_contact_over_tau, t_load_over_tau,
     t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
     dem_time_step_over_tau; MODEL.md §11)."""
     surface = surface_of("surface", surface)
+    body = body_of("body", body)
     keys = _run_keys("restitution()", RESTITUTION_KEYS, impacts=impacts, quadrature=quadrature,
                      nodes=nodes, tolerance=tolerance, check=check, path=path, errors=errors)
     V = _speeds(surface, V_star, mass, speed, keys)
@@ -94,7 +100,7 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, impacts=1,
     with memory(f"restitution: {n} result rows ({V.size} speeds x {impacts} impacts; "
                 f"{size_text(n, ffi.sizeof('ct_sweep_row'))} for the library's rows)"):
         rows = ffi.new("ct_sweep_row[]", n)
-        b, info = surface._build(V, impacts, solver.opts)
+        b, info = surface._build(V, impacts, solver.opts, body=body)
         spec = ffi.new("ct_sweep_spec *")
         speeds = ffi.from_buffer("double[]", V)
         spec.V_star = speeds
@@ -174,17 +180,25 @@ class Ensemble:
                 f"{self.impacts} impacts>")
 
 
-def ensemble(surface, V_star=None, *, mass=None, speed=None, realisations, first=0, impacts=1,
-             quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True, path="auto",
-             threads=0, split="auto", errors="raise"):
+def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisations, first=0,
+             impacts=1, quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True,
+             path="auto", threads=0, split="auto", errors="raise"):
     """Realisations first .. first + realisations - 1 of a RandomCantor surface, each built,
     swept and dropped by the library (ct_ensemble: the samples do not depend on the thread
     count or the split). errors="raise" raises the lowest failing realisation's error;
-    errors="rows" keeps failed samples as NaN with their status."""
+    errors="rows" keeps failed samples as NaN with their status. body: the flat strip only
+    (None or Flat()): the library's ensemble (ct_ensemble_spec) takes no body, so a curved
+    one is refused rather than left out; restitution(RandomCantor(..., realisation=k),
+    body=...) strikes one realisation with it."""
     surface = surface_of("surface", surface)
+    body = body_of("body", body)
     ok, why = surface.supports("ensemble")
     if not ok:  # the kind's reason
         raise invalid(f"surface: a {type(surface).__name__} of type = {surface.kind}: {why}")
+    if not is_default(body):
+        raise invalid(f"body = {body!r}: the library's ensemble (ct_ensemble) builds its "
+                      "realisations for the flat strip and takes no body; strike one "
+                      "realisation with restitution(RandomCantor(..., realisation=k), body=...)")
     keys = _run_keys("ensemble()", ENSEMBLE_KEYS, impacts=impacts, quadrature=quadrature,
                      nodes=nodes, tolerance=tolerance, check=check, path=path, threads=threads,
                      split=split, errors=errors, realisations=realisations)
@@ -226,10 +240,12 @@ class LoadCurve:
     """P(u) of a surface's state (virgin, or after being loaded to `after`), exactly: the
     piecewise-linear curve of the library (ct_curve_*). Dimensionless: u in h0, P in
     P_Y = sigma_y l0, W and the dissipation in P_Y h0. breakpoints: the sorted breakpoints
-    (u/h0); force, work, dissipation, release take arrays of u/h0, inverse_work of W."""
+    (u/h0); force, work, dissipation, release take arrays of u/h0, inverse_work of W. body:
+    what presses on the rods (None: the flat strip), as in restitution()."""
 
-    def __init__(self, surface, V_star=None, after=None):
+    def __init__(self, surface, V_star=None, after=None, body=None):
         surface = surface_of("surface", surface)
+        body = body_of("body", body)
         if V_star is None:
             word = surface._depth_word()
             if word is not None:
@@ -239,7 +255,7 @@ class LoadCurve:
         V = chk.array("V_star", V_star, positive=True)
         keys = _keys.RunKeys("load_curve()")
         keys.set("solver.check", False, "check")
-        b, info = surface._build(V, 1, keys.solver().opts, keep_all=True)
+        b, info = surface._build(V, 1, keys.solver().opts, keep_all=True, body=body)
         self.info = finite_info(info)
         self._units = surface._units()
         if after is not None:
@@ -295,9 +311,9 @@ class LoadCurve:
                          nonnegative=True)
 
 
-def load_curve(surface, V_star=None, after=None):
-    """The load curve of a surface (see LoadCurve)."""
-    return LoadCurve(surface, V_star, after)
+def load_curve(surface, V_star=None, after=None, body=None):
+    """The load curve of a surface under a body (see LoadCurve)."""
+    return LoadCurve(surface, V_star, after, body)
 
 
 # ---- the paper's laws --------------------------------------------------------------------
@@ -646,16 +662,18 @@ class Table:
                 f"{self.info['worst_error']:.3g}>")
 
 
-def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
+def table(surface, V_star=None, *, mass=None, speed=None, body=None, tolerance=1e-6,
           interpolation="monotone_cubic", max_nodes=100000, check_points=16,
           quadrature="breakpoints", nodes=64, check=True, path="auto"):
     """e(V*) of the first impact on the virgin surface as a table whose interpolation meets
     `tolerance` (absolute, in e) at every checked point (ct_table_build): V_star = (from, to),
     or mass and speed = (from, to). A mass (with either) sets the table's v_per_V_star =
     sqrt(2 l0 E h0 / m), the impact speed per unit V* with the surface's physical l0, E, h0, as
-    `cantact table` writes it from [impact] mass (1 / ct_V_star_of(m, 1, l0, E, h0)). Raises
-    NoConvergence when max_nodes would not do."""
+    `cantact table` writes it from [impact] mass (1 / ct_V_star_of(m, 1, l0, E, h0)). body:
+    what strikes the rods (None: the flat strip), as in restitution(). Raises NoConvergence
+    when max_nodes would not do."""
     surface = surface_of("surface", surface)
+    body = body_of("body", body)
     keys = _run_keys("table()", TABLE_KEYS, tolerance=tolerance, interpolation=interpolation,
                      max_nodes=max_nodes, check_points=check_points, quadrature=quadrature,
                      nodes=nodes, check=check, path=path)
@@ -676,7 +694,7 @@ def table(surface, V_star=None, *, mass=None, speed=None, tolerance=1e-6,
     spec.check_points = k.check_points
     spec.opts = solver.opts
     spec.path = solver.path
-    b, _ = surface._build(np.array([spec.V_min, spec.V_max]), 1, solver.opts)
+    b, _ = surface._build(np.array([spec.V_min, spec.V_max]), 1, solver.opts, body=body)
     out = ffi.new("ct_table **")
     _ok(lib.ct_table_build(out, b, spec))
     t = Table(ffi.gc(out[0], lib.ct_table_free), spec.tolerance)

@@ -420,6 +420,8 @@ typedef struct {
 } ct_column;
 size_t ct_sweep_columns(const ct_column **cols);
 double ct_column_value(const ct_column *c, const ct_sweep_row *row, const ct_layer *layer);
+void ct_column_values(const ct_column *c, const ct_sweep_row *rows, size_t n, const ct_layer *layer,
+                      double *out);
 typedef enum {
     CT_KEY_NUMBER = 0,
     CT_KEY_INTEGER,
@@ -430,6 +432,7 @@ typedef enum {
     CT_KEY_DEPTH,
     CT_KEY_SPEEDS,
     CT_KEY_RANGE,
+    CT_KEY_POINT,
 } ct_key_type;
 enum {
     CT_KEY_LO_CLOSED = 1,
@@ -523,6 +526,7 @@ size_t ct_body_count(void);
 const char *ct_body_name(size_t k);
 const char *ct_body_summary(size_t k);
 void ct_body_defaults(ct_body *body);
+const ct_key *ct_body_keys_table(size_t *n);
 void ct_body_describe(const ct_body *body, char *buf, size_t len);
 double ct_body_gap(const ct_body *body, double r);
 typedef struct {
@@ -539,6 +543,8 @@ int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle
                      ct_plan_info *info);
 int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,
                         const double *length);
+int ct_surface_set_rods_at(ct_surface *s, size_t n, const double *top, const double *area,
+                           const double *length, const double *x, const double *y);
 const char *ct_surface_note(ct_surface *s);
 int ct_surface_random_cantor(const ct_surface *s, ct_random_cantor *rc, uint64_t *realisation);
 int ct_surface_profile(const ct_surface *s, const ct_profile **p, ct_profile_fit *fit);

@@ -2,14 +2,17 @@
 row parses.
 
 Every kind of surface has its rows (ct_surface_kind_keys: sections surface, material and what
-else the kind owns), and so has a run (ct_run_keys_table: sections impact, solver, table and
-ensemble). The library parses a value through its row (ct_surface_set for a surface's key,
-ct_key_parse for a run's) and refuses it in its own words, so the module accepts and refuses
-what a scene does, with the same message, and holds no key, range, default or message of its
-own. Python judges a value's type only, by the module's rules (_check.py): a number key takes
-a real number, made the double nearest to it (its text is repr of that double: exact); an
-integer key an integer (its digits); a word or depth word a str; a file a path. Messages of a
-range say "section.name = value: reason", as the program's (without its file:line)."""
+else the kind owns), and so have a run (ct_run_keys_table: sections impact, solver, table and
+ensemble) and a body (ct_body_keys_table: body.shape, body.radius, body.position and
+surface.periodic, stored in a ct_body). The library parses a value through its row
+(ct_surface_set for a surface's key, ct_key_parse for a run's or a body's) and refuses it in
+its own words, so the module accepts and refuses what a scene does, with the same message, and
+holds no key, range, default or message of its own. Python judges a value's type only, by the
+module's rules (_check.py): a number key takes a real number, made the double nearest to it
+(its text is repr of that double: exact); an integer key an integer (its digits); a word or
+depth word a str; a file a path; a point a number x or a sequence (x,) or (x, y) (their reprs,
+", " between). Messages of a range say "section.name = value: reason", as the program's
+(without its file:line)."""
 from collections import namedtuple
 
 import numpy as np
@@ -54,23 +57,51 @@ def _run_rows():
     return _rows(lib.ct_run_keys_table(n), n[0])
 
 
+def _body_rows():
+    n = ffi.new("size_t *")
+    return _rows(lib.ct_body_keys_table(n), n[0])
+
+
 # The kinds of surface in the registry's order, each with its rows.
 KINDS = _kinds()
 # The rows of a run (impact, solver, table, ensemble), in the table's order.
 RUN_ROWS = _run_rows()
 _RUN = {f"{r.section}.{r.name}": r for r in RUN_ROWS}
+# The rows of a body (section body) and surface.periodic, in the table's order: offsets into
+# a ct_body.
+BODY_ROWS = _body_rows()
+# The kinds of body in the registry's order (ct_body_name).
+BODIES = tuple(_text_of(lib.ct_body_name(k)) for k in range(lib.ct_body_count()))
 
 
-# Python's words for a run row's words: check=True is solver.check = all (every impact also
-# in closed form, the module's default; the program's is auto), False none; errors="raise" is
-# solver.on_error = stop, "rows" skip. The rows' own words are taken as well.
+# Python's words for a row's words: check=True is solver.check = all (every impact also in
+# closed form, the module's default; the program's is auto), False none; errors="raise" is
+# solver.on_error = stop, "rows" skip; periodic=True is surface.periodic = true, False false.
+# The rows' own words are taken as well.
 WORDS = {"solver.check": {True: "all", False: "none"},
-         "solver.on_error": {"raise": "stop", "rows": "skip"}}
+         "solver.on_error": {"raise": "stop", "rows": "skip"},
+         "surface.periodic": {True: "true", False: "false"}}
 
 
 def run_row(key):
     """The run's row "section.name"."""
     return _RUN[key]
+
+
+def own_words(key, row, name, value):
+    """value given as the keyword argument name, Python's word of the row key (WORDS) made the
+    row's own word; a str is the library's to judge; anything else refused naming both."""
+    words = WORDS.get(key)
+    if words is None:
+        return value
+    for given, word in words.items():
+        if (isinstance(value, (bool, np.bool_)) if isinstance(given, bool)
+                else isinstance(value, str)) and value == given:
+            return word
+    if not isinstance(value, str):  # a str is the library's to judge
+        raise invalid(f"{name} = {chk._text(value)}: must be "
+                      f"{' or '.join(map(repr, words))} ({key}: {row.range})")
+    return value
 
 
 def message():
@@ -125,6 +156,16 @@ def text(row, name, value):
         except TypeError:
             ends = [value]
         return ":".join(repr(chk._double(f"{name}[{k}]", x)) for k, x in enumerate(ends)).encode()
+    if t == lib.CT_KEY_POINT:  # x, or (x,) or (x, y): the row judges how many
+        if isinstance(value, (str, bytes)):
+            raise invalid(f"{name} = {chk._text(value)}: {row.range}")
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value[()]
+        try:
+            xs = list(value)
+        except TypeError:
+            return repr(chk._double(name, value)).encode()
+        return ", ".join(repr(chk._double(f"{name}[{k}]", x)) for k, x in enumerate(xs)).encode()
     raise invalid(f"{name}: {row.section}.{row.name} is not given as a keyword argument")
 
 
@@ -177,17 +218,7 @@ class RunKeys:
         Python's words of some rows translated, see WORDS)."""
         row = run_row(key)
         name = name or row.name
-        words = WORDS.get(key)
-        if words is not None:
-            for given, word in words.items():
-                if (isinstance(value, (bool, np.bool_)) if isinstance(given, bool)
-                        else isinstance(value, str)) and value == given:
-                    value = word
-                    break
-            if not isinstance(value, str):  # a str is the library's to judge
-                raise invalid(f"{name} = {chk._text(value)}: must be "
-                              f"{' or '.join(map(repr, words))} ({key}: {row.range})")
-        self.set_text(key, text(row, name, value))
+        self.set_text(key, text(row, name, own_words(key, row, name, value)))
 
     def set_text(self, key, given):
         """Parses the text given (bytes) through the row key."""

@@ -1,11 +1,12 @@
 """The rows of a sweep as the library's output columns (ct_sweep_columns, src/columns.c).
 
 Every column of type 'd' but V_star is an attribute of Restitution with the column's name, and
-every value is the library's own: ct_column_value of the row in the layer the rows were
-computed in (the value over its unit's factor, then over the column's divisor), so the
-module's numbers are the bits of `cantact run`'s e table and time columns, and the module
-holds no column list, unit or factor of its own. The sweep's times are t / tau already (its
-mass is E l0 / h0); the "time" group is NaN unless restitution(..., time=True)."""
+every value is the library's own: ct_column_values of the rows in the layer they were
+computed in (one call per column, bitwise ct_column_value of each row: the value over its
+unit's factor, then over the column's divisor), so the module's numbers are the bits of
+`cantact run`'s e table and time columns, and the module holds no column list, unit or factor
+of its own. The sweep's times are t / tau already (its mass is E l0 / h0); the "time"
+group is NaN unless restitution(..., time=True)."""
 import numpy as np
 
 from . import _check as chk
@@ -85,12 +86,13 @@ def _row_view(rows, n, offset, dtype):
 
 
 def column_values(column, rows, n, layer):
-    """ct_column_value of the column (a dict of COLUMNS) for n rows, dimensionless by layer."""
+    """The column (a dict of COLUMNS) of n rows, dimensionless by layer: ct_column_values, one
+    call for the column (bitwise ct_column_value of each row)."""
     c = _TABLE + column["index"]
-    value = lib.ct_column_value
     with memory(f"{column['name']}: {n} values ({size_text(n, 8)})"):
-        return np.fromiter((value(c, rows + q, layer) for q in range(n)), dtype=np.float64,
-                           count=n)
+        out = np.empty(n, dtype=np.float64)
+    lib.ct_column_values(c, rows, n, layer, ffi.from_buffer("double[]", out))
+    return out
 
 
 class Restitution:
@@ -100,7 +102,9 @@ class Restitution:
     with check=False), V_star_crit, u_release_over_h0, u_contact_over_h0, W_load_over_PY_h0,
     W_unload_over_PY_h0, e_rounding, and the time columns t_contact_over_tau,
     t_load_over_tau, t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
-    dem_time_step_over_tau (NaN without time=True) (floats; NaN where a row failed);
+    dem_time_step_over_tau (NaN without time=True), the speed columns
+    v_impact_over_h0_per_tau (sqrt(2) V*) and v_rebound_over_h0_per_tau (e sqrt(2) V*) (floats;
+    NaN where a row failed);
     kinetic_energy (the impact's energy in the library's units of the surface's rods: for a
     Cantor surface the dimensionless l0 E h0 V*^2); elastic (bool); status (int: 0, or the
     library's status of a failed or not-run row); message (str); info (depth, bound, rods,

@@ -9,7 +9,10 @@ read and levelled, the scales fixed), and built into rods for the speeds asked
 (ct_surface_build with a ct_build_request). Its keys, ranges, defaults and messages are the
 kind's own, the same as a scene's (the program's `surface.type = kind`): the module types
 none of them. threads and depth_tolerance are the run's rows (solver.threads,
-solver.depth_tolerance) that a build takes.
+solver.depth_tolerance) that a build takes; periodic is the body table's row of section
+surface (surface.periodic, ct_body_keys_table: the surface repeats as far as a curved body's
+face reaches), which a build gives the library in the ct_body of its request with the body
+struck (_bodies.py).
 
 A Cantor or random Cantor surface is computed in dimensionless form, as the cantact program
 does (l0 = h0 = sigma_y = 1, H* = H, E = E/sigma_y): the results (u/h0, P/P_Y, V*) are the
@@ -19,6 +22,7 @@ import re
 
 import numpy as np
 
+from . import _bodies
 from . import _check as chk
 from . import _keys
 from ._errors import check, error, invalid
@@ -54,7 +58,10 @@ class Surface:
     the same values accepted, the same refused with the same words. threads (solver.threads)
     and depth_tolerance (solver.depth_tolerance) are the run's keys a build takes. E.g.
     Surface("cantor", fx=1.5, fz=1.3, H=10, E=500), Surface("rods", rods="0:1, 0.5:1",
-    Hstar=2, E=10), Surface("profile", file="scan.csv", H=10, E=2e11, sigma_y=4e8). layer and
+    Hstar=2, E=10), Surface("profile", file="scan.csv", H=10, E=2e11, sigma_y=4e8). periodic
+    (surface.periodic, the body table's row of the surface: True or False, or the row's
+    words): the surface repeats as far as a curved body's face reaches (a Cantor surface with
+    period l0, a profile or map as measured) instead of ending at its border. layer and
     physical: the layer as built and as given; value(key): a key's value as parsed; note: what
     the library says of the surface prepared ("" when nothing)."""
 
@@ -91,8 +98,11 @@ class Surface:
         for r in self._rows:
             by_name.setdefault(r.name, r)
             by_name[f"{r.section}.{r.name}"] = r
-        given = {}
+        given, own = {}, {}
         for key, value in keys.items():
+            if key in _bodies.SURFACE_ROWS:  # the surface's row of the body table: periodic
+                own[key] = value
+                continue
             row = by_name.get(key)
             if row is None:  # not this kind's: the library says which kinds take it
                 self._set_other(key, value, where)
@@ -106,6 +116,13 @@ class Surface:
         self._given = {f"{sec}.{nm}": v[1] for (sec, nm), v in given.items()}
         self._before_check(s)
         check(lib.ct_surface_check(s, where))
+        # after the kind's keys, as the program reads a scene: surface.periodic into the ct_body
+        # a build gives the library
+        self._body_keys = _bodies.defaults()
+        for key, value in own.items():
+            r = _bodies.SURFACE_ROWS[key]
+            _bodies.parse(self._body_keys, r, value, key, where.decode())
+            self._given[f"{r.section}.{r.name}"] = value
         if prepare:
             check(lib.ct_surface_prepare(s, ffi.NULL))
             self._scales = ffi.new("ct_scales *")
@@ -164,6 +181,11 @@ class Surface:
         return (True, None) if ok else (False, _keys._text_of(why[0]))
 
     @property
+    def periodic(self):
+        """True when the surface repeats under a curved body (surface.periodic)."""
+        return bool(self._body_keys.periodic)
+
+    @property
     def note(self):
         """What the library says of the surface prepared (what was read, levelled, clipped),
         "" when nothing."""
@@ -202,7 +224,10 @@ class Surface:
                     return r.words[-1 - v]
         return None
 
-    def _request(self, V, impacts, opts, keep_all):
+    def _request(self, V, impacts, opts, keep_all, body=None):
+        """The ct_build_request (and what it points to, to be kept with it) for speeds V,
+        impacts each, options opts, with the body struck (None: the flat strip) on this
+        surface (its periodic)."""
         req = ffi.new("ct_build_request *")
         speeds = ffi.from_buffer("double[]", V)
         req.V_star = speeds
@@ -212,13 +237,16 @@ class Surface:
         req.keep_all_rods = 1 if keep_all else 0
         req.threads = self.threads
         req.depth_tolerance = self.depth_tolerance
-        return req, speeds
+        struck = _bodies.request(body, self._body_keys)
+        req.body = struck
+        return req, (speeds, struck)
 
-    def _build(self, V_star, impacts, opts, keep_all=False):
-        """The rods for speeds V_star (impacts each, options opts: a ct_impact_opts) and what
-        the build found (depth, bound, rods, omitted)."""
+    def _build(self, V_star, impacts, opts, keep_all=False, body=None):
+        """The rods for speeds V_star (impacts each, options opts: a ct_impact_opts) as the
+        body (a Body; None: the flat strip) meets them, and what the build found (depth,
+        bound, rods, omitted)."""
         V = np.ascontiguousarray(V_star, dtype=np.float64)
-        req, speeds = self._request(V, impacts, opts, keep_all)
+        req, kept = self._request(V, impacts, opts, keep_all, body)
         out = ffi.new("ct_bundle **")
         info = ffi.new("ct_plan_info *")
         check(lib.ct_surface_build(self._surface, req, out, info))
@@ -247,12 +275,14 @@ class Cantor(Surface):
     N >= 0, "auto" (the smallest depth whose truncation changes forces and energies by less
     than depth_tolerance, relative to the smallest impact asked) or "fractal" (the limit to
     double precision); representation: "stages" (one rod per stage) or "segments" (one per
-    piece, depth <= 40)."""
+    piece, depth <= 40, which a curved body needs); periodic: the surface repeats with period
+    l0 under a curved body."""
 
     def __init__(self, fx, fz, H, E, sigma_y=1.0, h0=1.0, l0=1.0, depth="auto",
-                 representation="stages", depth_tolerance=1e-12, threads=0):
+                 representation="stages", depth_tolerance=1e-12, threads=0, periodic=False):
         self._setup("cantor", dict(fx=fx, fz=fz, H=H, h0=h0, l0=l0, depth=depth,
-                                   representation=representation, E=E, sigma_y=sigma_y),
+                                   representation=representation, E=E, sigma_y=sigma_y,
+                                   periodic=periodic),
                     threads, depth_tolerance)
         self._physical, self._params = cantor_params(self)
         self.depth = depth
@@ -282,13 +312,14 @@ class Cantor(Surface):
         """The fractal dimension D (Eq. 3)."""
         return lib.ct_dimension(self._params)
 
-    def _build(self, V_star, impacts, opts, keep_all=False):
-        if not keep_all:
-            return super()._build(V_star, impacts, opts)
-        # The whole surface (the load curve's): the kind's build refuses to keep every rod
-        # beyond depth 20, a limit of what = profile, which writes every piece; the curve needs
-        # every rod at any depth, planned as the kind plans them (ct_cantor_plan_build) from
-        # the kind's own parameters and settings.
+    def _build(self, V_star, impacts, opts, keep_all=False, body=None):
+        if not keep_all or not _bodies.is_default(body):
+            return super()._build(V_star, impacts, opts, keep_all, body)
+        # The whole surface (the load curve's) under the flat strip: the kind's build refuses
+        # to keep every rod beyond depth 20, a limit of what = profile, which writes every
+        # piece; the curve needs every rod at any depth, planned as the kind plans them
+        # (ct_cantor_plan_build) from the kind's own parameters and settings. (A curved body
+        # goes through the kind's build, which applies it.)
         V = np.ascontiguousarray(V_star, dtype=np.float64)
         plan = ffi.new("ct_cantor_plan *")
         plan.params = self._params[0]
@@ -326,15 +357,16 @@ class RandomCantor(Surface):
     draws its ratios around fx and fz (distribution "lognormal" or "uniform", spreads
     fx_spread, fz_spread), Philox keyed by (seed, realisation): one realisation is a pure
     function of them. depth: an integer 0 .. 30 (2^(depth+1) - 1 rods). ensemble() runs many
-    realisations."""
+    realisations. periodic: the realisation repeats with period l0 under a curved body."""
 
     def __init__(self, fx, fz, H, E, depth, sigma_y=1.0, h0=1.0, l0=1.0,
                  distribution="lognormal", fx_spread=0.0, fz_spread=0.0, seed=0, realisation=0,
-                 threads=0):
+                 threads=0, periodic=False):
         self._setup("random_cantor", dict(fx=fx, fz=fz, H=H, h0=h0, l0=l0, depth=depth,
                                           distribution=distribution, fx_spread=fx_spread,
                                           fz_spread=fz_spread, seed=seed,
-                                          realisation=realisation, E=E, sigma_y=sigma_y),
+                                          realisation=realisation, E=E, sigma_y=sigma_y,
+                                          periodic=periodic),
                     threads)
         self._physical, self._params = cantor_params(self)
         self._rc, _ = random_cantor(self)
@@ -353,10 +385,16 @@ class RandomCantor(Surface):
     beta = Cantor.beta
     dimension = Cantor.dimension
 
-    def _build(self, V_star, impacts, opts, keep_all=False):
-        b, info = super()._build(V_star, impacts, opts, keep_all)
+    def _build(self, V_star, impacts, opts, keep_all=False, body=None):
+        b, info = super()._build(V_star, impacts, opts, keep_all, body)
         fx, fz, draws = ffi.new("uint64_t *"), ffi.new("uint64_t *"), ffi.new("uint64_t *")
-        check(lib.ct_random_cantor_clipped(b, fx, fz, draws))
+        st = lib.ct_random_cantor_clipped(b, fx, fz, draws)
+        if st != lib.CT_OK and not _bodies.is_default(body):
+            # the rods a curved body met are the body's (their tops shifted), and the library
+            # tells the generator's counts of its own bundle only
+            info.update(fx_clipped=None, fz_clipped=None, draws=None)
+            return b, info
+        check(st)
         info.update(fx_clipped=int(fx[0]), fz_clipped=int(fz[0]), draws=int(draws[0]))
         return b, info
 
@@ -384,30 +422,37 @@ class Rods(Surface):
     length and depth of the outputs (V*, u/h0, P/P_Y = P/(sigma_y l0)): by default l0 is the
     total area and h0 the deepest top (H* when every top is 0). unit ("m", "mm", "um", "nm"):
     the unit of tops, areas, lengths, Hstar, h0 and l0, converted to metres (default: none,
-    the units given). Computed in those units; every check is the kind's."""
+    the units given). x[k] (and y[k]): where rod k stands, in the unit of the tops, its
+    footprint a point (ct_surface_set_rods_at, as a rod file's columns x and y): rods placed by
+    x carry a Cylinder, by x and y a Sphere. Computed in those units; every check is the
+    kind's. periodic: as every surface's, though rods given by points have no extent to repeat
+    (the library refuses it under a curved body)."""
 
     def __init__(self, top, area, E, Hstar=None, sigma_y=1.0, l0=None, h0=None, H=None,
-                 length=None, unit=None, threads=0):
+                 length=None, unit=None, threads=0, x=None, y=None, periodic=False):
         # the arrays' types and shapes here, their values (and every key) the kind's
         top = chk.array("top", top, finite=False)
         area = chk.array("area", area, finite=False)
         if top.size != area.size:
             raise invalid(f"top and area: {top.size} and {area.size} rods: must be as many")
-        if length is not None:
-            length = chk.array("length", length, finite=False)
-            if length.size != top.size:
-                raise invalid(f"top and length: {top.size} and {length.size} rods: must be as "
-                              "many")
-        self.top, self.area, self.length, self.unit = top, area, length, unit
+        given = {}
+        for name, a in (("length", length), ("x", x), ("y", y)):
+            if a is not None:
+                given[name] = chk.array(name, a, finite=False)
+                if given[name].size != top.size:
+                    raise invalid(f"top and {name}: {top.size} and {given[name].size} rods: "
+                                  "must be as many")
+        self.top, self.area, self.length, self.unit = top, area, given.get("length"), unit
+        self.x, self.y = given.get("x"), given.get("y")
         self._setup("rods", _given(unit=unit, Hstar=Hstar, H=H, h0=h0, l0=l0, E=E,
-                                   sigma_y=sigma_y), threads)
+                                   sigma_y=sigma_y, periodic=periodic), threads)
 
     def _before_check(self, s):
-        length = self.length
-        check(lib.ct_surface_set_rods(
-            s, self.top.size, ffi.from_buffer("double[]", self.top),
-            ffi.from_buffer("double[]", self.area),
-            ffi.NULL if length is None else ffi.from_buffer("double[]", length)))
+        def at(a):
+            return ffi.NULL if a is None else ffi.from_buffer("double[]", a)
+
+        check(lib.ct_surface_set_rods_at(s, self.top.size, at(self.top), at(self.area),
+                                         at(self.length), at(self.x), at(self.y)))
 
     def _scene(self):
         return "Rods()"
@@ -449,12 +494,17 @@ class Profile(Surface):
     with m per unit depth (a grid: the mass). Computed in metres (a file) or the arrays'
     units; results dimensionless by h0, sigma_y and l0 as for Rods. Every key and its check is
     the kind's; arrays, which the kind does not take, are levelled, trimmed and made rods by
-    the same library calls its preparation makes."""
+    the same library calls its preparation makes. A line carries a Cylinder, a grid (an X3P
+    map) a Sphere; periodic: the profile or map repeats as measured under a curved body. A
+    curved body meets a profile read from a file (the kind's build applies it); heights given
+    as arrays are made rods outside the kind's build, which no body reaches: they carry the
+    flat strip only."""
 
     def __init__(self, file=None, *, E, sigma_y, H=None, Hstar=None, x=None, z=None, dx=None,
                  dy=None, unit=None, x_unit=None, z_unit=None, spacing=None, detrend="linear",
-                 trim=None, threads=0):
-        keys = _given(H=H, Hstar=Hstar, detrend=detrend, E=E, sigma_y=sigma_y)
+                 trim=None, threads=0, periodic=False):
+        keys = _given(H=H, Hstar=Hstar, detrend=detrend, E=E, sigma_y=sigma_y,
+                      periodic=periodic)
         if trim is not None:
             keys.update(trim="rq", trim_k=trim)
         self.detrend = detrend
@@ -698,9 +748,14 @@ class Profile(Surface):
         PY = L.sigma_y * L.l0
         return {"1": 1.0, "u": L.h0, "P": PY, "W": PY * L.h0}
 
-    def _build(self, V_star, impacts, opts, keep_all=False):
+    def _build(self, V_star, impacts, opts, keep_all=False, body=None):
         if self._bundle is None:
-            return super()._build(V_star, impacts, opts, keep_all)
+            return super()._build(V_star, impacts, opts, keep_all, body)
+        if not _bodies.is_default(body):
+            raise invalid(f"body = {body!r}: a Profile of arrays is made rods outside the "
+                          "kind's build (ct_surface_build reads its heights from a file), "
+                          "where no body meets them: give the heights as a file for a curved "
+                          "body")
         return self._bundle, _info(self._bundle)
 
     def __repr__(self):

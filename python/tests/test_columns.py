@@ -65,3 +65,36 @@ def test_default_scene_every_column_as_the_cli(run_cli, source):
             if cols[name]["digits"] == 3:  # written to 3 digits: quadrature_error
                 x = float("%.3g" % x)
             assert same(number(row[name]), x), (name, k, row[name], x)
+
+
+def test_column_values_are_ct_column_value_bitwise():
+    """ct_column_values (one call per column, what Restitution reads) gives every column of
+    every row the bits of ct_column_value of that row: rows that succeeded, a failed one and
+    one not run (whose bytes hold a message), in a layer whose h0, l0, sigma_y are not 1."""
+    s = cantact.Rods([0.0, 0.3e-3, 0.1e-3], [2e-6, 1e-6, 3e-6], E=2e11, sigma_y=4e8, H=5,
+                     unit="m")
+    V = np.array([1e-4, 3e-3, 2.0, 0.02])
+    solver = cantact._keys.RunKeys("test").solver()  # opts lives in it
+    opts = solver.opts
+    b, _ = s._build(V, 2, opts)
+    n = V.size * 2
+    rows = ffi.new("ct_sweep_row[]", n)
+    spec = ffi.new("ct_sweep_spec *")
+    speeds = ffi.from_buffer("double[]", V)
+    spec.V_star, spec.nvel, spec.impacts, spec.opts = speeds, V.size, 2, opts
+    spec.dynamics = 1
+    assert lib.ct_sweep(b, spec, rows) == 0
+    status = [rows[q].status for q in range(n)]
+    assert status.count(0) == n - 2 and lib.CT_ESKIPPED in status  # V* = 2 crushes the layer
+    layer = lib.ct_bundle_layer(b)
+    assert layer.h0 != 1.0 and layer.l0 != 1.0 and layer.sigma_y != 1.0
+    p = ffi.new("const ct_column **")
+    for k in range(lib.ct_sweep_columns(p)):
+        c = p[0] + k
+        one = np.array([lib.ct_column_value(c, rows + q, layer) for q in range(n)])
+        many = np.full(n, 7.0)
+        lib.ct_column_values(c, rows, n, layer, ffi.from_buffer("double[]", many))
+        assert one.tobytes() == many.tobytes(), ffi.string(c.name)
+        part = np.full(n, 7.0)  # n counts: the rows from the pointer given, no more
+        lib.ct_column_values(c, rows + 1, n - 2, layer, ffi.from_buffer("double[]", part))
+        assert part[:n - 2].tobytes() == one[1:n - 1].tobytes() and (part[n - 2:] == 7.0).all()

@@ -3,7 +3,7 @@ every run key, its keyword arguments are the library's rows (names and defaults)
 just inside or just outside each range gets the same answer as from the library itself, asked
 here directly through its C API (ct_surface_new/_set/_check/_prepare, ct_key_parse,
 ct_run_keys_solver): accepted with the same value stored, or refused with the same message.
-Restitution's columns are ct_sweep_columns' and each value is ct_column_value's."""
+Restitution's columns are ct_sweep_columns' and each value is ct_column_values'."""
 import inspect
 import math
 
@@ -132,7 +132,13 @@ def bases(profile_file):
     }
 
 
+# Python's words of the body table's surface row (periodic=True is surface.periodic = true)
+PERIODIC = {True: "true", False: "false"}
+
+
 def as_text(row, value):
+    if isinstance(value, bool) and key(row) == "surface.periodic":
+        return PERIODIC[value]
     if isinstance(value, str):
         return value
     if isinstance(value, float) or row.type == lib.CT_KEY_NUMBER:
@@ -198,7 +204,7 @@ def test_surface_kinds_are_the_registry():
 NAMED = {"cantor": cantact.Cantor, "random_cantor": cantact.RandomCantor,
          "rods": cantact.Rods, "profile": cantact.Profile}
 # A named class's arguments that are data, not keys (the kind takes them another way)
-DATA = {"rods": {"top", "area", "length"}, "profile": {"x", "z", "dx", "dy"}}
+DATA = {"rods": {"top", "area", "length", "x", "y"}, "profile": {"x", "z", "dx", "dy"}}
 # Rows a named class does not take as an argument of the same name, and what takes them
 ELSEWHERE = {
     "rods": {"surface.file": "Surface('rods', file=...)",
@@ -211,6 +217,16 @@ ELSEWHERE = {
 }
 # The run's rows a surface's build takes
 BUILD = {"threads": "solver.threads", "depth_tolerance": "solver.depth_tolerance"}
+
+
+def body_rows():
+    n = ffi.new("size_t *")
+    rows = lib.ct_body_keys_table(n)
+    return {key(rows + i): rows + i for i in range(n[0])}
+
+
+# The body table's rows of section surface (periodic): every surface takes them
+SURFACE_BODY = {text(r.name): r for r in body_rows().values() if text(r.section) == "surface"}
 
 
 def stored(row, given):
@@ -248,7 +264,7 @@ def test_named_classes_take_the_kinds_rows(kind, profile_file):
         if name == "trim" and kind == "profile":
             assert p.default is None and default(rows["trim"]) == "none"
             continue
-        row = rows.get(name) or runs.get(BUILD.get(name, ""))
+        row = rows.get(name) or runs.get(BUILD.get(name, "")) or SURFACE_BODY.get(name)
         assert row is not None, f"{cls.__name__}({name}=...): an argument of its own"
         required = bool(row.flags & lib.CT_KEY_REQUIRED)
         if required and p.default is inspect.Parameter.empty:
@@ -259,6 +275,8 @@ def test_named_classes_take_the_kinds_rows(kind, profile_file):
     for r in kind_rows(kind):
         if text(r.name) not in params:
             assert key(r) in ELSEWHERE.get(kind, {}), f"{kind}: {key(r)} is no argument"
+    for name in SURFACE_BODY:  # every surface repeats or not
+        assert name in params, f"{cls.__name__}: no {name}="
     # the arguments' answers are the library's
     base = bases(profile_file)[kind]
     where = f"{cls.__name__}()"
@@ -516,18 +534,22 @@ def test_restitution_columns_are_the_librarys():
     assert attrs == sorted(columns + ["kinetic_energy"])
 
 
-def test_every_column_value_is_ct_column_value(monkeypatch):
-    """ct_column_value answering each column with its index in the table: every attribute of
+def test_every_column_value_is_ct_column_values(monkeypatch):
+    """ct_column_values answering each column with its index in the table: every attribute of
     that column holds it, so no value is computed in Python."""
     p = ffi.new("const ct_column **")
     n = lib.ct_sweep_columns(p)
     base = int(ffi.cast("uintptr_t", p[0]))
     size = ffi.sizeof("ct_column")
 
+    def marks(c, rows, count, layer, out):
+        for q in range(count):
+            out[q] = 1000.0 + (int(ffi.cast("uintptr_t", c)) - base) / size
+
     class Marks:
         def __getattr__(self, name):
-            if name == "ct_column_value":
-                return lambda c, row, layer: 1000.0 + (int(ffi.cast("uintptr_t", c)) - base) / size
+            if name == "ct_column_values":
+                return marks
             return getattr(lib, name)
 
     monkeypatch.setattr(cantact._results, "lib", Marks())
@@ -535,5 +557,5 @@ def test_every_column_value_is_ct_column_value(monkeypatch):
     for k in range(n):
         c = p[0][k]
         name = text(c.name)
-        if c.type == b"d" and name != "V_star":
+        if c.type in (b"d", b"w") and name != "V_star":
             assert (getattr(r, name) == 1000.0 + k).all(), name
