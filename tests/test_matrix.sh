@@ -178,6 +178,12 @@ for kind in $kinds; do
             --set table.tolerance=1e-3 -o "$out"
     done
 done
+# an ensemble of realisations is the flat strip's alone: a curved body is refused, not dropped
+rc_scene=$src/examples/scenes/random_cantor.ini
+body_check "random_cantor x cylinder x ensemble" "$tmp/ens.csv" "$ct" run -q "$rc_scene" \
+    --set ensemble.realisations=3 --set body.shape=cylinder --set body.radius=10 -o "$tmp/ens.csv"
+grep -q "struck by the flat strip alone" "$tmp/stderr" && ok ||
+    bad "an ensemble under a cylinder: not refused: $(cat "$tmp/stderr")"
 # a curved body is not refused everywhere: at least a cylinder and a sphere ran somewhere
 [ $worked -ge 2 ] && ok || bad "curved bodies ran on only $worked kind(s)"
 

@@ -559,6 +559,12 @@ static int ensemble_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
         entry *e = find_entry(s, "surface", "realisation");
         return bad(e, "names the one realisation of a run without [ensemble]");
     }
+    /* the library's ensembles build their realisations for the flat strip alone: a curved body
+     * would be dropped without a word */
+    if (er && sc->body.shape != 0)
+        return bad(er, "an ensemble's realisations are struck by the flat strip alone: a curved "
+                       "body (body.shape) is computed one realisation at a time "
+                       "(surface.realisation = k, without [ensemble])");
     sc->split = (ct_ensemble_split)k->run.split;
     return CT_OK;
 }
