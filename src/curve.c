@@ -592,6 +592,17 @@ double ct_curve_release(const ct_curve *c, double u)
     return r;
 }
 
+typedef struct {
+    void (*fn)(void *ctx, double x, double W);
+    void *ctx;
+} each_ctx;
+
+static void each_lean_point(void *ctx, const ct_point *p)
+{
+    const each_ctx *e = ctx;
+    e->fn(e->ctx, p->x, p->W);
+}
+
 /* The root u >= x of W(u) = W on the piece from x (its W_x, P and slope k; the next breakpoint
  * at x_next, INFINITY: none). W_x + P t + k t^2 / 2 = W: t = 2R / (P + sqrt(P^2 + 2 k R)), no
  * cancellation. The root as hypot(P, sqrt(2R) sqrt(k)): P^2 and k R underflow on deep Cantor
@@ -630,6 +641,17 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
     const size_t lo = ct_last_at_most(c->W, c->n, W), hi = lo + 1; /* W[lo] <= W < W[hi] */
     return inverse_on(c->x[lo], c->W[lo], c->P[lo], c->slope[lo], hi < c->n ? c->x[hi] : INFINITY,
                       W);
+}
+
+void ct_curve_each_point(const ct_curve *c, void (*fn)(void *ctx, double x, double W), void *ctx)
+{
+    if (c->lean) {
+        each_ctx e = {fn, ctx};
+        ct_lean_each_point(c->lean, each_lean_point, &e);
+        return;
+    }
+    for (size_t j = 0; j < c->n; j++)
+        fn(ctx, c->x[j], c->W[j]);
 }
 
 double ct_curve_lean_bytes(size_t events)
