@@ -664,6 +664,57 @@ static void asymptotic_against_high_precision(void **state)
     }
 }
 
+/* ---- the series against a 120-digit evaluation of its stage sums ---- */
+typedef struct {
+    double fx, fz, E, H, V, u_max, e;
+} series_case;
+
+static const series_case series_reference[] = {
+    {1.5, 1.3, 500.0, 10.0, 0.00447213595499958, 2.65656031584804053214e-01,
+     2.96261289692058116252e-01},
+    {1.5, 1.3, 10000.0, 10.0, 0.001, 2.56158276250692373832e-01, 6.62460382853199830633e-02},
+    {1.5, 1.3, 100000000.0, 10.0, 1e-05, 2.55658444379188276585e-01, 6.62460382853199687518e-04},
+    {1.5, 1.3, 1000000000000.0, 10.0, 1e-07, 2.55658394396001076299e-01,
+     6.62460382853199850148e-06},
+    {1.5, 1.3, 1e+16, 10.0, 1e-09, 2.55658394391002796731e-01, 6.62460382853199797209e-08},
+    {1.5, 1.3, 1e+18, 10.0, 1e-10, 2.55658394391002297130e-01, 6.62460382853199797209e-09},
+    {1.5, 1.3, 1e+20, 10.0, 1e-12, 4.20524677456945578102e-02, 1.60284126659853084429e-09},
+    {1.2, 1.9, 100000000000000.0, 5.0, 3e-09, 5.56380950037533520552e-03,
+     2.32024114728237040533e-06},
+    {1.8, 1.1, 1e+16, 20.0, 2e-09, 8.71715027829314426100e-01, 8.77793980774019592707e-08},
+    {1.01, 1.9, 1000000000000.0, 10.0, 1e-07, 1.09503003295285932656e-02,
+     2.14881737022299762691e-05},
+};
+
+/* the energy (in sigma_y l0 h0) that reaches stage 5's top plus eps_y H* / 2 at
+ * E/sigma_y = 1e16 */
+#define SERIES_ELASTIC_NEAR_UMAX 1.12001694333631503231e-02
+
+/* e and u_max of the series, E/sigma_y from 500 to 1e20, against the same stage sums in
+ * 120-digit decimal (tests/laws_reference.py): its unloading work by quadrature lost the
+ * eps_y-thin unloading span in u_max's rounding (e 2.7e-10 off at 1e8, 1.2e-4 at 1e16, 0 at
+ * 1e18). An impact whose u_max lies eps_y H* / 2 above an elastic stage's top hangs on u_max's
+ * last digits: refused, naming it. */
+static void series_against_high_precision(void **state)
+{
+    (void)state;
+    for (size_t i = 0; i < sizeof series_reference / sizeof *series_reference; i++) {
+        const series_case *r = &series_reference[i];
+        ct_params p = make(r->fx, r->fz, r->E, r->H);
+        double um = NAN, e = NAN;
+        assert_int_equal(ct_law_impact(&p, CT_LAW_SERIES, r->V * r->V * r->E, &um, &e), CT_OK);
+        if (!(fabs(e - r->e) <= 1e-13 * r->e && fabs(um - r->u_max) <= 1e-13 * r->u_max))
+            fail_msg("fx %g fz %g E %g H %g V* %g: e %.17g u_max %.17g, want %.17g %.17g", r->fx,
+                     r->fz, r->E, r->H, r->V, e, um, r->e, r->u_max);
+    }
+    ct_params p = make(1.5, 1.3, 1e16, 10.0);
+    double um, e = 42.0;
+    assert_int_equal(ct_law_impact(&p, CT_LAW_SERIES, SERIES_ELASTIC_NEAR_UMAX, &um, &e),
+                     CT_ENOCONV);
+    assert_non_null(strstr(ct_error_message(), "hangs on u_max's rounding"));
+    assert_true(e == 42.0);
+}
+
 static int gsl_handler_calls;
 
 static void count_gsl_error(const char *reason, const char *file, int line, int gsl_errno)
@@ -809,6 +860,7 @@ int main(void)
         cmocka_unit_test(law_impact_u_max_solves_eq39),
         cmocka_unit_test(law_impact_status_without_gsl_handler),
         cmocka_unit_test(asymptotic_against_high_precision),
+        cmocka_unit_test(series_against_high_precision),
     };
     return cmocka_run_group_tests_name("laws", tests, NULL, NULL);
 }
