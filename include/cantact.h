@@ -242,7 +242,8 @@ double ct_curve_work(const ct_curve *c, double u);
 double ct_curve_dissipation(const ct_curve *c, double u);
 /* Returns the release point [length]: the first contact after being loaded to u. */
 double ct_curve_release(const ct_curve *c, double u);
-/* The u [length] where W(u) = W (W >= 0): the piece by binary search, then its quadratic. */
+/* The u [length] where W(u) = W (W >= 0): the piece by binary search, then its quadratic; inf
+ * where that u lies beyond the doubles, NaN for W < 0 or NaN. */
 double ct_curve_inverse_work(const ct_curve *c, double W);
 
 /* ---- quadrature ------------------------------------------------------------------ */

@@ -592,15 +592,35 @@ double ct_curve_release(const ct_curve *c, double u)
     return r;
 }
 
+typedef struct {
+    void (*fn)(void *ctx, double x, double W);
+    void *ctx;
+} each_ctx;
+
+static void each_lean_point(void *ctx, const ct_point *p)
+{
+    const each_ctx *e = ctx;
+    e->fn(e->ctx, p->x, p->W);
+}
+
 /* The root u >= x of W(u) = W on the piece from x (its W_x, P and slope k; the next breakpoint
  * at x_next, INFINITY: none). W_x + P t + k t^2 / 2 = W: t = 2R / (P + sqrt(P^2 + 2 k R)), no
  * cancellation. The root as hypot(P, sqrt(2R) sqrt(k)): P^2 and k R underflow on deep Cantor
- * tips at tiny speeds (P ~ 1e-206 at V* = 1e-130) where the energies themselves do not. */
+ * tips at tiny speeds (P ~ 1e-206 at V* = 1e-130) where the energies themselves do not. Near
+ * the top of the doubles (R above DBL_MAX / 2, or P or k R near DBL_MAX) 2R or the denominator
+ * overflow (sqrt(inf) sqrt(0) is NaN: the root was 0, the piece's start returned as a wrong
+ * finite u): the same root with R, P and k quartered, which nothing overflows. A root beyond
+ * the doubles is inf, never a finite number. */
 static double inverse_on(double x, double W_x, double P, double k, double x_next, double W)
 {
-    const double R = W - W_x;
-    const double den = P + hypot(P, sqrt(2.0 * (R > 0.0 ? R : 0.0)) * sqrt(k > 0.0 ? k : 0.0));
+    const double R = W - W_x, R_root = R > 0.0 ? R : 0.0, k_root = k > 0.0 ? k : 0.0;
+    double den = P + hypot(P, sqrt(2.0 * R_root) * sqrt(k_root));
     double t = den > 0.0 ? 2.0 * R / den : 0.0;
+    if (!isfinite(den) || !isfinite(2.0 * R)) {
+        const double P_q = 0.25 * P, R_q = 0.25 * R;
+        den = P_q + hypot(P_q, sqrt(2.0 * (0.25 * R_root)) * sqrt(0.25 * k_root));
+        t = den > 0.0 ? 2.0 * R_q / den : 0.0;
+    }
     if (t > x_next - x)
         t = x_next - x;
     return x + t;
@@ -621,6 +641,17 @@ double ct_curve_inverse_work(const ct_curve *c, double W)
     const size_t lo = ct_last_at_most(c->W, c->n, W), hi = lo + 1; /* W[lo] <= W < W[hi] */
     return inverse_on(c->x[lo], c->W[lo], c->P[lo], c->slope[lo], hi < c->n ? c->x[hi] : INFINITY,
                       W);
+}
+
+void ct_curve_each_point(const ct_curve *c, void (*fn)(void *ctx, double x, double W), void *ctx)
+{
+    if (c->lean) {
+        each_ctx e = {fn, ctx};
+        ct_lean_each_point(c->lean, each_lean_point, &e);
+        return;
+    }
+    for (size_t j = 0; j < c->n; j++)
+        fn(ctx, c->x[j], c->W[j]);
 }
 
 double ct_curve_lean_bytes(size_t events)

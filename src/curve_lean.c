@@ -751,6 +751,18 @@ void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin)
     }
 }
 
+void ct_lean_each_point(const ct_lean *L, void (*fn)(void *ctx, const ct_point *p), void *ctx)
+{
+    if (!L->ncp)
+        return;
+    ct_sweep_state s = L->cp[0];
+    while (s.j < L->n) {
+        ct_point p;
+        step(L, &s, &p, NULL, NULL);
+        fn(ctx, &p);
+    }
+}
+
 void ct_lean_piece_of_work(const ct_lean *L, double W, ct_point *p, double *x_next)
 {
     const size_t q = ct_last_at_most(L->cW, L->ncp, W);

@@ -19,6 +19,9 @@ double ct_lean_first_yield(const ct_lean *L);
 /* The breakpoint with the largest x <= u (u >= the first contact); cmin (not NULL): the
  * smallest contact of the rods yielding after it (INFINITY: none). */
 void ct_lean_piece(const ct_lean *L, double u, ct_point *p, double *cmin);
+/* fn at every breakpoint in order (its x, P, W, ...: the full curve's very doubles), swept
+ * from the start: O(n), nothing held. */
+void ct_lean_each_point(const ct_lean *L, void (*fn)(void *ctx, const ct_point *p), void *ctx);
 /* The breakpoint with the largest W <= W, and the next breakpoint's x (INFINITY: none). */
 void ct_lean_piece_of_work(const ct_lean *L, double W, ct_point *p, double *x_next);
 /* For the tests: sorts n records of 16 bytes, {double x; uint64_t tag}, by x's total order

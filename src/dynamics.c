@@ -27,6 +27,7 @@
 #include "internal.h"
 
 #include <float.h>
+#include <stdio.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -853,6 +854,77 @@ void ct_history_free(ct_history *h)
     h->n = 0;
 }
 
+/* Doubles per event: first_pc's 6 and the pieces' products' 2 per breakpoint (at most one per
+ * event), the split events' 8 (ct_unload_events_of). */
+double ct_dyn_prepared_bytes(size_t events)
+{
+    return (double)events * (6.0 + 2.0 + 8.0) * sizeof(double);
+}
+
+/* ct_curve_unload's copy of m events: the events (6 doubles) twice (its sort), their run
+ * bounds and sorted copy (2 doubles), and 8 doubles a point. */
+static double unload_copy_bytes(double m)
+{
+    return m * (2.0 * 6.0 * sizeof(double) + sizeof(size_t) + (2.0 + 8.0) * sizeof(double));
+}
+
+double ct_dyn_work_thread_bytes(const ct_dyn_work *w, double u_max)
+{
+    /* an unloading curve from u_max has up to ct_unload_split_room points (the events up to
+     * u_max, a yield's twice, and 2): the state's maximum's and this impact's, 6 doubles a
+     * point each; a fork's releases (ny); not monotone, ct_curve_unload's copy as well */
+    const double room = (double)ct_unload_split_room(&w->ue, u_max * w->s.sx);
+    double bytes = 2.0 * 6.0 * sizeof(double) * room + (double)w->ue.ny * sizeof(double);
+    if (!w->ue.monotone)
+        bytes += unload_copy_bytes(room);
+    return bytes;
+}
+
+/* The loading and unloading paths (4 doubles a point each, up to 3/2 of the events and 2) and
+ * ct_curve_unload's copy (for one impact from a virgin layer, unless nested: known only once
+ * split, counted); for one history impact (one_shot), the split events too (8 doubles an
+ * event); for repeated impacts, the earlier maximum's unloading curve as well. */
+static double impact_bytes(size_t events, int one_shot, int repeated)
+{
+    const double points = 1.5 * (double)events + 2.0;
+    return (one_shot ? (double)events * 8.0 * sizeof(double) : 0.0) +
+           2.0 * 4.0 * sizeof(double) * points + (repeated ? 2.0 : 1.0) * unload_copy_bytes(points);
+}
+
+/* The most the figures above take per event with the curve's own: below CT_MEMORY_CHECK_MIN
+ * for two events a rod, no check. */
+#define CT_DYN_MAX_BYTES_PER_EVENT 1000.0
+
+int ct_dyn_memory_check(const ct_bundle *b, ct_dyn_use use, long impacts)
+{
+    const size_t rods = ct_bundle_size(b);
+    if (2.0 * (double)rods * CT_DYN_MAX_BYTES_PER_EVENT < CT_MEMORY_CHECK_MIN)
+        return CT_OK;
+    const size_t events = ct_curve_events(b);
+    const int repeated = impacts > 1;
+    /* the sweep's state path builds its state's curve after a plastic impact (the first
+     * curve is held already) */
+    const double curve = use != CT_DYN_BY_STATE || repeated ? ct_curve_bytes(events) : 0.0,
+                 dyn = use == CT_DYN_SWEEP ? ct_dyn_prepared_bytes(events)
+                                           : impact_bytes(events, use == CT_DYN_ONE_SHOT,
+                                                          use == CT_DYN_BY_STATE && repeated),
+                 avail = (double)ct_available_memory();
+    if (!(curve + dyn > 0.9 * avail))
+        return CT_OK;
+    static const char *const parts[] = {"its pieces and events", "its unloading curve and paths",
+                                        "the unloading curves and paths"};
+    char load[64] = "";
+    if (curve > 0.0)
+        snprintf(load, sizeof load, "%.3g for the %s load curve, ", curve / 1073741824.0,
+                 use == CT_DYN_BY_STATE ? "state's" : "first");
+    return ct_error_set(CT_ENOMEM,
+                        "impact in time on %zu rods (%zu curve events): needs %.3g GiB (%s%.3g "
+                        "for %s), more than 90 %% of the %.3g GiB of memory available: leave out "
+                        "the time columns, or take fewer rods",
+                        rods, events, (curve + dyn) / 1073741824.0, load, dyn / 1073741824.0,
+                        parts[use], avail / 1073741824.0);
+}
+
 int ct_impact_history(const ct_bundle *b, double m, double v1, size_t grid, ct_impact_result *res,
                       ct_dynamics *dyn, ct_history *hist)
 {
@@ -869,7 +941,7 @@ int ct_impact_history(const ct_bundle *b, double m, double v1, size_t grid, ct_i
     ct_curve *c;
     ct_dyn_work *w;
     int st;
-    if ((st = ct_curve_alloc(&c)))
+    if ((st = ct_dyn_memory_check(b, CT_DYN_ONE_SHOT, 1)) || (st = ct_curve_alloc(&c)))
         return st;
     if ((st = ct_dyn_work_alloc(&w))) {
         ct_curve_free(c);

@@ -107,6 +107,8 @@ int ct_random_cantor_refill(ct_bundle *b, const ct_random_cantor *rc, uint64_t r
  * points, view or unloading curve). b must not change while c is used. CT_ESKIPPED: this
  * bundle needs the full curve (its W rounds to a sequence that is not monotone). */
 int ct_curve_build_lean(ct_curve *c, const ct_bundle *b);
+/* fn(ctx, x_j, W(x_j)) at every breakpoint of c in order, full or lean (the same doubles). */
+void ct_curve_each_point(const ct_curve *c, void (*fn)(void *ctx, double x, double W), void *ctx);
 /* Bytes a lean curve of that many events (ct_curve_events) needs while it is built. */
 double ct_curve_lean_bytes(size_t events);
 
@@ -174,6 +176,22 @@ int ct_dyn_impact_fast(ct_dyn_work *w, const ct_impact_result *res, double m, ct
  * the parent's prepared arrays (the parent outlives it and is not prepared again meanwhile)
  * and keeps its own state, so the speeds of a sweep can be shared among threads. */
 int ct_dyn_work_fork(ct_dyn_work *parent, double m, ct_dyn_work **out);
+/* Memory of the impacts in time, in bytes, beside the curve's own (ct_curve_bytes): the
+ * sweep's prepared arrays on a curve of `events` events (ct_dyn_prepare: the first curve's
+ * pieces and moments, its split events); and what each thread's unloading curves (the
+ * state's maximum's and this impact's, built as the impacts go: from the split events when
+ * they are monotone, else from ct_curve_unload's sorted copy of them as well) take for
+ * impacts up to u_max [length] on w's prepared curve. */
+double ct_dyn_prepared_bytes(size_t events);
+double ct_dyn_work_thread_bytes(const ct_dyn_work *w, double u_max);
+/* CT_ENOMEM naming the bytes when the impacts in time on b's state would not fit in the
+ * memory available, else CT_OK: the sweep's fast path (its first curve and prepared arrays:
+ * each thread's unloading curves are judged when the impacts are solved); one history impact
+ * (ct_impact_history: its curve, split events, paths and unloading curve, not its history
+ * points); the sweep's state path (its first curve held: per speed, the paths and unloading
+ * curves, and for repeated impacts the state's curve and the earlier maximum's unloading). */
+typedef enum { CT_DYN_SWEEP = 0, CT_DYN_ONE_SHOT = 1, CT_DYN_BY_STATE = 2 } ct_dyn_use;
+int ct_dyn_memory_check(const ct_bundle *b, ct_dyn_use use, long impacts);
 
 /* ---- measured surfaces (src/surface/profile/), shared by its files ---- */
 

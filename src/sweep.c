@@ -575,6 +575,7 @@ typedef struct {
     ct_dyn_work **forks;             /* dw's forks, for the other threads' speeds */
     int nforks, fork_cap;            /* made, room for */
     double crit0; /* the first curve's critical energy rod by rod, or NaN (ct_critical_by_rods) */
+    double dyn_held; /* bytes each of dw and its forks may hold from earlier blocks */
 } sweep_ws;
 
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
@@ -721,12 +722,51 @@ static void fast_speed_dynamics(const ct_sweep_spec *s, ct_sweep_row *rows, ct_d
  * CLI's blocks of whole speeds (16384 rows at most) reach it at any count of impacts. */
 #define CT_DYN_PARALLEL_MIN 12288
 
+/* The threads the fast path's impacts in time may take: each thread's unloading curves grow
+ * with its impacts, to what the deepest impact of the block needs (ct_dyn_work_thread_bytes);
+ * what the workspaces of earlier blocks hold already is theirs. As many threads as the memory
+ * available holds (the same rows), and CT_ENOMEM naming the bytes when one thread's would not
+ * fit. */
+static int dyn_threads(const ct_bundle *b, const ct_sweep_spec *s, const ct_sweep_row *rows,
+                       sweep_ws *w, int *team)
+{
+    double u_max = -INFINITY;
+    for (size_t v = 0; v < s->nvel; v++)
+        for (size_t i = 0; !w->by_state[v] && i < (size_t)s->impacts; i++) {
+            const ct_sweep_row *row = &rows[v * (size_t)s->impacts + i];
+            u_max = row->status == CT_OK && row->r.u_max > u_max ? row->r.u_max : u_max;
+        }
+    if (!(u_max > -INFINITY))
+        return CT_OK;
+    const double per = ct_dyn_work_thread_bytes(w->dw, u_max),
+                 more = per > w->dyn_held ? per - w->dyn_held : 0.0; /* a workspace of before */
+    /* the parent and the forks made hold dyn_held already; a new fork holds nothing */
+    double need = 0.0;
+    for (int t = 0; t < *team; t++)
+        need += t <= w->nforks ? more : per;
+    if (need < CT_MEMORY_CHECK_MIN)
+        return CT_OK;
+    const double avail = (double)ct_available_memory();
+    if (more > 0.9 * avail)
+        return ct_error_set(
+            CT_ENOMEM,
+            "impact in time on %zu rods: its unloading curves need %.3g GiB, more "
+            "than 90 %% of the %.3g GiB of memory available: leave out the time columns, "
+            "or take fewer rods",
+            ct_bundle_size(b), per / 1073741824.0, avail / 1073741824.0);
+    while (*team > 1 && need > 0.9 * avail)
+        need -= --*team <= w->nforks ? more : per;
+    w->dyn_held = per > w->dyn_held ? per : w->dyn_held;
+    return CT_OK;
+}
+
 /* The fast path's impacts in time. Every speed starts from the first curve's state, so the
  * speeds are independent: they are shared among the threads, each with its own workspace (a
  * fork of w->dw, kept for the next block), and every row is the same for any thread count. */
 static int fast_dynamics(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows,
                          sweep_ws *w)
 {
+    int st;
     const double m = unit_mass(ct_bundle_layer(b));
     int team = ct_bundle_threads(b);
 #ifdef _OPENMP
@@ -735,6 +775,8 @@ static int fast_dynamics(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
 #endif
     if (s->nvel * (size_t)s->impacts < CT_DYN_PARALLEL_MIN)
         team = 1;
+    if ((st = dyn_threads(b, s, rows, w, &team)))
+        return st;
     if (team - 1 > w->fork_cap) { /* the first block, or more threads than before */
         ct_dyn_work **f = realloc(w->forks, (size_t)(team - 1) * sizeof *f);
         if (f) {
@@ -796,7 +838,8 @@ static int sweep_by_state(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_r
 {
     const size_t impacts = (size_t)s->impacts, nrows = s->nvel * impacts;
     int st;
-    if ((st = ct_curve_alloc(&w->later)) || (st = ct_bundle_clone(&w->work, b)))
+    if ((w->dw && (st = ct_dyn_memory_check(b, CT_DYN_BY_STATE, s->impacts))) ||
+        (st = ct_curve_alloc(&w->later)) || (st = ct_bundle_clone(&w->work, b)))
         return st;
     for (size_t v = 0; v < s->nvel; v++) {
         if (fast && !w->by_state[v])
@@ -836,7 +879,10 @@ static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w
 {
     int st;
     const ct_layer *L = ct_bundle_layer(b);
-    if (s->dynamics && (st = ct_dyn_work_alloc(&w->dw)))
+    /* the impact in time takes the full curve and more (it grew to 24 GB and was killed by
+     * the kernel on fx = fz = 1 + 1e-6, 37 million rods): refused up front, with the figure */
+    if (s->dynamics && ((st = ct_dyn_memory_check(b, CT_DYN_SWEEP, s->impacts)) ||
+                        (st = ct_dyn_work_alloc(&w->dw))))
         return st;
     size_t events = SIZE_MAX;
     const int lean = use_lean(b, s, &events);

@@ -280,22 +280,51 @@ static int dl_push(dlist *l, double v)
     return CT_OK;
 }
 
-/* V* where u_max reaches each breakpoint of P(u) of b's state, strictly inside (lo, hi). */
+/* The kinks' list as a breakpoint's callback fills it. */
+typedef struct {
+    dlist *out;
+    double lo, hi, scale;
+    int st;
+} kink_ctx;
+
+static void kink_at(void *ctx, double x, double W)
+{
+    (void)x;
+    kink_ctx *k = ctx;
+    const double V = sqrt(W / k->scale);
+    dlist *out = k->out;
+    if (!k->st && V > k->lo && V < k->hi && (!out->n || log(V) > log(out->v[out->n - 1])))
+        k->st = dl_push(out, V);
+}
+
+/* V* where u_max reaches each breakpoint of P(u) of b's state, strictly inside (lo, hi). From
+ * CT_LEAN_RODS rods the breakpoints come from a lean curve of its own, freed after (about 48
+ * bytes a rod instead of the full curve's 300 or so, which was then kept for the whole build:
+ * 14 GB on 37 million rods, fx = fz = 1 + 1e-6), the same doubles. */
 static int kink_speeds(const ct_bundle *b, ct_curve *c, double lo, double hi, dlist *out)
 {
     int st;
+    const ct_layer *L = ct_bundle_layer(b);
+    kink_ctx k = {out, lo, hi, L->l0 * L->E * L->h0, CT_OK};
+    if (ct_bundle_size(b) >= CT_LEAN_RODS) {
+        ct_curve *lean;
+        if ((st = ct_curve_alloc(&lean)))
+            return st;
+        st = ct_curve_build_lean(lean, b);
+        if (!st)
+            ct_curve_each_point(lean, kink_at, &k);
+        ct_curve_free(lean);
+        if (st == CT_ENOMEM)
+            return CT_OK; /* no room for a curve: splits at middles only */
+        if (st != CT_ESKIPPED)
+            return st ? st : k.st;
+    }
     if ((st = ct_curve_build(c, b)))
         return st == CT_ENOMEM ? CT_OK : st; /* no room for a curve: splits at middles only */
-    const ct_layer *L = ct_bundle_layer(b);
-    const double scale = L->l0 * L->E * L->h0;
     const double *x = ct_curve_points(c);
-    for (size_t j = 0; j < ct_curve_size(c); j++) {
-        const double V = sqrt(ct_curve_work(c, x[j]) / scale);
-        if (V > lo && V < hi && (!out->n || log(V) > log(out->v[out->n - 1])))
-            if ((st = dl_push(out, V)))
-                return st;
-    }
-    return CT_OK;
+    for (size_t j = 0; j < ct_curve_size(c); j++)
+        kink_at(&k, x[j], ct_curve_work(c, x[j]));
+    return k.st;
 }
 
 /* Where a failing interval [V0, V1] is split: the kink nearest its middle in ln V* (kinks

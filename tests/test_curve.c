@@ -340,6 +340,84 @@ static void events_merged_as_made(void **state)
     free(rarea);
 }
 
+/* ---- W's inverse near the top of the doubles ---- */
+
+/* The work from the virgin state to u and the force at u of rods (tops, areas, lengths
+ * H* - top), the closed forms of docs/model.md §3 summed in long double. */
+static long double rods_work(const ct_layer *L, size_t n, const double *top, const double *area,
+                             long double u, long double *force)
+{
+    const long double eps_y = (long double)L->sigma_y / L->E;
+    long double W = 0.0L, P = 0.0L;
+    for (size_t k = 0; k < n; k++) {
+        const long double len = (long double)L->Hstar - top[k], eps = (u - top[k]) / len,
+                          Esl = (long double)L->E * area[k] * len;
+        if (eps <= 0.0L)
+            continue;
+        W += eps <= eps_y ? Esl * eps * eps / 2 : Esl * (eps_y * eps - eps_y * eps_y / 2);
+        P += (long double)L->E * area[k] * (eps < eps_y ? eps : eps_y);
+    }
+    *force = P;
+    return W;
+}
+
+/* ct_curve_inverse_work(W) against the closed forms: the u whose work is W to its rounding, or
+ * inf where that u lies beyond the doubles (a u of W - 0.5 ulp(DBL_MAX) may be either). */
+static void check_inverse(const ct_layer *L, size_t n, const double *top, const double *area,
+                          double W)
+{
+    ct_bundle *b;
+    ct_curve *c;
+    assert_int_equal(ct_bundle_from_rods(&b, L, n, top, area), CT_OK);
+    assert_int_equal(ct_curve_alloc(&c), CT_OK);
+    assert_int_equal(ct_curve_build(c, b), CT_OK);
+    const double u = ct_curve_inverse_work(c, W);
+    long double P;
+    if (u == INFINITY) { /* only if the u of W lies beyond DBL_MAX, to rounding */
+        const long double W_max = rods_work(L, n, top, area, DBL_MAX, &P);
+        if (!(W_max < W + 8.0L * DBL_EPSILON * (W + P * DBL_MAX)))
+            fail_msg("E %g, area %g: inverse W(%.17g) = inf, but W(DBL_MAX) = %.17Lg", L->E,
+                     area[0], W, W_max);
+    } else {
+        const long double Wu = isfinite(u) ? rods_work(L, n, top, area, u, &P) : NAN;
+        if (!(fabsl(Wu - W) <= 8.0L * DBL_EPSILON * (W + P * u)))
+            fail_msg("E %g, area %g: inverse W(%.17g) = %.17g, whose work is %.17Lg", L->E, area[0],
+                     W, u, Wu);
+    }
+    ct_curve_free(c);
+    ct_bundle_free(b);
+}
+
+/* W above DBL_MAX / 2 made 2 (W - W_x) overflow: on a plateau sqrt(inf) sqrt(0) is NaN and
+ * the piece's start came back (u = 0.015 for W = 1.7e308), on an elastic piece NaN. Now the
+ * u whose work is W, or inf where it leaves the doubles. */
+static void inverse_work_near_the_top_of_the_doubles(void **state)
+{
+    (void)state;
+    const double Ws[] = {1e300, 8.98e307, 8.99e307, 9e307, 1.7e308, DBL_MAX};
+    const size_t nW = sizeof Ws / sizeof *Ws;
+    /* one rod: a plateau beyond u_y = 0.015 of force 2, 1 and 0.5 (its u beyond the doubles
+     * for W above DBL_MAX / 2) */
+    const ct_layer plateau = {.E = 200.0, .sigma_y = 1.0, .Hstar = 3.0, .l0 = 1.0, .h0 = 1.0};
+    const double top0 = 0.0;
+    for (size_t i = 0; i < nW; i++)
+        for (double s = 2.0; s >= 0.5; s *= 0.5)
+            check_inverse(&plateau, 1, &top0, &s, Ws[i]);
+    /* two stiff rods, both elastic from u = 10 to 50 with a work of 1.0e308 on that piece
+     * (2 R and k R overflow), then one plateau and a force of 5e306 beyond u = 55 */
+    const ct_layer stiff = {.E = 1e306, .sigma_y = 5e305, .Hstar = 100.0, .l0 = 1.0, .h0 = 1.0};
+    const double tops[] = {0.0, 10.0}, areas[] = {5.0, 5.0};
+    const double Wp[] = {2.5e306, 5e307, 9e307, 1e308, 1.05e308, 1.7e308, DBL_MAX};
+    for (size_t i = 0; i < sizeof Wp / sizeof *Wp; i++)
+        check_inverse(&stiff, 2, tops, areas, Wp[i]);
+    /* a plateau force of 1.35e308 beyond u_y = 1.8 (W 1.215e308 there): P + hypot(P, 0)
+     * overflows while 2 R does not */
+    const ct_layer strong = {.E = 1e306, .sigma_y = 9e305, .Hstar = 2.0, .l0 = 1.0, .h0 = 1.0};
+    const double wide = 150.0, Ws_strong[] = {1e307, 1e308, 1.3e308, 1.5e308, DBL_MAX};
+    for (size_t i = 0; i < sizeof Ws_strong / sizeof *Ws_strong; i++)
+        check_inverse(&strong, 1, &top0, &wide, Ws_strong[i]);
+}
+
 /* ---- a const bundle evaluated from two threads at once ---- */
 typedef struct {
     const ct_bundle *b;
@@ -401,6 +479,7 @@ int main(void)
         cmocka_unit_test(bitwise_identical_for_any_thread_count),
         cmocka_unit_test(events_merged_as_made),
         cmocka_unit_test(const_bundle_from_two_threads),
+        cmocka_unit_test(inverse_work_near_the_top_of_the_doubles),
     };
     return cmocka_run_group_tests_name("curve", tests, NULL, NULL);
 }

@@ -624,6 +624,256 @@ static void every_rod_knows_its_footprint(void **state)
     unlink(path);
 }
 
+/* ---- the rods and profile kinds are scale-free ---- */
+
+/* Sweep s (prepared) at the speeds V, the impacts in time too, body (NULL: flat); rows, or the
+ * status of the build. */
+static int sweep_timed(const ct_surface *s, const ct_body *body, const double *V, size_t n,
+                       ct_sweep_row *rows)
+{
+    ct_build_request req = {.V_star = V, .nvel = n, .impacts = 1, .body = body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    int st = ct_surface_build(s, &req, &b, NULL);
+    if (st)
+        return st;
+    ct_sweep_spec spec = {.V_star = V, .nvel = n, .impacts = 1, .opts = req.opts, .dynamics = 1};
+    st = ct_sweep(b, &spec, rows);
+    ct_bundle_free(b);
+    return st;
+}
+
+/* A rods surface from rods "top:area:length, ..." with each top and length times lam, each
+ * area times mu, and E, sigma_y (times kap); CT_OK or the status of its preparation. */
+static int scaled_rods(ct_surface **out, const double (*r)[3], size_t n, double lam, double mu,
+                       double E, double kap)
+{
+    char list[1024] = "", v[64];
+    for (size_t k = 0; k < n; k++)
+        snprintf(list + strlen(list), sizeof list - strlen(list), "%s%.17g:%.17g:%.17g",
+                 k ? ", " : "", r[k][0] * lam, r[k][1] * mu, r[k][2] * lam);
+    assert_int_equal(ct_surface_new(out, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(*out, "surface", "rods", list, "t"), CT_OK);
+    snprintf(v, sizeof v, "%.17g", E * kap);
+    assert_int_equal(ct_surface_set(*out, "material", "E", v, "t"), CT_OK);
+    snprintf(v, sizeof v, "%.17g", kap);
+    assert_int_equal(ct_surface_set(*out, "material", "sigma_y", v, "t"), CT_OK);
+    assert_int_equal(ct_surface_check(*out, "t"), CT_OK);
+    return ct_surface_prepare(*out, NULL);
+}
+
+static const double scale_grid[] = {1e-300, 1e-160, 0x1p-70, 1.0, 1e20, 1e160, 1e290};
+#define NSCALE (sizeof scale_grid / sizeof *scale_grid)
+
+/* Rows (u_max in units of h0) against the reference rows (in units of h0_ref): e, u_max/h0,
+ * V*_c, the contact time in tau and e_kinematic to 1e-12. */
+static void rows_agree(const ct_sweep_row *r, double h0, const ct_sweep_row *ref, double h0_ref,
+                       size_t n, const char *what)
+{
+    for (size_t k = 0; k < n; k++) {
+        if (r[k].status)
+            fail_msg("%s, V* %g: %s", what, r[k].V_star, r[k].message);
+        const double got[] = {r[k].r.e, r[k].r.u_max / h0, r[k].r.V_star_crit, r[k].dyn.t_contact,
+                              r[k].dyn.e_kinematic},
+                     want[] = {ref[k].r.e, ref[k].r.u_max / h0_ref, ref[k].r.V_star_crit,
+                               ref[k].dyn.t_contact, ref[k].dyn.e_kinematic};
+        for (int q = 0; q < 5; q++)
+            if (!(fabs(got[q] - want[q]) <= 1e-12 * fabs(want[q])))
+                fail_msg("%s, V* %g: figure %d is %.17g, at unit scale %.17g", what, r[k].V_star, q,
+                         got[q], want[q]);
+    }
+}
+
+/* The h0 of a prepared surface as built (the unit of its rows' u_max). */
+static double built_h0(const ct_surface *s)
+{
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    return sc.layer.h0;
+}
+
+/* One rod of area s and length L, top 0 (h0 = H* = L, l0 = s), at E/sigma_y = 1000: V*^2 =
+ * W / (s E L), its first yield at V*_y^2 = eps_y^2 / 2; above it e = V*_y / V* and u_max / h0
+ * = (V*^2 + eps_y^2 / 2) / eps_y (docs/model.md §3). At any length, area and stress scale
+ * (lengths 1e-300 .. 1e290, areas alike, E 1e-297 .. 1e293): rods 1e-160 long at E = 1e200
+ * were refused as crushed, 1e20 long of area 1e-300 failed the u_max solve. */
+static void one_rod_at_every_scale(void **state)
+{
+    (void)state;
+    const double rod[1][3] = {{0.0, 1.0, 1.0}}, ey = 1e-3, Vy = ey / sqrt(2.0);
+    const double V[2] = {2.0 * Vy, 10.0 * Vy};
+    for (size_t a = 0; a < NSCALE; a++)
+        for (size_t b = 0; b < NSCALE; b++)
+            for (size_t c = 0; c < NSCALE; c += 2) {
+                ct_surface *s;
+                ct_sweep_row r[2];
+                const double lam = scale_grid[a], mu = scale_grid[b], kap = scale_grid[c] * 1e3;
+                int st = scaled_rods(&s, rod, 1, lam, mu, 1000.0, kap);
+                if (!st)
+                    st = sweep_timed(s, NULL, V, 2, r);
+                if (st)
+                    fail_msg("length %g, area %g, sigma_y %g: %s", lam, mu, kap,
+                             ct_error_message());
+                for (int k = 0; k < 2; k++) {
+                    const double e = Vy / V[k], u = (V[k] * V[k] + ey * ey / 2.0) / ey;
+                    const double u_h0 = r[k].r.u_max / built_h0(s);
+                    if (r[k].status || !(fabs(r[k].r.e - e) <= 1e-12 * e) ||
+                        !(fabs(u_h0 - u) <= 1e-12 * u))
+                        fail_msg("length %g, area %g, sigma_y %g, V* %g: e %.17g (want %.17g), "
+                                 "u_max/h0 %.17g (want %.17g): %s",
+                                 lam, mu, kap, V[k], r[k].r.e, e, u_h0, u, r[k].message);
+                }
+                ct_surface_free(s);
+            }
+}
+
+/* Three rods of their own lengths on the same grid of scales: every row as at unit scale (e,
+ * u_max/h0, V*_c, the contact time in tau, e_kinematic: 1e-12); and rods whose own figures
+ * leave the doubles (a stiffness E s / L of 1e310 sigma_y l0 / h0) refused naming it. */
+static void rods_at_every_scale(void **state)
+{
+    (void)state;
+    const double rods3[3][3] = {{0.0, 1.0, 1.0}, {0.25, 2.0, 1.5}, {0.5, 1.0, 2.0}};
+    const double V[3] = {2e-3, 6e-3, 2e-2};
+    ct_sweep_row ref[3], r[3];
+    ct_surface *s;
+    assert_int_equal(scaled_rods(&s, rods3, 3, 1.0, 1.0, 500.0, 1.0), CT_OK);
+    assert_int_equal(sweep_timed(s, NULL, V, 3, ref), CT_OK);
+    const double h0_ref = built_h0(s);
+    ct_surface_free(s);
+    for (size_t a = 0; a < NSCALE; a++)
+        for (size_t b = 0; b < NSCALE; b++)
+            for (size_t c = 0; c < NSCALE; c += 3) {
+                const double lam = scale_grid[a], mu = scale_grid[b], kap = scale_grid[c];
+                char what[96];
+                snprintf(what, sizeof what, "length %g, area %g, sigma_y %g", lam, mu, kap);
+                int st = scaled_rods(&s, rods3, 3, lam, mu, 500.0, kap);
+                if (!st)
+                    st = sweep_timed(s, NULL, V, 3, r);
+                if (st)
+                    fail_msg("%s: %s", what, ct_error_message());
+                rows_agree(r, built_h0(s), ref, h0_ref, 3, what);
+                ct_surface_free(s);
+            }
+    const double stiff[2][3] = {{0.0, 1.0, 1e-300}, {1.0, 1.0, 1.0}};
+    assert_int_equal(scaled_rods(&s, stiff, 2, 1.0, 1.0, 1e10, 1.0), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "rod 1: top 0 h0, length 1e-300 h0, area 0.5 l0 at "
+                                               "E/sigma_y = 1e+10: its stiffness E s / L = "
+                                               "5e+309 sigma_y l0 / h0"));
+    ct_surface_free(s);
+}
+
+/* Rods on a plane (x and y) under a sphere: lengths and positions times lam, areas times lam^2
+ * (the rods' own unit), each row as at unit scale. Their positions are built in the unit of
+ * the square root of l0's, which a curved body reads (its gaps at the rods were those of
+ * another surface when it took l0's). */
+static void rods_on_a_plane_at_every_scale(void **state)
+{
+    (void)state;
+    enum { M = 5 };
+    double top[M * M], area[M * M], x[M * M], y[M * M], len[M * M];
+    const double V[2] = {1e-3, 4e-3};
+    ct_sweep_row ref[2], r[2];
+    double h0_ref = NAN;
+    const double lams[] = {1.0, 1e-100, 1e150};
+    for (size_t q = 0; q < sizeof lams / sizeof *lams; q++) {
+        const double lam = lams[q];
+        for (int i = 0; i < M * M; i++) {
+            x[i] = (i % M - 2) * 0.1 * lam;
+            y[i] = (i / M - 2) * 0.1 * lam;
+            top[i] = (i % 3) * 0.01 * lam;
+            area[i] = 0.01 * lam * lam;
+            len[i] = lam;
+        }
+        ct_surface *s;
+        assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+        assert_int_equal(ct_surface_set_rods_at(s, M * M, top, area, len, x, y), CT_OK);
+        assert_int_equal(ct_surface_set(s, "material", "E", "500", ""), CT_OK);
+        assert_int_equal(ct_surface_check(s, "t"), CT_OK);
+        if (ct_surface_prepare(s, NULL))
+            fail_msg("lam %g: %s", lam, ct_error_message());
+        ct_body sphere;
+        ct_body_defaults(&sphere);
+        sphere.shape = 2;
+        sphere.radius = 2.0 * lam;
+        assert_string_equal(ct_body_name(2), "sphere");
+        if (sweep_timed(s, &sphere, V, 2, q ? r : ref))
+            fail_msg("lam %g: %s", lam, ct_error_message());
+        if (q) {
+            char what[64];
+            snprintf(what, sizeof what, "rods on a plane, lengths %g", lam);
+            rows_agree(r, built_h0(s), ref, h0_ref, 2, what);
+        } else {
+            h0_ref = built_h0(s);
+        }
+        ct_surface_free(s);
+    }
+}
+
+/* A profile surface from the heights z (201, unit spacing) with heights times lz, positions
+ * times lx (in metres) and E = 500 kap, sigma_y = kap, H = 3, prepared. */
+static ct_surface *scaled_profile(const char *path, const double *z, double lz, double lx,
+                                  double kap)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    for (int j = 0; j < 201; j++)
+        fprintf(f, "%.17g %.17g\n", j * lx, z[j] * lz);
+    fclose(f);
+    ct_surface *s;
+    char v[64];
+    assert_int_equal(ct_surface_new(&s, "profile"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "unit", "m", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "3", ""), CT_OK);
+    snprintf(v, sizeof v, "%.17g", 500.0 * kap);
+    assert_int_equal(ct_surface_set(s, "material", "E", v, ""), CT_OK);
+    snprintf(v, sizeof v, "%.17g", kap);
+    assert_int_equal(ct_surface_set(s, "material", "sigma_y", v, ""), CT_OK);
+    assert_int_equal(ct_surface_check(s, "t"), CT_OK);
+    if (ct_surface_prepare(s, NULL))
+        fail_msg("profile: heights %g, x %g, sigma_y %g: %s", lz, lx, kap, ct_error_message());
+    return s;
+}
+
+/* A line profile (201 heights of a random walk) with its heights, its positions and E,
+ * sigma_y each scaled (the file's numbers, in metres): every row as at unit scale. */
+static void profile_at_every_scale(void **state)
+{
+    (void)state;
+    char path[] = "/tmp/cantact_prof_XXXXXX";
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    close(fd);
+    double z[201];
+    uint64_t g = 12345;
+    z[0] = 0.0;
+    for (int j = 1; j < 201; j++) {
+        g = g * 6364136223846793005u + 1442695040888963407u;
+        z[j] = z[j - 1] + ((double)(g >> 11) / 9007199254740992.0 - 0.5);
+    }
+    const double V[3] = {1e-3, 5e-3, 2e-2};
+    ct_sweep_row ref[3], r[3];
+    ct_surface *s = scaled_profile(path, z, 1.0, 1.0, 1.0);
+    if (sweep_timed(s, NULL, V, 3, ref))
+        fail_msg("profile at unit scale: %s", ct_error_message());
+    const double h0_ref = built_h0(s);
+    ct_surface_free(s);
+    for (size_t a = 0; a < NSCALE; a++)
+        for (size_t b = 0; b < NSCALE; b += 2)
+            for (size_t c = 0; c < NSCALE; c += 3) {
+                const double lz = scale_grid[a], lx = scale_grid[b], kap = scale_grid[c];
+                char what[96];
+                snprintf(what, sizeof what, "profile: heights %g, x %g, sigma_y %g", lz, lx, kap);
+                s = scaled_profile(path, z, lz, lx, kap);
+                if (sweep_timed(s, NULL, V, 3, r))
+                    fail_msg("%s: %s", what, ct_error_message());
+                rows_agree(r, built_h0(s), ref, h0_ref, 3, what);
+                ct_surface_free(s);
+            }
+    unlink(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -635,6 +885,10 @@ int main(void)
         cmocka_unit_test(inline_rods),
         cmocka_unit_test(keys_of_other_kinds),
         cmocka_unit_test(every_rod_knows_its_footprint),
+        cmocka_unit_test(one_rod_at_every_scale),
+        cmocka_unit_test(rods_at_every_scale),
+        cmocka_unit_test(rods_on_a_plane_at_every_scale),
+        cmocka_unit_test(profile_at_every_scale),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -458,7 +458,7 @@ class Rods(Surface):
         return "Rods()"
 
     def __repr__(self):
-        L = self._scales.layer
+        L = self._scales.physical  # as given (the layer as built may be in other units)
         return (f"Rods({self.top.size} rods, E={L.E!r}, sigma_y={L.sigma_y!r}, "
                 f"Hstar={L.Hstar!r}, l0={L.l0!r}, h0={L.h0!r})")
 

@@ -1,5 +1,7 @@
 """The load curve against closed forms (one rod) and against the rod-by-rod sum written
 here from MODEL.md §2-4 (the Cantor stages)."""
+from fractions import Fraction
+
 import numpy as np
 import pytest
 
@@ -19,6 +21,15 @@ def test_single_rod():
                                atol=1e-15)
     np.testing.assert_allclose(c.release([0.5]), [0.49], rtol=1e-14)
     np.testing.assert_allclose(c.inverse_work(W[2:]), u[2:], rtol=1e-12)
+    # W near the top of the doubles, on the plateau of force 1 beyond W(0.26) = 0.005: the u
+    # of W exactly (2 W overflowed: the last breakpoint 0.26 came back); with a plateau of 0.5
+    # that u is beyond the doubles, refused
+    big = [8.99e307, 1.7e308, np.finfo(float).max]
+    exact = [float(Fraction(w) - Fraction(0.005) + Fraction(0.26)) for w in big]
+    np.testing.assert_allclose(c.inverse_work(big), exact, rtol=1e-15)
+    half = cantact.load_curve(cantact.Rods([0.25], [0.5], E=100.0, Hstar=1.25, l0=1.0, h0=1.0))
+    with pytest.raises(cantact.OutsideModel, match="inverse_work.*not a finite number"):
+        half.inverse_work([1.7e308])
     # after loading to 0.5: contact at 0.49, yield at 0.5
     a = cantact.load_curve(cantact.Rods([0.25], [1.0], E=100.0, Hstar=1.25, l0=1.0, h0=1.0),
                            after=0.5)

@@ -461,8 +461,9 @@ int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **bp, ct_p
     if (m.e.dims != m.d->dims)
         return ct_error_set(CT_EINVAL, "body.shape = %s: %s", m.d->name, m.d->needs);
     /* the rods' units against the body's: x in the rods' unit is hx of the body's, a gap in
-     * the body's unit is hz of the rods' (a Cantor surface is built per l0 and h0) */
-    m.hx = sc->physical.l0 / sc->layer.l0;
+     * the body's unit is hz of the rods' (a Cantor surface is built per l0 and h0; l0 is an
+     * area on a plane, whose positions are built in its square root's unit) */
+    m.hx = m.e.dims == 2 ? sqrt(sc->physical.l0 / sc->layer.l0) : sc->physical.l0 / sc->layer.l0;
     m.hz = sc->layer.h0 / sc->physical.h0;
     if ((st = apex_of(body, m.d, &m.e, m.hx, &m.px, &m.py)) || (st = copies_of(&m)))
         return st;
@@ -492,13 +493,14 @@ int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f)
     const body_meta *m = ct_bundle_surface_meta(b, &body_rods);
     if (!m)
         return ct_error_set(CT_EINVAL, "what = profile: the rods were not met by a curved body");
-    const double hx = sc->physical.l0 / sc->layer.l0, h0 = sc->layer.h0, l0 = sc->layer.l0;
+    const double h0 = sc->layer.h0, l0 = sc->layer.l0;
     int areal = 0;
     for (size_t k = 0; k < ct_bundle_size(b) && !areal; k++) {
         ct_rod_info r;
         ct_bundle_rod(b, k, &r);
         areal = !isnan(r.footprint.y_lo);
     }
+    const double hx = areal ? sqrt(sc->physical.l0 / l0) : sc->physical.l0 / l0; /* as applied */
     fputs(areal ? "rod,x_lo,x_hi,y_lo,y_hi," : "rod,x_lo,x_hi,", f);
     fputs("top_over_h0,gap_over_h0,area_over_l0,length_over_h0,residual_top_over_h0\n", f);
     for (size_t k = 0; k < ct_bundle_size(b); k++) {

@@ -29,6 +29,43 @@ static double chi_of(const law_consts *k, double u)
     return (u - k->H * k->h0 * k->eps_y) / (k->h0 * (1.0 - k->eps_y)); /* Eq. 30 */
 }
 
+/* Eq. 34's and Eq. 38's brackets are differences of powers of x and chi, or of u_max and
+ * chi_M, which differ by about eps_y H: as printed, terms of order 1 whose sum is of order
+ * eps_y (the load) or eps_y^2 (the unloading work), so e lost every digit from E/sigma_y ~ 1e10
+ * (0.073 instead of 7.0e-8 at 1e16, 0 from 1e18). Written below in those small differences:
+ * d = x - chi = eps_y (H - x) / (1 - eps_y) (Eq. 30), and powers of 1 - r, r = d / x, less 1. */
+
+/* (1 - r)^p - 1 for 0 <= r <= 1, without cancellation as r -> 0. */
+static double pow_less_one(double r, double p)
+{
+    return r < 1.0 ? expm1(p * log1p(-r)) : -1.0;
+}
+
+/* x - chi(x) [units of h0]: what the plastic stages' release shifts by (Eq. 30). */
+static double chi_gap(const law_consts *k, double x)
+{
+    return k->eps_y * (k->H - x) / (1.0 - k->eps_y);
+}
+
+/* int from 1 - r to 1 of (y^p - (1 - r)^p) dy, of order p r^2 / 2: its binomial series where
+ * p r < 1/2 (terms falling by p r / 2 or faster, no growth for large p), else the closed form
+ * (1 - (1 - r)^(p+1)) / (p + 1) - r (1 - r)^p, which then loses at most a few ulps. */
+static double power_excess_integral(double r, double p)
+{
+    if (!(p * r < 0.5))
+        return -pow_less_one(r, p + 1.0) / (p + 1.0) - r * (1.0 + pow_less_one(r, p));
+    /* sum_{k>=2} -r c_{k-1} (k - 1)/k with c_j = binomial(p, j) (-r)^j */
+    double c = -p * r, sum = 0.0;
+    for (int j = 1; j < 200; j++) {
+        double term = -r * c * j / (j + 1.0);
+        sum += term;
+        if (!(fabs(term) > 1e-17 * fabs(sum)))
+            break;
+        c *= (p - j) / (j + 1.0) * -r;
+    }
+    return sum;
+}
+
 static double load_value(const law_consts *k, double u)
 {
     if (!(u > 0.0))
@@ -36,8 +73,9 @@ static double load_value(const law_consts *k, double u)
     double x = u / k->h0, chi = chi_of(k, u), a = k->alpha;
     if (chi <= 0.0) /* Eq. 33 */
         return k->PY * k->K * pow(x, 1.0 + a) / (k->eps_y * k->fx * k->H);
-    /* Eq. 34 */
-    double br = x * (pow(x, a) - pow(chi, a)) - k->c * (pow(x, 1.0 + a) - pow(chi, 1.0 + a));
+    /* Eq. 34: x (x^a - chi^a) - c (x^(1+a) - chi^(1+a)), each difference x^p ((1 - r)^p - 1) */
+    double r = chi_gap(k, x) / x;
+    double br = pow(x, 1.0 + a) * (k->c * pow_less_one(r, 1.0 + a) - pow_less_one(r, a));
     return k->PY * (br / (k->eps_y * k->H * k->fx) + pow(chi, a) / k->fx);
 }
 
@@ -45,40 +83,38 @@ static double work_load_value(const law_consts *k, double u)
 {
     if (!(u > 0.0))
         return 0.0;
-    double a = k->alpha, h0 = k->h0, pre = k->PY / (k->eps_y * k->H * k->fx);
-    double uy = k->eps_y * k->H * h0, x_end = u < uy ? u / h0 : uy / h0;
-    /* Eq. 33 from 0: pre K h0 x^(2+a) / (2+a) */
-    double W = pre * k->K * h0 * pow(x_end, 2.0 + a) / (2.0 + a);
-    if (u <= uy)
-        return W;
-    /* Eq. 34 from uy to u, with u = h0 ((1 - eps_y) chi + eps_y H), du = h0 (1 - eps_y) dchi */
-    double x = u / h0, chi = chi_of(k, u), xy = uy / h0, e1 = 1.0 - k->eps_y;
-    double I_x1a = h0 * (pow(x, 2.0 + a) - pow(xy, 2.0 + a)) / (2.0 + a); /* int x^(1+a) du */
-    double I_xchi =
-        h0 * e1 *
-        (e1 * pow(chi, a + 2.0) / (a + 2.0) + k->eps_y * k->H * pow(chi, a + 1.0) / (a + 1.0));
-    double I_chi1a = h0 * e1 * pow(chi, 2.0 + a) / (2.0 + a);
-    double I_chia = h0 * e1 * pow(chi, 1.0 + a) / (1.0 + a);
-    W += pre * ((I_x1a - I_xchi) - k->c * (I_x1a - I_chi1a)) + k->PY * I_chia / k->fx;
-    return W;
+    double a = k->alpha, h0 = k->h0, x = u / h0, uy = k->eps_y * k->H * h0;
+    if (u <= uy) /* Eq. 33 from 0: P_Y K h0 x^(2+a) / ((2+a) eps_y H fx) */
+        return k->PY * k->K * h0 * pow(x, 2.0 + a) / ((2.0 + a) * k->eps_y * k->H * k->fx);
+    /* Eq. 33 to the first yield x_y = eps_y H, then Eq. 34 from there (u = h0 ((1 - eps_y) chi
+     * + eps_y H)): the terms in x_y^(2+a) cancel, and so do the chi^(1+a) / (1 + a) of the
+     * bracket and of the plastic stages, which leaves, with K = 1 - c,
+     * P_Y h0 [K (x^(2+a) - chi^(2+a)) / eps_y + (1 + K - eps_y) chi^(2+a)] / ((2+a) H fx) */
+    double chi = chi_of(k, u), r = chi_gap(k, x) / x;
+    double diff = -pow(x, 2.0 + a) * pow_less_one(r, 2.0 + a) / k->eps_y;
+    return k->PY * h0 * (k->K * diff + (1.0 + k->K - k->eps_y) * pow(chi, 2.0 + a)) /
+           ((2.0 + a) * k->H * k->fx);
 }
 
-/* Eq. 38's two branches. */
+/* Eq. 38's two branches. Branch 1, as printed, is P_Y [(x (x^a - chi_M^a) - c (x^(1+a) -
+ * chi_M^(1+a))) / (eps_y H fx) + ((x - x_M) / (eps_y H) + 1) chi_M^a / fx]; with K = 1 - c and
+ * x_M - chi_M = chi_gap(x_M) it is P_Y [chi_M^(1+a) / (fx H) + K (x^(1+a) - chi_M^(1+a)) /
+ * (eps_y H fx)]: its value at chi_M, where branch 2 starts, and a rise of order 1. */
 static double unload_value(const law_consts *k, double u_max, double u, int consistent)
 {
     double a = k->alpha, h0 = k->h0, chiM = chi_of(k, u_max); /* Eq. 36 */
-    double hbar_inf = u_max - k->eps_y * k->H * h0;           /* Eq. 37 */
     if (chiM <= 0.0)                                          /* no yield: unloading = loading */
         return load_value(k, u);
-    if (!(u > hbar_inf))
-        return 0.0;
     double x = u / h0, xm = u_max / h0;
-    if (u >= h0 * chiM) {
-        double br = x * (pow(x, a) - pow(chiM, a)) - k->c * (pow(x, 1.0 + a) - pow(chiM, 1.0 + a));
-        return k->PY * (br / (k->eps_y * k->fx * k->H) +
-                        ((x - xm) / (k->eps_y * k->H) + 1.0) * pow(chiM, a) / k->fx);
+    double t = (x - xm) / k->eps_y + k->H; /* (u - hbar_inf) / (eps_y h0), Eq. 37 */
+    if (!(t > 0.0))
+        return 0.0;
+    double above = (x - xm) + chi_gap(k, xm); /* x - chi_M */
+    if (above >= 0.0) {
+        double rise = -pow(x, 1.0 + a) * pow_less_one(above / x, 1.0 + a);
+        return k->PY *
+               (pow(chiM, 1.0 + a) / (k->fx * k->H) + k->K * rise / (k->eps_y * k->H * k->fx));
     }
-    double t = (u - hbar_inf) / (k->eps_y * h0);
     double P = k->PY * pow(t, a + 1.0) / (k->fx * k->H);
     return consistent ? P * k->K : P;
 }
@@ -88,21 +124,19 @@ static double work_unload_value(const law_consts *k, double u_max, int consisten
     double a = k->alpha, h0 = k->h0, chiM = chi_of(k, u_max);
     if (chiM <= 0.0)
         return work_load_value(k, u_max);
-    double hbar_inf = u_max - k->eps_y * k->H * h0, u_c = h0 * chiM;
-    if (u_c > u_max)
-        u_c = u_max;
-    /* branch 2 on [hbar_inf, u_c]: PY/(fx H) ((u - hbar)/(eps_y h0))^(a+1) */
-    double t = (u_c - hbar_inf) / (k->eps_y * h0);
-    double W2 = k->PY / (k->fx * k->H) * k->eps_y * h0 * pow(t, a + 2.0) / (a + 2.0);
+    /* branch 2 on [hbar_inf, h0 chi_M], where (u - hbar_inf) / (eps_y h0) runs from 0 to chi_M:
+     * P_Y/(fx H) eps_y h0 chi_M^(a+2) / (a+2) */
+    double W2 = k->PY / (k->fx * k->H) * k->eps_y * h0 * pow(chiM, a + 2.0) / (a + 2.0);
     if (consistent)
         W2 *= k->K;
-    /* branch 1 on [u_c, u_max] */
-    double x1 = u_c / h0, x2 = u_max / h0, pre = k->PY / (k->eps_y * k->fx * k->H);
-    double I_x1a = h0 * (pow(x2, 2.0 + a) - pow(x1, 2.0 + a)) / (2.0 + a);
-    double I_x = h0 * (x2 * x2 - x1 * x1) / 2.0, I_1 = h0 * (x2 - x1);
-    double ca = pow(chiM, a), ca1 = pow(chiM, 1.0 + a);
-    double W1 = pre * ((I_x1a - ca * I_x) - k->c * (I_x1a - ca1 * I_1)) +
-                k->PY * ca / k->fx * ((I_x - x2 * I_1) / (k->eps_y * k->H) + I_1);
+    /* branch 1 on [h0 chi_M, u_max], a width d = chi_gap(x_M): its value at chi_M times d, and
+     * K / (eps_y H fx) times the integral of x^(1+a) - chi_M^(1+a), x_M^(2+a) times
+     * power_excess_integral(d / x_M), of order eps_y^2 */
+    double xm = u_max / h0, d = chi_gap(k, xm);
+    double W1 = k->PY * h0 *
+                (d * pow(chiM, 1.0 + a) / (k->fx * k->H) +
+                 k->K * pow(xm, 2.0 + a) * power_excess_integral(d / xm, 1.0 + a) /
+                     (k->eps_y * k->H * k->fx));
     return W1 + W2;
 }
 

@@ -128,4 +128,27 @@ char *ct_path_join(const char *dir, const char *path);
 /* Fills scales from a layer as built and the layer as given. */
 void ct_scales_of(ct_scales *sc, const ct_layer *built, const ct_layer *physical);
 
+/* The units a kind that takes lengths, areas and stresses as given builds its rods in: each a
+ * power of two of the given one (exact), 1 where the scale (h0, l0, sigma_y) lies within
+ * [2^-64, 2^64] (ordinary scenes: the same bits), else the one that brings it into [1, 2),
+ * so that a rod's stiffness E s / L and energy E s L stay within the doubles at any scale
+ * (rods 1e-160 long at E = 1e200 were refused as crushed; 1e20 long of area 1e-300 failed).
+ * Areas on a plane take an even power, whose square root (exact) is the unit of
+ * the positions: positions are in the unit of l0 (a line) or of its square root (a plane), as
+ * a curved body reads them (physical l0 over built l0). */
+typedef struct {
+    double length, area, stress; /* built per given */
+    double position;             /* a footprint's coordinates, built per given */
+} ct_build_units;
+void ct_build_units_of(const ct_layer *given, int plane, ct_build_units *u);
+/* The layer as built from the layer as given, in units u; CT_EINVAL naming the figure when the
+ * given one has a field that is no finite positive normal double, or the built one leaves the
+ * doubles (ct_layer_validate's checks on it: E/sigma_y times H* / h0 beyond 1.8e308). */
+int ct_layer_built(const ct_layer *given, const ct_build_units *u, ct_layer *built);
+/* CT_EINVAL naming rod k (its top, length and area as built, and what) when its stiffness
+ * E s / L or its energy scale E s L is not a finite normal double in the built units, else
+ * CT_OK: such a rod's force or work cannot be represented (what: the rod's name). */
+int ct_rod_representable(const ct_layer *built, double top, double length, double area,
+                         const char *what);
+
 #endif

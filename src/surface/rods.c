@@ -5,7 +5,9 @@
  * deepest top (a rod set whose tops are all 0 needs surface.h0 or surface.Hstar), l0 the total
  * area, so V* = sqrt(m v^2 / (2 l0 E h0)) and forces are in P_Y = sigma_y l0. A rod's length,
  * when given, replaces H* - top; the layer's H* is then the shallowest rod bottom,
- * min(top + length), where the first rod would reach strain 1 (the crushed-layer limit). */
+ * min(top + length), where the first rod would reach strain 1 (the crushed-layer limit). The
+ * rods are built in units that are powers of two of the given ones (ct_build_units_of), so
+ * that e does not depend on the scale (docs/model.md §13). */
 #include "kind.h"
 #include "number.h"
 
@@ -35,7 +37,9 @@ typedef struct {
     size_t n;
     double *top, *area, *length; /* length NULL: H* - top */
     double *x, *y;               /* each rod's position (NULL: none given; y NULL: a line) */
-    ct_layer layer;
+    ct_layer layer;              /* as built: in units (a power of two of the given ones) */
+    ct_layer physical;           /* as given */
+    ct_build_units units;        /* built per given */
     char source[160];
 } rods_config;
 
@@ -550,10 +554,29 @@ static int rods_prepare(ct_surface *s, const char *dir)
                              "down to the layer's bottom H*",
                              c->top[k], Hstar, from);
         }
-    c->layer = (ct_layer){.E = c->E, .sigma_y = c->sigma_y, .Hstar = Hstar, .l0 = l0, .h0 = h0};
-    if ((st = ct_layer_validate(&c->layer)))
+    /* built in units of the given ones times powers of two (ct_build_units_of: the given ones
+     * for scales within [2^-64, 2^64]), so that e does not depend on the scale */
+    c->physical = (ct_layer){.E = c->E, .sigma_y = c->sigma_y, .Hstar = Hstar, .l0 = l0, .h0 = h0};
+    ct_build_units_of(&c->physical, c->y != NULL, &c->units);
+    if ((st = ct_layer_built(&c->physical, &c->units, &c->layer)))
         return st;
-    ct_scales_of(&s->scales, &c->layer, &c->layer);
+    const ct_build_units *un = &c->units;
+    for (size_t k = 0; k < c->n; k++) {
+        c->top[k] *= un->length;
+        c->area[k] *= un->area;
+        if (c->length)
+            c->length[k] *= un->length;
+        if (c->x)
+            c->x[k] *= un->position;
+        if (c->y)
+            c->y[k] *= un->position;
+        char what[32];
+        snprintf(what, sizeof what, "rod %zu", k + 1);
+        const double len = c->length ? c->length[k] : c->layer.Hstar - c->top[k];
+        if ((st = ct_rod_representable(&c->layer, c->top[k], len, c->area[k], what)))
+            return rod_error(s, c, k, "%s", strchr(ct_error_message(), ':') + 2);
+    }
+    ct_scales_of(&s->scales, &c->layer, &c->physical);
     return CT_OK;
 }
 
@@ -690,7 +713,7 @@ static void rods_describe(const ct_surface *s, const ct_plan_info *info, char *b
 static void rods_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
 {
     const rods_config *c = s->config;
-    const ct_layer *L = &c->layer;
+    const ct_layer *L = &c->physical;
     snprintf(buf, len,
              "rods: %s, %zu rods, l0 = %.17g, h0 = %.17g, H* = %.17g, E = %.17g, sigma_y = %.17g",
              c->source, info->rods, L->l0, L->h0, L->Hstar, L->E, L->sigma_y);
@@ -715,7 +738,7 @@ static int rods_write_profile(const ct_surface *s, const ct_bundle *b, FILE *f)
         }
         for (int i = 0; c->x && i < (c->y ? 2 : 1); i++) { /* the position, in the rods' unit */
             fputc(',', f);
-            ct_put_double(f, i ? info.footprint.y_lo : info.footprint.x_lo);
+            ct_put_double(f, (i ? info.footprint.y_lo : info.footprint.x_lo) / c->units.position);
         }
         fputc('\n', f);
     }

@@ -28,8 +28,10 @@ typedef struct {
     /* prepared */
     ct_profile *profile; /* levelled (and trimmed) */
     ct_profile_stats stats;
-    ct_layer layer;
-    double band_m[4]; /* the bands in metres (0: the default) */
+    ct_layer layer;       /* as built: in units (a power of two of the given ones) */
+    ct_layer physical;    /* as given */
+    ct_build_units units; /* built per given */
+    double band_m[4];     /* the bands in metres (0: the default) */
     ct_profile_fit fit;
     int have_fit, fit_from_impacts;
 } profile_config;
@@ -164,28 +166,31 @@ static int profile_prepare(ct_surface *s, const char *dir)
     if (!(q->Rt > 0.0))
         return ct_error_set(CT_EINVAL, "%s: all heights are equal after levelling: no roughness",
                             c->file);
-    c->layer = (ct_layer){.E = c->E,
-                          .sigma_y = c->sigma_y,
-                          .Hstar = Hstar > 0.0 ? Hstar : c->H * q->Rt,
-                          .l0 = q->length,
-                          .h0 = q->Rt};
-    if (!(c->layer.Hstar > q->Rt))
+    c->physical = (ct_layer){.E = c->E,
+                             .sigma_y = c->sigma_y,
+                             .Hstar = Hstar > 0.0 ? Hstar : c->H * q->Rt,
+                             .l0 = q->length,
+                             .h0 = q->Rt};
+    if (!(c->physical.Hstar > q->Rt))
         return ct_error_set(CT_EINVAL,
                             "surface.Hstar = %g m: must exceed the profile's peak-to-valley depth "
                             "Rt = %g m after levelling",
-                            c->layer.Hstar, q->Rt);
-    if ((st = ct_layer_validate(&c->layer))) { /* lengths beyond what doubles hold, named */
+                            c->physical.Hstar, q->Rt);
+    /* built in units of metres and pascals times powers of two (ct_build_units_of: metres and
+     * pascals for scales within [2^-64, 2^64]), so that e does not depend on the scale */
+    ct_build_units_of(&c->physical, p->ny > 1, &c->units);
+    if ((st = ct_layer_built(&c->physical, &c->units, &c->layer))) { /* named */
         return ct_error_set(st, "%s: %s; from %zu points at a spacing of %g m, Rt %g m", c->file,
                             ct_error_message(), p->n, p->ny > 1 ? p->dx : q->length / (double)p->n,
                             q->Rt);
     }
-    ct_scales_of(&s->scales, &c->layer, &c->layer);
+    ct_scales_of(&s->scales, &c->layer, &c->physical);
     ct_surface_note_set(s,
                         "%s (%s): %zu points%s, levelled (%s): Rq %.4g m, Rt %.4g m (raw Rt %.4g "
                         "m), l0 %.4g m%s, H* %.4g m",
                         c->file, p->source, p->n, p->ny > 1 ? " on a grid" : "",
                         detrend_name(c->detrend), q->Rq, q->Rt, raw.Rt, q->length,
-                        p->ny > 1 ? "^2" : "", c->layer.Hstar);
+                        p->ny > 1 ? "^2" : "", c->physical.Hstar);
     size_t n = strlen(s->note);
     if (p->invalid)
         n += (size_t)snprintf(s->note + n, sizeof s->note - n, ", %zu invalid points left out",
@@ -201,9 +206,9 @@ static int profile_build(const ct_surface *s, const ct_build_request *r, ct_bund
 {
     const profile_config *c = s->config;
     *out = NULL;
-    int st = ct_profile_bundle_of(out, c->profile, &c->stats, c->layer.E, c->layer.sigma_y,
-                                  c->layer.Hstar,
-                                  r->threads); /* the profile's statistics as it stands */
+    const ct_layer *g = &c->physical; /* the profile's statistics as it stands */
+    int st = ct_profile_bundle_of(out, c->profile, &c->stats, g->E, g->sigma_y, g->Hstar,
+                                  r->threads, &c->units);
     if (st)
         return st;
     info->depth = -1;
@@ -240,8 +245,8 @@ static int profile_after_sweep(ct_surface *s, const ct_sweep_row *rows, size_t n
     double *u = malloc((n ? n : 1) * sizeof *u);
     if (!u)
         return ct_error_set(CT_ENOMEM, "fit: out of memory");
-    for (size_t k = 0; k < n; k++)
-        u[k] = rows[k].status ? NAN : rows[k].r.u_max;
+    for (size_t k = 0; k < n; k++) /* in metres */
+        u[k] = rows[k].status ? NAN : rows[k].r.u_max / c->units.length;
     ct_profile_fit f;
     int st = ct_profile_fit_on_reach(c->profile, &c->fit, u, n, &f);
     free(u);
@@ -276,9 +281,12 @@ static int profile_compare(ct_surface *s, const ct_sweep_row *rows, size_t n, do
     if (!W)
         return ct_error_set(CT_ENOMEM, "compare: out of memory");
     double *ef = W + n, *ea = ef + n, *vf = ea + n;
+    const ct_build_units *un = &c->units; /* the energies in joules (per metre) */
     for (size_t k = 0; k < n; k++)
-        W[k] = !rows[k].status && rows[k].impact == 1 ? rows[k].r.kinetic_energy : NAN;
-    st = ct_profile_fitted_e(c->profile, &c->fit, &c->layer, W, n, 0, ef, ea, vf);
+        W[k] = !rows[k].status && rows[k].impact == 1
+                   ? rows[k].r.kinetic_energy / un->length / un->area / un->stress
+                   : NAN;
+    st = ct_profile_fitted_e(c->profile, &c->fit, &c->physical, W, n, 0, ef, ea, vf);
     for (size_t k = 0; k < n && !st; k++) {
         out[3 * k] = ef[k];
         out[3 * k + 1] = ea[k];
@@ -398,7 +406,7 @@ static void profile_describe(const ct_surface *s, const ct_plan_info *info, char
 static void profile_table_line(const ct_surface *s, const ct_plan_info *info, char *buf, size_t len)
 {
     const profile_config *c = s->config;
-    const ct_layer *L = &c->layer;
+    const ct_layer *L = &c->physical;
     snprintf(buf, len,
              "profile: %s (%s), %zu rods, l0 = %.17g m, h0 = Rt = %.17g m, H* = %.17g m, E = "
              "%.17g Pa, sigma_y = %.17g Pa, detrend %s",

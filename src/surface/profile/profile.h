@@ -3,6 +3,7 @@
 #define CT_SURFACE_PROFILE_H
 
 #include "internal.h"
+#include "surface/kind.h"
 
 /* Samples from which the levelled heights and the rods are filled by threads, in chunks of
  * LEVEL_CHUNK samples (the same values for any thread count). */
@@ -12,9 +13,10 @@
 /* The heights' peak to valley (the raw heights' Rt: one pass, no statistics). */
 double ct_profile_heights_span(const ct_profile *p);
 /* ct_profile_bundle with p's statistics known (sp), filled on threads threads (0: the OpenMP
- * default). */
+ * default), E, sigma_y and H* as given, built in units u (ct_build_units_of; NULL: as given):
+ * tops and lengths, areas, stresses and the footprints' positions each times its unit. */
 int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp, double E,
-                         double sigma_y, double Hstar, int threads);
+                         double sigma_y, double Hstar, int threads, const ct_build_units *u);
 /* CT_OK when p has the 3 valid points every statistic and fit needs, else CT_EINVAL. */
 int ct_profile_check_heights(const ct_profile *p);
 

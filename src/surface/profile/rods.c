@@ -29,9 +29,11 @@ static void profile_meta_free(void *m)
     free(pm);
 }
 
-/* The metadata: the profile's positions (no heights) and each rod's sample; with_index: an
- * index (copied from index when not NULL), else rod k is sample k. */
-static profile_meta *meta_new(const ct_profile *p, int with_index, const size_t *index)
+/* The metadata: the profile's positions (no heights) times `position` (the unit they are
+ * built in) and each rod's sample; with_index: an index (copied from index when not NULL),
+ * else rod k is sample k. */
+static profile_meta *meta_new(const ct_profile *p, int with_index, const size_t *index,
+                              double position)
 {
     profile_meta *pm = calloc(1, sizeof *pm);
     if (!pm || (with_index && !(pm->index = malloc((p->n ? p->n : 1) * sizeof(size_t)))) ||
@@ -47,7 +49,10 @@ static profile_meta *meta_new(const ct_profile *p, int with_index, const size_t 
         return NULL;
     }
     if (p->x)
-        memcpy(pm->p->x, p->x, p->nx * sizeof(double));
+        for (size_t j = 0; j < p->nx; j++)
+            pm->p->x[j] = p->x[j] * position;
+    pm->p->dx = p->dx * position;
+    pm->p->dy = p->dy * position;
     if (with_index && index)
         memcpy(pm->index, index, p->n * sizeof(size_t));
     return pm;
@@ -56,7 +61,7 @@ static profile_meta *meta_new(const ct_profile *p, int with_index, const size_t 
 static void *profile_meta_clone(const void *m)
 {
     const profile_meta *src = m;
-    return meta_new(src->p, src->index != NULL, src->index);
+    return meta_new(src->p, src->index != NULL, src->index, 1.0);
 }
 
 static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
@@ -96,21 +101,35 @@ int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sig
     int st = ct_profile_stats_of(p, &s);
     if (st)
         return st;
-    return ct_profile_bundle_of(out, p, &s, E, sigma_y, Hstar, 0);
+    return ct_profile_bundle_of(out, p, &s, E, sigma_y, Hstar, 0, NULL);
 }
 
-/* Rod k of sample j: its top below the highest point, its length, its area, no plastic strain. */
+/* Rod k of sample j: its top below the highest point, its length, its area, no plastic strain;
+ * in the units u (H* in them already). */
 static inline void rod_of(const ct_profile *p, size_t j, double zmax, double Hstar, size_t k,
-                          double *top, double *length, double *area, double *eps_p)
+                          const ct_build_units *u, double *top, double *length, double *area,
+                          double *eps_p)
 {
-    top[k] = zmax - p->z[j];
+    top[k] = (zmax - p->z[j]) * u->length;
     length[k] = Hstar - top[k];
-    area[k] = ct_profile_share(p, j);
+    area[k] = ct_profile_share(p, j) * u->area;
     eps_p[k] = 0.0;
 }
 
+/* The areas' extremes (a grid's pixels: one). */
+static void share_range(const ct_profile *p, double *lo, double *hi)
+{
+    *lo = INFINITY;
+    *hi = 0.0;
+    for (size_t j = 0; j < (p->ny > 1 ? 1 : p->nx); j++) {
+        const double a = ct_profile_share(p, j);
+        *lo = a < *lo ? a : *lo;
+        *hi = a > *hi ? a : *hi;
+    }
+}
+
 int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_stats *sp, double E,
-                         double sigma_y, double Hstar, int threads)
+                         double sigma_y, double Hstar, int threads, const ct_build_units *units)
 {
     const ct_profile_stats s = *sp;
     int st;
@@ -122,15 +141,27 @@ int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_
                             "H* = %g: must exceed the profile's peak-to-valley depth Rt = %g "
                             "(the deepest rod needs a length)",
                             Hstar, s.Rt);
-    ct_layer L = {.E = E, .sigma_y = sigma_y, .Hstar = Hstar, .l0 = s.length, .h0 = s.Rt};
-    if ((st = ct_layer_validate(&L)))
+    const ct_build_units given = {1.0, 1.0, 1.0, 1.0}, *u = units ? units : &given;
+    const ct_layer G = {.E = E, .sigma_y = sigma_y, .Hstar = Hstar, .l0 = s.length, .h0 = s.Rt};
+    ct_layer L;
+    if ((st = ct_layer_built(&G, u, &L)))
+        return st;
+    /* the rods' stiffness and energy scale at their extremes: the shortest (H* - Rt) and
+     * longest (H*) with the smallest and largest area */
+    double a_lo, a_hi;
+    share_range(p, &a_lo, &a_hi);
+    const double L_lo = L.Hstar - L.h0, s_lo = a_lo * u->area, s_hi = a_hi * u->area;
+    if ((st = ct_rod_representable(&L, L.h0, L_lo, s_hi, "the deepest, widest rod")) ||
+        (st = ct_rod_representable(&L, L.h0, L_lo, s_lo, "the deepest, narrowest rod")) ||
+        (st = ct_rod_representable(&L, 0.0, L.Hstar, s_hi, "the highest, widest rod")) ||
+        (st = ct_rod_representable(&L, 0.0, L.Hstar, s_lo, "the highest, narrowest rod")))
         return st;
     const size_t total = p->nx * p->ny;
     double zmax = -INFINITY;
     for (size_t j = 0; j < total; j++)
         if (!isnan(p->z[j]) && p->z[j] > zmax)
             zmax = p->z[j];
-    profile_meta *pm = meta_new(p, p->n < total, NULL); /* no index when every sample is valid */
+    profile_meta *pm = meta_new(p, p->n < total, NULL, u->position); /* no index: all valid */
     if (!pm)
         return ct_error_set(CT_ENOMEM, "profile rods: out of memory");
     ct_bundle *b;
@@ -148,7 +179,7 @@ int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_
         for (size_t c = 0; c < (total + LEVEL_CHUNK - 1) / LEVEL_CHUNK; c++) {
             const size_t j1 = (c + 1) * LEVEL_CHUNK < total ? (c + 1) * LEVEL_CHUNK : total;
             for (size_t j = c * LEVEL_CHUNK; j < j1; j++)
-                rod_of(p, j, zmax, Hstar, j, top, length, area, eps_p);
+                rod_of(p, j, zmax, L.Hstar, j, u, top, length, area, eps_p);
         }
         ct_bundle_set_surface(b, &profile_kind, pm, p->invalid);
         *out = b;
@@ -158,7 +189,7 @@ int ct_profile_bundle_of(ct_bundle **out, const ct_profile *p, const ct_profile_
     for (size_t j = 0; j < total; j++) {
         if (isnan(p->z[j]))
             continue;
-        rod_of(p, j, zmax, Hstar, k, top, length, area, eps_p);
+        rod_of(p, j, zmax, L.Hstar, k, u, top, length, area, eps_p);
         if (pm->index)
             pm->index[k] = j;
         k++;
