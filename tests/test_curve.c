@@ -372,7 +372,7 @@ static void check_inverse(const ct_layer *L, size_t n, const double *top, const 
     assert_int_equal(ct_curve_alloc(&c), CT_OK);
     assert_int_equal(ct_curve_build(c, b), CT_OK);
     const double u = ct_curve_inverse_work(c, W);
-    long double P;
+    long double P = 0.0L;
     if (u == INFINITY) { /* only if the u of W lies beyond DBL_MAX, to rounding */
         const long double W_max = rods_work(L, n, top, area, DBL_MAX, &P);
         if (!(W_max < W + 8.0L * DBL_EPSILON * (W + P * DBL_MAX)))
