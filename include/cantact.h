@@ -48,6 +48,7 @@ enum {
     CT_ENOCONV = 4,  /* a solve did not meet its tolerance */
     CT_EIO = 5,      /* a file could not be read or written */
     CT_ESKIPPED = 6, /* not run: an earlier impact of the same speed failed */
+    CT_EINTR = 7,    /* stopped: the caller's interrupt flag was set (the spec's interrupt) */
 };
 
 /* Returns a static, generic description of a status code. */
@@ -488,6 +489,12 @@ typedef struct {
 } ct_sweep_row;
 
 typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);
+/* Long work (a sweep, an ensemble, a table) takes an optional interrupt flag: another thread
+ * (or a signal handler) sets *interrupt non-zero and the work stops at its next check, between
+ * blocks of work (a speed, a block of rods of a pass over them, a realisation, a batch of a
+ * table's impacts: a small fraction of a second apart), freeing what it made and returning
+ * CT_EINTR; the results handed out are then incomplete. The flag is only read; NULL: never
+ * stopped. Results that were not stopped do not depend on it, nor on a progress callback. */
 /* Called around every impact of a speed: phase 0 before it (b in the pre-impact state, c its
  * curve), phase 1 after it (b in the post-impact state, c NULL). Return non-zero to stop. */
 typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundle *b,
@@ -529,6 +536,8 @@ typedef struct {
                            ensemble's realisations: no page faults for each new curve) */
     int dynamics;       /* 1: every row also gets its impact in time (ct_sweep_row.dyn); needs
                            the curve (the rod path is not taken) */
+    const volatile int *interrupt; /* optional: stops with CT_EINTR once *interrupt != 0 (the
+                                      rows are then incomplete) */
 } ct_sweep_spec;
 
 /* Runs every speed from b's state (b itself is not changed): rows[speed * impacts + i - 1]
@@ -653,6 +662,7 @@ typedef struct {
     ct_ensemble_split split;
     ct_progress_fn progress; /* optional: realisations done (called by one thread at a time) */
     void *progress_ctx;
+    const volatile int *interrupt; /* optional: stops with CT_EINTR once *interrupt != 0 */
 } ct_ensemble_spec;
 
 /* The samples of an ensemble: realisation first + r, row q = speed * impacts + impact - 1
@@ -724,6 +734,10 @@ typedef struct {
                             >= 1 (default 16) */
     ct_impact_opts opts; /* how each exact e is computed */
     ct_sweep_path path;
+    ct_progress_fn progress; /* optional: exact impacts computed, of those planned so far (the
+                                total grows when a round splits intervals) */
+    void *progress_ctx;
+    const volatile int *interrupt; /* optional: stops with CT_EINTR once *interrupt != 0 */
 } ct_table_spec;
 
 /* Fills spec with the defaults: tolerance 1e-6, monotone cubic, at most 100000 nodes, 16

@@ -538,4 +538,32 @@ expect 2 "history, an untimed impact, stop" -- "$ct" run -q "$def" --set materia
     --set impact.V_star=3e-11 --set output.what=e,history -o "$tmp/hstop.csv"
 [ ! -e "$tmp/hstop.csv" ] && [ ! -e "$tmp/hstop_history.csv" ] && ok || bad "history, stop: a file left behind"
 
+# Progress: a bar of the speeds on a terminal (script gives the program one), filled as the
+# closed-form check of a large sweep goes (steps before 100%); nothing off a terminal; the
+# same bytes either way
+command -v script >/dev/null || fail "script (util-linux) is needed for the terminal checks"
+cat >"$tmp/big.ini" <<INI
+[surface]
+fx = 1.5
+fz = 1.3
+H = 10
+depth = 17
+representation = segments
+[material]
+E = 500
+[impact]
+V_star = 1e-4:1e-2:600:log
+[solver]
+check = all
+threads = 1
+INI
+script -qec "'$ct' run -q '$tmp/big.ini' -o '$tmp/big_tty.csv'" /dev/null >"$tmp/tty" && ok ||
+    bad "run on a terminal"
+tr '\r' '\n' <"$tmp/tty" | grep -q '^\[#*  *\] *[1-9][0-9]% ([0-9]*/600)$' &&
+    tr '\r' '\n' <"$tmp/tty" | grep -q '^\[#*\] 100% (600/600)$' && ok ||
+    bad "run: no progress bar filling on a terminal: $(cat -v "$tmp/tty" | head -c 300)"
+expect 0 "run off a terminal" -- "$ct" run -q "$tmp/big.ini" -o "$tmp/big_pipe.csv"
+[ ! -s "$tmp/err" ] && ok || bad "run -q: progress off a terminal: $(cat -v "$tmp/err" | head -c 200)"
+cmp -s "$tmp/big_tty.csv" "$tmp/big_pipe.csv" && ok || bad "run: the e table differs with progress shown"
+
 finish

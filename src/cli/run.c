@@ -212,7 +212,7 @@ static ct_sweep_spec spec_of(const ct_scene *sc, ct_progress *prog)
         .impacts = sc->impacts,
         .opts = sc->opts,
         .stop_on_error = !sc->skip_failed,
-        .progress = show_progress,
+        .progress = prog->enabled ? show_progress : NULL, /* a bar on a terminal only */
         .progress_ctx = prog,
         .path = sc->path,
         /* with a history too: an impact whose motion fails is then a failed row (skipped
