@@ -1035,6 +1035,12 @@ void ct_key_describe(const ct_key *row, char *buf, size_t len);
 void ct_key_clear(const ct_key *row, void *settings);
 /* The word's index in "a|b|c", -1 when it is none of them. */
 int ct_word_index(const char *words, const char *word);
+/* The name of n nearest to given ("surface.fzz": "surface.fz"), for "did you mean": by edit
+ * distance (an insertion, deletion, substitution or swap of neighbours each counts 1), when it
+ * is close enough to be a slip: one edit when the part after the last dot has at most 3
+ * characters, two beyond; the first of equals. Its index, or n when none is that close
+ * (names equal to given and NULL names are passed over). */
+size_t ct_nearest_name(const char *given, const char *const *names, size_t n);
 
 /* The keys of a run that are not the surface's (sections impact, solver, table, ensemble),
  * where their rows (ct_run_keys_table) store them. */

@@ -240,7 +240,7 @@ static void rods_row(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *r
         r->status = ct_error_set(CT_ERANGE,
                                  "impact energy %.6g reaches u_max >= H* = %g (the "
                                  "layer would be crushed, strains >= 1): outside "
-                                 "the model; lower V* or raise H",
+                                 "the model; lower the speed or raise H",
                                  W, Hstar);
     else if (!res->elastic && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
         r->status =

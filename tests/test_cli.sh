@@ -538,6 +538,27 @@ expect 2 "history, an untimed impact, stop" -- "$ct" run -q "$def" --set materia
     --set impact.V_star=3e-11 --set output.what=e,history -o "$tmp/hstop.csv"
 [ ! -e "$tmp/hstop.csv" ] && [ ! -e "$tmp/hstop_history.csv" ] && ok || bad "history, stop: a file left behind"
 
+# A crushed layer in a scene given by mass and speed names the speed in m/s beside V*, and the
+# unit E is read in (200 meant as GPa is 200 Pa); given by V*, neither
+expect 2 "crushed, SI scene" -- "$ct" run -q "$src/examples/scenes/profile.ini" \
+    --set material.E=200 --set material.sigma_y=0.4
+has err "impact speed 0.01 m/s (V\* = 1.909932730395228[0-9]), impact 1: impact energy 5e-07 reaches u_max >= H\* = 4.56906e-06 (the layer would be crushed" \
+    "crushed, SI scene: the speed in m/s"
+has err "lower the speed or raise H; with mass and speeds in SI units (kg, m/s) material.E = 200 is read in Pa: check its unit$" \
+    "crushed, SI scene: E's unit"
+expect 2 "crushed, SI Cantor scene (depth auto)" -- "$ct" run -q "$src/scripts/scenes/dem_table.ini" \
+    --set material.E=200 --set material.sigma_y=0.4
+has err "impact energy 125 (impact speed 0.01 m/s, V\* = 0.5) reaches u_max >= H\* = 10" \
+    "crushed in the depth's choice: the speed in m/s"
+expect 2 "crushed, table" -- "$ct" table -q "$src/examples/scenes/profile.ini" \
+    --set material.E=200 --set material.sigma_y=0.4
+has err "impact speed 1 m/s (V\* = 190.9932730395228[0-9]), impact 1:.*material.E = 200 is read in Pa" \
+    "crushed, table: the speed in m/s and E's unit"
+expect 2 "crushed, V* scene" -- "$ct" run -q "$tmp/s.ini" --set impact.V_star=3
+grep -q "m/s\|read in Pa\|lower V\*" "$tmp/err" && bad "crushed, V* scene: $(cat "$tmp/err")" || ok
+has err "^cantact: impact energy 4500 reaches u_max >= H\* = 10 (the layer would be crushed, strains >= 1): outside the model; lower the speed or raise H$" \
+    "crushed, V* scene"
+
 # Progress: a bar of the speeds on a terminal (script gives the program one), filled as the
 # closed-form check of a large sweep goes (steps before 100%); nothing off a terminal; the
 # same bytes either way

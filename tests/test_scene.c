@@ -139,6 +139,78 @@ static void unknown_section_and_key(void **state)
     expect_error("fx = 1.5\n", NULL, 0, "s.ini:1", "outside any section");
 }
 
+/* "Did you mean": the known name nearest to a slip (one edit in a name of up to 3 characters
+ * after its last dot, two beyond; a swap of neighbours is one edit), none when it is farther. */
+static void nearest_names(void **state)
+{
+    (void)state;
+    const char *names[] = {"surface.fx",
+                           "surface.fz",
+                           "surface.H",
+                           "impact.V_star",
+                           "solver.depth_tolerance",
+                           "ensemble.realisations",
+                           "surface"};
+    const size_t n = sizeof names / sizeof names[0];
+    struct {
+        const char *given;
+        size_t want; /* n: none */
+    } cases[] = {
+        {"surface.fzz", 1},            /* an extra letter */
+        {"surface.f", 0},              /* a letter lost: fx and fz tie, the first */
+        {"surface.zf", 1},             /* two letters swapped: one edit */
+        {"surface.h", 2},              /* the case of a letter */
+        {"surface.xy", n},             /* two edits in a short name: no slip */
+        {"surface.fx", 1},             /* the name itself passed over: the next nearest */
+        {"impact.V_str", 3},           /* a letter lost */
+        {"impact.v_sta", 3},           /* two edits in a longer name */
+        {"impact.velocity", n},        /* far from everything */
+        {"solver.depth_tolerence", 4}, /* a vowel */
+        {"ensemble.realizations", 5},  /* the spelling */
+        {"surfce", 6},                 /* a section */
+        {"srfce", 6},                  /* two edits in a name of over 3 characters */
+        {"srfc", n},                   /* three */
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        const size_t got = ct_nearest_name(cases[k].given, names, n);
+        if (got != cases[k].want)
+            fail_msg("%s: got %s, want %s", cases[k].given, got < n ? names[got] : "none",
+                     cases[k].want < n ? names[cases[k].want] : "none");
+    }
+    assert_int_equal(ct_nearest_name("x", NULL, 3), 3);
+}
+
+static void did_you_mean(void **state)
+{
+    (void)state;
+    char buf[512];
+    with_line(buf, sizeof buf, "fzz = 1.3");
+    expect_error(buf, NULL, 0, "s.ini:5: surface.fzz: unknown key (did you mean surface.fz?)",
+                 NULL);
+    expect_error("[surfce]\nfx=1.5\n", NULL, 0,
+                 "s.ini:1: [surfce]: unknown section (did you mean [surface]?) (known: ", NULL);
+    const char *sets[] = {"impakt.V_star=1"};
+    expect_error(good, sets, 1, "--set: [impakt]: unknown section (did you mean [impact]?)", NULL);
+    const char *sets2[] = {"output.wat=e"};
+    expect_error(good, sets2, 1, "--set: output.wat: unknown key (did you mean output.what?)",
+                 NULL);
+    const char *sets3[] = {"surface.colour=red"};
+    expect_error(good, sets3, 1, "--set: surface.colour: unknown key", NULL);
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, sets3, 1), CT_EINVAL);
+    assert_null(strstr(ct_scene_message(), "did you mean"));
+    /* the library's own, for a key of another kind (Python's Surface takes this path) */
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "cantor"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "uint", "mm", "here"), CT_EINVAL);
+    assert_string_equal(ct_error_message(), "here: surface.uint: unknown key (did you mean "
+                                            "surface.unit? only for surface.type = profile or "
+                                            "rods)");
+    assert_int_equal(ct_surface_set(s, "surface", "fzz", "1.3", ""), CT_EINVAL);
+    assert_string_equal(ct_error_message(), "surface.fzz: unknown key (did you mean surface.fz?)");
+    ct_surface_free(s);
+}
+
 static void duplicate_key(void **state)
 {
     (void)state;
@@ -447,14 +519,23 @@ static void numbers_in_the_c_locale(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(defaults_and_values),     cmocka_unit_test(velocity_lists),
-        cmocka_unit_test(set_overrides),           cmocka_unit_test(unknown_section_and_key),
-        cmocka_unit_test(duplicate_key),           cmocka_unit_test(missing_required),
-        cmocka_unit_test(unparsable_numbers),      cmocka_unit_test(out_of_range),
-        cmocka_unit_test(malformed_line),          cmocka_unit_test(files_missing_and_binary),
-        cmocka_unit_test(long_lines_read_whole),   cmocka_unit_test(section_headers_checked),
-        cmocka_unit_test(list_fields_checked),     cmocka_unit_test(messages_say_what_happened),
+        cmocka_unit_test(defaults_and_values),
+        cmocka_unit_test(velocity_lists),
+        cmocka_unit_test(set_overrides),
+        cmocka_unit_test(unknown_section_and_key),
+        cmocka_unit_test(duplicate_key),
+        cmocka_unit_test(missing_required),
+        cmocka_unit_test(unparsable_numbers),
+        cmocka_unit_test(out_of_range),
+        cmocka_unit_test(malformed_line),
+        cmocka_unit_test(files_missing_and_binary),
+        cmocka_unit_test(long_lines_read_whole),
+        cmocka_unit_test(section_headers_checked),
+        cmocka_unit_test(list_fields_checked),
+        cmocka_unit_test(messages_say_what_happened),
         cmocka_unit_test(numbers_in_the_c_locale),
+        cmocka_unit_test(nearest_names),
+        cmocka_unit_test(did_you_mean),
     };
     return cmocka_run_group_tests_name("scene", tests, NULL, NULL);
 }

@@ -836,7 +836,7 @@ static void row_holds_results_or_its_message(void **state)
             assert_string_equal(
                 rows[2].message,
                 "impact energy 1.25e+06 reaches u_max >= H* = 10 (the layer would be "
-                "crushed, strains >= 1): outside the model; lower V* or raise H");
+                "crushed, strains >= 1): outside the model; lower the speed or raise H");
             assert_string_equal(rows[3].message, "not run: impact 1 of V* = 50 failed");
             ct_sweep_row copy = rows[3];
             memset(&rows[3], 'x', sizeof rows[3]);
@@ -1235,8 +1235,8 @@ static void progress_in_slices_changes_no_bit(void **state)
         /* nothing reported before the first slice: the batch is nearly all of the sweep's time,
          * its first of 2 or 3 slices over a quarter of it */
         if (!(g.first_at - start > 0.25 * took))
-            fail_msg("%d threads: first progress after %.3f of %.3f s", threads,
-                     g.first_at - start, took);
+            fail_msg("%d threads: first progress after %.3f of %.3f s", threads, g.first_at - start,
+                     took);
         assert_true(g.rising);
         assert_int_equal(g.last, NV);
         assert_int_equal(g.total, NV);

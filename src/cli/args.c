@@ -4,6 +4,7 @@
 #include "output.h"
 #include "ranks.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +20,46 @@ void ct_cli_fail(const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     fprintf(stderr, "cantact: %s\n", msg);
+}
+
+void ct_cli_fail_scene(const ct_scene *sc, int st, const char *msg)
+{
+    if (!sc || !(sc->mass > 0.0)) {
+        ct_cli_fail("%s", msg);
+        return;
+    }
+    /* the V* the message names, also as the speed the scene gave (speed = V* / v_per_V*); or
+     * the impact energy it names [the layer's units], with both */
+    char out[1024];
+    const char *at = strstr(msg, "V* = "), *energy = strstr(msg, "impact energy ");
+    const double per = ct_speed_to_V_star(&sc->scales, sc->mass, 1.0);
+    size_t n = 0;
+    char *end;
+    if (at && per > 0.0) {
+        const double V = strtod(at + 5, &end);
+        if (end != at + 5 && isfinite(V)) {
+            n = (size_t)snprintf(out, sizeof out, "%.*simpact speed %.6g m/s (V* = %.*s)",
+                                 (int)(at - msg), msg, V / per, (int)(end - at - 5), at + 5);
+            msg = end;
+        }
+    } else if (energy && per > 0.0) {
+        const double W = strtod(energy + 14, &end);
+        const double V = sqrt(W / sc->scales.energy_scale);
+        if (end != energy + 14 && isfinite(V) && V > 0.0) {
+            n = (size_t)snprintf(out, sizeof out, "%.*s (impact speed %.6g m/s, V* = %.6g)",
+                                 (int)(end - msg), msg, V / per, V);
+            msg = end;
+        }
+    }
+    if (n < sizeof out)
+        n += (size_t)snprintf(out + n, sizeof out - n, "%s", msg);
+    /* a crushed layer in SI units: most often E given in GPa or MPa, read in Pa */
+    if (st == CT_ERANGE && strstr(msg, "would be crushed") && n < sizeof out)
+        snprintf(out + n, sizeof out - n,
+                 "; with mass and speeds in SI units (kg, m/s) material.E = %g is read in Pa: "
+                 "check its unit",
+                 sc->scales.physical.E);
+    ct_cli_fail("%s", out);
 }
 
 int ct_cli_status_exit(int st)

@@ -120,7 +120,7 @@ int ct_cli_table(int argc, char **argv)
     }
     opened = 1;
     if ((st = build_table(&sc, &b, &t, &info))) {
-        ct_cli_fail("%s", ct_error_message());
+        ct_cli_fail_scene(&sc, st, ct_error_message());
         rc = ct_cli_status_exit(st);
         goto done;
     }

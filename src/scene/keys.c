@@ -30,6 +30,51 @@ int ct_word_index(const char *words, const char *word)
     }
 }
 
+/* Edit distance of a and b (insertions, deletions, substitutions and swaps of neighbours each
+ * count 1: the optimal string alignment distance), or cap when it is at least cap. */
+static size_t edit_distance(const char *a, const char *b, size_t cap)
+{
+    const size_t n = strlen(a), m = strlen(b);
+    if (n > 62 || m > 62 || (n > m ? n - m : m - n) >= cap)
+        return cap;
+    size_t d[64][64];
+    for (size_t i = 0; i <= n; i++)
+        d[i][0] = i;
+    for (size_t j = 0; j <= m; j++)
+        d[0][j] = j;
+    for (size_t i = 1; i <= n; i++)
+        for (size_t j = 1; j <= m; j++) {
+            size_t best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            best = d[i - 1][j] + 1 < best ? d[i - 1][j] + 1 : best;
+            best = d[i][j - 1] + 1 < best ? d[i][j - 1] + 1 : best;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+                d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    return d[n][m] < cap ? d[n][m] : cap;
+}
+
+size_t ct_nearest_name(const char *given, const char *const *names, size_t n)
+{
+    if (!given || !names)
+        return n;
+    /* a slip: one edit in a short name (its last part, after a dot), two in a longer one */
+    const char *dot = strrchr(given, '.');
+    const size_t tail = strlen(dot ? dot + 1 : given), allowed = tail <= 3 ? 1 : 2;
+    size_t best = n, best_d = allowed + 1;
+    for (size_t k = 0; k < n; k++) {
+        if (!names[k] || !strcmp(names[k], given))
+            continue;
+        const size_t d = edit_distance(given, names[k], best_d);
+        if (d < best_d) {
+            best_d = d;
+            best = k;
+        }
+    }
+    return best;
+}
+
 /* "a, b or c" from "a|b|c" */
 static void words_list(const char *words, char *buf, size_t len)
 {
