@@ -538,6 +538,28 @@ expect 2 "history, an untimed impact, stop" -- "$ct" run -q "$def" --set materia
     --set impact.V_star=3e-11 --set output.what=e,history -o "$tmp/hstop.csv"
 [ ! -e "$tmp/hstop.csv" ] && [ ! -e "$tmp/hstop_history.csv" ] && ok || bad "history, stop: a file left behind"
 
+# --set KEY= (empty) unsets a key: a scene given by mass and velocity switched to V*; a required
+# key unset is missing. A key given twice on the command line (--set, -o, options) is refused
+# like a duplicate in a scene file.
+expect 0 "unset mass and velocity, give V*" -- "$ct" run -q "$src/examples/scenes/cantor.ini" \
+    --set impact.mass= --set impact.velocity= --set impact.V_star=1e-3
+[ "$(head -1 "$tmp/out")" = "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,V_star_crit,u_release_over_h0,elastic" ] &&
+    [ "$(awk -F, 'NR == 2 { print $2 }' "$tmp/out")" = 0.001 ] && [ "$(wc -l <"$tmp/out")" -eq 2 ] && ok ||
+    bad "unset mass and velocity: $(cat "$tmp/out")"
+expect 2 "unset a required key" -- "$ct" run -q "$src/examples/scenes/cantor.ini" --set surface.H=
+has err "surface.H: required key missing" "unset a required key"
+expect 2 "unset an unknown key" -- "$ct" run -q "$tmp/s.ini" --set surface.fzz=
+has err "surface.fzz: unknown key (did you mean surface.fz?)" "unset an unknown key"
+expect 2 "--set twice" -- "$ct" run -q "$tmp/s.ini" --set surface.fz=1.2 --set "surface.fz = 1.4"
+has err "^cantact: --set surface.fz = 1.4: surface.fz given twice on the command line (also by --set surface.fz=1.2)$" "--set twice"
+expect 2 "-o twice" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/o1.csv" -o "$tmp/o2.csv"
+has err "the output given twice" "-o twice"
+expect 2 "-o and --set output.file" -- "$ct" table -q "$tmp/s.ini" -o "$tmp/o1.csv" --set output.file="$tmp/o2.csv"
+has err "output.file given twice on the command line" "-o and --set output.file"
+expect 2 "fit --unit twice" -- "$ct" fit "$src/tests/data/dektak-1.csv" --unit um --set surface.unit=nm
+has err "^cantact: --set surface.unit=nm: surface.unit given twice on the command line (also by --unit um)$" "fit --unit twice"
+[ ! -e "$tmp/o1.csv" ] && [ ! -e "$tmp/o2.csv" ] && ok || bad "a key given twice: an output written"
+
 # A crushed layer in a scene given by mass and speed names the speed in m/s beside V*, and the
 # unit E is read in (200 meant as GPa is 200 Pa); given by V*, neither
 expect 2 "crushed, SI scene" -- "$ct" run -q "$src/examples/scenes/profile.ini" \

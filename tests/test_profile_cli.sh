@@ -95,6 +95,21 @@ PY
 expect 2 "no unit anywhere" -- "$ct" run "$tmp/d.ini" --set surface.file="$tmp/nm_body.csv" -o "$tmp/none.csv"
 has err "nm_body.csv: the length unit of x and z is not given and its column names state none" "no unit"
 [ -e "$tmp/none.csv" ] && bad "no unit: a file was left" || ok
+# the message names the key that gives the unit (a scene) or the option (cantact fit PROFILE)
+has err "state none: give surface.unit (m, mm, um or nm; or surface.x_unit and surface.z_unit)$" \
+    "no unit: the key named"
+expect 2 "fit: no unit anywhere" -- "$ct" fit "$tmp/nm_body.csv"
+has err "state none: give --unit (m, mm, um or nm; or --x-unit and --z-unit)$" "fit, no unit: the option named"
+# the micro sign (and the Greek mu) as u: um typed as it is printed
+expect 0 "unit = µm" -- "$ct" run -q "$tmp/d.ini" --set surface.file="$tmp/nm_body.csv" \
+    --set "surface.unit=µm" -o "$tmp/e_micro.csv"
+expect 0 "unit = um" -- "$ct" run -q "$tmp/d.ini" --set surface.file="$tmp/nm_body.csv" \
+    --set surface.unit=um -o "$tmp/e_u.csv"
+cmp -s "$tmp/e_micro.csv" "$tmp/e_u.csv" && ok || bad "unit = µm is not um"
+expect 0 "fit --unit μm (Greek mu)" -- "$ct" fit "$tmp/nm_body.csv" --unit "μm" -o "$tmp/f_mu.csv"
+expect 0 "fit --unit um" -- "$ct" fit "$tmp/nm_body.csv" --unit um -o "$tmp/f_u.csv"
+cmp -s "$tmp/f_mu.csv" "$tmp/f_u.csv" && ok || bad "fit --unit μm is not um"
+expect 2 "unit = µx" -- "$ct" run -q "$tmp/d.ini" --set "surface.unit=µx"
 # Hstar in the file's unit: 10 Rt given in um as in nm gives the same e
 rt_um=$(awk -v r="$rt" 'BEGIN { printf "%.17g", 10 * r * 1e6 }')
 rt_nm=$(awk -v r="$rt" 'BEGIN { printf "%.17g", 10 * r * 1e9 }')

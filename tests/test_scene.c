@@ -211,6 +211,54 @@ static void did_you_mean(void **state)
     ct_surface_free(s);
 }
 
+/* One rule for a reversed range, a run's speeds and a table's: refused, the range turned round
+ * in the message (a run's speeds in another order are a list). */
+static void reversed_ranges(void **state)
+{
+    (void)state;
+    const char *a[] = {"impact.V_star=1e-2:1e-5:31:log"};
+    expect_error(good, a, 1,
+                 "--set: impact.V_star = 1e-2:1e-5:31:log: expected from:to:count[:log] with 0 < "
+                 "from < to: a range runs upwards (1e-5:1e-2:31:log; speeds in another order as "
+                 "a list a, b, c)",
+                 NULL);
+    const char *b[] = {"table.V_star=1e-2:1e-5"};
+    expect_error(good, b, 1,
+                 "--set: table.V_star = 1e-2:1e-5: expected from:to with 0 < from < to: a range "
+                 "runs upwards (1e-5:1e-2)",
+                 NULL);
+    const char *c[] = {"impact.V_star=1e-2:1e-2:2"};
+    expect_error(good, c, 1, "with 0 < from < to (or one speed: count 1)", NULL);
+    ct_scene sc; /* one speed, from = to; and a list in any order */
+    const char *d[] = {"impact.V_star=1e-2:1e-2:1"}, *e[] = {"impact.V_star=1e-2, 1e-5"};
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, d, 1), CT_OK);
+    assert_true(sc.nvel == 1 && sc.V_star[0] == 1e-2);
+    ct_scene_free(&sc);
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, e, 1), CT_OK);
+    assert_true(sc.nvel == 2 && sc.V_star[0] == 1e-2 && sc.V_star[1] == 1e-5);
+    ct_scene_free(&sc);
+}
+
+/* An override with an empty value unsets the key (its default applies); unsetting what the scene
+ * does not give changes nothing; an unknown key is refused as when set. */
+static void empty_override_unsets(void **state)
+{
+    (void)state;
+    const char *by_mass = "[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n"
+                          "[impact]\nmass = 1e-3\nvelocity = 0.5\n";
+    const char *sets[] = {"impact.mass=", "impact.velocity =", "impact.V_star=2e-3",
+                          "solver.nodes="};
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", by_mass, sets, 4), CT_OK);
+    assert_true(sc.nvel == 1 && sc.V_star[0] == 2e-3 && sc.mass == 0.0 &&
+                !sc.speeds_are_velocities);
+    ct_scene_free(&sc);
+    const char *h[] = {"surface.H="};
+    expect_error(good, h, 1, "surface.H: required key missing", NULL);
+    const char *u[] = {"surface.Hh="};
+    expect_error(good, u, 1, "--set: surface.Hh: unknown key (did you mean surface.H?)", NULL);
+}
+
 static void duplicate_key(void **state)
 {
     (void)state;
@@ -536,6 +584,8 @@ int main(void)
         cmocka_unit_test(numbers_in_the_c_locale),
         cmocka_unit_test(nearest_names),
         cmocka_unit_test(did_you_mean),
+        cmocka_unit_test(reversed_ranges),
+        cmocka_unit_test(empty_override_unsets),
     };
     return cmocka_run_group_tests_name("scene", tests, NULL, NULL);
 }

@@ -105,7 +105,7 @@ frob = 1|frob: unknown key
 BAD
 printf '[tabel]\nx = 1\n' >>"$tmp/b1.ini"
 expect 2 "unknown section" -- "$ct" table "$tmp/b1.ini"
-has err "unknown section (known: surface, body, material, impact, solver, output, ensemble, table, fit)" "section list"
+has err "unknown section (did you mean \[table\]?) (known: surface, body, material, impact, solver, output, ensemble, table, fit)" "section list"
 # one speed in [impact] and no table.V_star: no range
 sed 's/^V_star = .*/V_star = 1e-3/' "$tmp/s.ini" >"$tmp/one.ini"
 expect 2 "no range" -- "$ct" table "$tmp/one.ini"

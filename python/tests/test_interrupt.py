@@ -38,7 +38,7 @@ def ctrl_c():
 V = np.geomspace(1e-4, 1e-2, 5)
 if what == "restitution":
     s = cantact.Cantor(fx=1.5, fz=1.3, H=10, E=500, depth=17, representation="segments")
-    call = lambda: cantact.restitution(s, V_star=np.geomspace(1e-4, 1e-2, 60000),
+    call = lambda: cantact.restitution(s, V_star=np.geomspace(1e-4, 1e-2, 150000),
                                        progress=progress)
 elif what == "ensemble":
     s = cantact.RandomCantor(fx=1.5, fz=1.3, H=10, E=500, depth=12, fx_spread=0.1,

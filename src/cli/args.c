@@ -4,6 +4,7 @@
 #include "output.h"
 #include "ranks.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -82,6 +83,49 @@ static const ct_opt *find_opt(const ct_opt *opts, const char *name)
     return NULL;
 }
 
+/* The key a "section.key=value" override sets, trimmed, into buf ("" when malformed: the scene
+ * says so). */
+static void override_key(const char *set, char *buf, size_t len)
+{
+    const char *eq = strchr(set, '=');
+    const char *a = set, *b = eq ? eq : set;
+    while (a < b && isspace((unsigned char)*a))
+        a++;
+    while (b > a && isspace((unsigned char)b[-1]))
+        b--;
+    snprintf(buf, len, "%.*s", (int)(b - a), a);
+}
+
+/* How the user wrote override k: "--set surface.fz=1.6", "-o out.csv", "--unit um". */
+static void override_shown(const ct_args *a, size_t k, char *buf, size_t len)
+{
+    const char *w = a->set_where[k], *eq = strchr(a->sets[k], '=');
+    if (!strcmp(w, "--set") || !eq)
+        snprintf(buf, len, "--set %s", a->sets[k]);
+    else
+        snprintf(buf, len, "%s %s", w, eq + 1);
+}
+
+/* Every key once on the command line (--set, -o, a subcommand's options), as in a scene file: a
+ * second one is refused, naming both. -1, or EXIT_USAGE. */
+static int repeated_keys(const ct_args *a)
+{
+    for (size_t j = 1; j < a->nsets; j++) {
+        char kj[160], ki[160], sj[300], si[300];
+        override_key(a->sets[j], kj, sizeof kj);
+        for (size_t i = 0; kj[0] && i < j; i++) {
+            override_key(a->sets[i], ki, sizeof ki);
+            if (strcmp(ki, kj))
+                continue;
+            override_shown(a, j, sj, sizeof sj);
+            override_shown(a, i, si, sizeof si);
+            ct_cli_fail("%s: %s given twice on the command line (also by %s)", sj, kj, si);
+            return EXIT_USAGE;
+        }
+    }
+    return -1;
+}
+
 int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_opt *opts,
                   size_t max_pos)
 {
@@ -114,6 +158,10 @@ int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_o
             a->set_where[a->nsets] = "--set";
             a->sets[a->nsets++] = s + 6;
         } else if (!strcmp(s, "-o")) {
+            if (output) {
+                ct_cli_fail("-o %s: the output given twice (also -o %s)", argv[k + 1], output);
+                return EXIT_USAGE;
+            }
             output = argv[++k]; /* applied last, as a --set output.file */
         } else if (o && o->key) {
             const char *v = argv[++k];
@@ -157,7 +205,7 @@ int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_o
         a->set_where[a->nsets] = "-o";
         a->sets[a->nsets++] = set;
     }
-    return -1;
+    return repeated_keys(a);
 }
 
 void ct_args_free(ct_args *a)

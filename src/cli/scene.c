@@ -646,6 +646,32 @@ static void trim_copy(char *dst, size_t cap, const char *begin, const char *end)
     dst[n] = '\0';
 }
 
+/* --set section.key= (an empty value): the key as if the scene had not given it, so that its
+ * default or another key applies (a scene given by mass and velocity switched to V*). A key
+ * the scene does not give stays unset; an unknown one is refused as by store. */
+static int unset(parse_state *s, const char *section, const char *key)
+{
+    char known[200], hint[200];
+    if (!section_known(section)) {
+        section_list(known, sizeof known);
+        did_you_mean(section, NULL, hint, sizeof hint);
+        return scene_error(CT_EINVAL, "--set: [%s]: unknown section%s (known: %s)", section, hint,
+                           known);
+    }
+    if (!key_known(section, key)) {
+        did_you_mean(section, key, hint, sizeof hint);
+        return scene_error(CT_EINVAL, "--set: %s.%s: unknown key%s", section, key, hint);
+    }
+    entry *e = find_entry(s, section, key);
+    if (e) {
+        free(e->value);
+        const size_t k = (size_t)(e - s->entries);
+        memmove(e, e + 1, (s->n - k - 1) * sizeof *e);
+        s->n--;
+    }
+    return CT_OK;
+}
+
 static int apply_overrides(parse_state *s, const char *const *overrides, size_t n)
 {
     for (size_t k = 0; k < n; k++) {
@@ -663,7 +689,7 @@ static int apply_overrides(parse_state *s, const char *const *overrides, size_t 
         trim_copy(section, sizeof section, o, dot);
         trim_copy(key, sizeof key, dot + 1, eq);
         trim_copy(value, vlen, eq + 1, eq + 1 + strlen(eq + 1));
-        int st = store(s, section, key, value, "--set");
+        int st = value[0] ? store(s, section, key, value, "--set") : unset(s, section, key);
         free(value);
         if (st)
             return st;

@@ -39,7 +39,7 @@ const char *const ct_cli_table_help =
     "[impact] impacts is not used: a table is of the first impact on the virgin surface.\n"
     "\n"
     "Options:\n"
-    "  --set section.key=value   override a scene key (repeatable)\n"
+    "  --set section.key=value   override a scene key (each once; key= unsets it)\n"
     "  -o FILE                   same as --set output.file=FILE ('-' for stdout)\n"
     "  -q                        no summary on stderr\n"
     "  -h, --help                this help\n";

@@ -197,6 +197,15 @@ static int speeds_range(const char *v, ct_speeds *out)
     const double from = ends[0], to = ends[1];
     if (!(from > 0.0) || !(to > 0.0))
         return ct_error_set(CT_EINVAL, "from and to must be > 0");
+    /* one rule for every range (table.V_star's too): it runs upwards */
+    if (to == from && cnt > 1)
+        return ct_error_set(CT_EINVAL, "expected from:to:count[:log] with 0 < from < to (or one "
+                                       "speed: count 1)");
+    if (to < from)
+        return ct_error_set(CT_EINVAL,
+                            "expected from:to:count[:log] with 0 < from < to: a range runs "
+                            "upwards (%s:%s:%s%s; speeds in another order as a list a, b, c)",
+                            parts[1], parts[0], parts[2], logscale ? ":log" : "");
     double *vals = malloc((size_t)cnt * sizeof(double));
     if (!vals)
         return ct_error_set(CT_ENOMEM, "out of memory");
@@ -256,6 +265,10 @@ static int parse_range2(const ct_key *row, const char *v, double *out)
         return ct_error_set(CT_EINVAL, "expected from:to (two numbers, 0 < from < to)");
     if (!read_number(parts[0], &a, &why) || !read_number(parts[1], &b, &why))
         return ct_error_set(CT_EINVAL, "%s", why);
+    if (a > 0.0 && b > 0.0 && b < a)
+        return ct_error_set(CT_EINVAL,
+                            "expected from:to with 0 < from < to: a range runs upwards (%s:%s)",
+                            parts[1], parts[0]);
     if (!(a > 0.0 && b > a))
         return ct_error_set(CT_EINVAL, "expected from:to with 0 < from < to");
     out[0] = a;
@@ -314,6 +327,27 @@ static int parse_words(const ct_key *row, const char *v, unsigned *out)
     return CT_OK;
 }
 
+/* A word with the micro sign (U+00B5) or the Greek small mu (U+03BC), in UTF-8, spelt with u
+ * as the words are ("µm" is "um"): 1 when it held one (and fits). */
+static int micro_as_u(const char *v, char *buf, size_t len)
+{
+    size_t n = 0;
+    int found = 0;
+    for (const unsigned char *p = (const unsigned char *)v; *p; p++) {
+        if (n + 2 > len)
+            return 0;
+        if ((p[0] == 0xC2 && p[1] == 0xB5) || (p[0] == 0xCE && p[1] == 0xBC)) {
+            buf[n++] = 'u';
+            p++;
+            found = 1;
+        } else {
+            buf[n++] = (char)*p;
+        }
+    }
+    buf[n] = '\0';
+    return found;
+}
+
 static int parse_value(const ct_key *row, const char *v, void *at)
 {
     double x;
@@ -356,6 +390,9 @@ static int parse_value(const ct_key *row, const char *v, void *at)
         return CT_OK;
     case CT_KEY_WORD: {
         int w = ct_word_index(row->words, v);
+        char spelt[64];
+        if (w < 0 && micro_as_u(v, spelt, sizeof spelt))
+            w = ct_word_index(row->words, spelt);
         if (w < 0)
             return ct_error_set(CT_EINVAL, "%s", row->range);
         *(int *)at = w;
@@ -450,7 +487,8 @@ void ct_key_describe(const ct_key *row, char *buf, size_t len)
             snprintf(buf, len, "text: %s", row->range);
         break;
     case CT_KEY_SPEEDS:
-        snprintf(buf, len, "numbers > 0: a, b, c or from:to:count[:log]");
+        snprintf(buf, len,
+                 "numbers > 0: a, b, c (in that order) or from:to:count[:log] (from < to)");
         break;
     case CT_KEY_RANGE:
         snprintf(buf, len, "from:to, 0 < from < to");
