@@ -940,8 +940,14 @@ int ct_profile_fit_on_reach(const ct_profile *p, const ct_profile_fit *fit, cons
 int ct_profile_fitted_e(const ct_profile *p, const ct_profile_fit *fit, const ct_layer *layer,
                         const double *W, size_t n, int threads, double *e_fit, double *e_asym,
                         double *V_fit);
-/* The fit as CSV: quantity,value,band_lo,band_hi,points,r2,rms_residual_ln (lengths in m). */
+/* The fit as CSV: quantity,value,band_lo,band_hi,points,r2,rms_residual_ln (lengths in m), after
+ * a '#' line on the source and, when a dimension is outside (1, 2), a '# warning: ' line with
+ * ct_profile_fit_warning's text. */
 int ct_profile_fit_write(FILE *f, const ct_profile_fit *fit, const char *source, size_t n);
+/* How many of the fit's three dimensions lie outside (1, 2), the range of a profile's fractal
+ * dimension (0: none, buf ""); buf gets one line naming them and, when the one Eq. 3 took is
+ * among them, that fx and fz describe no Cantor surface. */
+size_t ct_profile_fit_warning(const ct_profile_fit *fit, char *buf, size_t len);
 
 /* ---- output columns as data (src/columns.c) -------------------------------------- */
 /* The quantities of a sweep's rows, each a column: its name (the CSV header, Python's

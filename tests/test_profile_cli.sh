@@ -289,6 +289,24 @@ expect 2 "profile keys with a Cantor surface" -- "$ct" run "$tmp/cantor.ini" --s
 has err "surface.detrend = mean: only for surface.type = profile" "profile key with cantor"
 expect 2 "fit keys with a Cantor surface" -- "$ct" run "$tmp/cantor.ini" --set fit.lag_lo=1
 expect 2 "fit: unknown option" -- "$ct" fit "$dektak" --frob
+# a dimension outside (1, 2) is flagged, in the table and on stderr (even under -q): white noise
+# has a flat spectrum, C(q) ~ q^0, so D_spectrum = 5/2; the Dektak profile's three lie inside
+awk 'BEGIN { x = 12345; print "x (um),z (um)"
+    for (i = 0; i < 4000; i++) { s = 0; for (k = 0; k < 12; k++) { x = (x * 1103515245 + 12345) % 2147483648; s += x / 2147483648 }
+        printf "%d,%.9f\n", i, (s - 6) * 0.1 } }' >"$tmp/white.csv"
+expect 0 "fit of white noise" -- "$ct" fit -q "$tmp/white.csv" -o "$tmp/white_fit.csv"
+ds=$(awk -F, '$1 == "D_spectrum" { print $2 }' "$tmp/white_fit.csv")
+awk -v d="$ds" 'BEGIN { exit !(d > 2.3 && d < 2.7) }' && ok || bad "white noise: D_spectrum = $ds, not about 5/2"
+grep -q "^# warning: .*D_spectrum = .* outside (1, 2), the range of a fractal profile's dimension" "$tmp/white_fit.csv" &&
+    ok || bad "white noise: no warning in the table: $(head -3 "$tmp/white_fit.csv")"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^cantact: warning: .*D_spectrum = .* outside (1, 2)" "$tmp/err" && ok ||
+    bad "white noise: no warning on stderr: $(cat "$tmp/err")"
+grep -q "describe no Cantor surface" "$tmp/err" && bad "white noise: D from the variation flagged" || ok
+expect 0 "fit of white noise, D from the spectrum" -- "$ct" fit "$tmp/white.csv" --dimension spectrum -o "$tmp/white_fit2.csv"
+has err "D, fx and fz come from D_spectrum, so they describe no Cantor surface" "white noise: fx, fz flagged"
+expect 0 "fit of the Dektak profile: no warning" -- "$ct" fit "$dektak" -o "$tmp/dk_fit.csv"
+[ ! -s "$tmp/err" ] && ! grep -q "warning" "$tmp/dk_fit.csv" && ok || bad "Dektak: a warning: $(cat "$tmp/err")"
+awk -F, '$1 ~ /^D/ && !($2 > 1 && $2 < 2) { exit 1 }' "$tmp/dk_fit.csv" && ok || bad "Dektak: a D outside (1, 2) unflagged"
 expect 2 "fit: bad unit" -- "$ct" fit "$dektak" --unit furlong
 expect 2 "fit: bad band" -- "$ct" fit "$dektak" --lags 3:1
 expect 2 "fit: scene and file options" -- "$ct" fit "$tmp/d.ini" --unit um

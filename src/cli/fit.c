@@ -187,6 +187,11 @@ int ct_cli_fit(int argc, char **argv)
         ct_out_abort(&out);
         rc = ct_cli_status_exit(st);
     }
+    ct_profile_fit fit;
+    char warning[512];
+    if (rc < 0 && !ct_surface_profile(s, NULL, &fit) &&
+        ct_profile_fit_warning(&fit, warning, sizeof warning))
+        ct_cli_fail("warning: %s", warning); /* said even under -q: the table is suspect */
     if (rc < 0)
         rc =
             ct_out_commit(&out, err, sizeof err) ? (ct_cli_fail("%s", err), EXIT_USAGE) : EXIT_DONE;
