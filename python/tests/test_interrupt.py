@@ -63,8 +63,8 @@ print(json.dumps(out))
 """
 
 
-@pytest.mark.parametrize("what", ["restitution", "ensemble", "table"])
-def test_ctrl_c_stops_a_long_call_within_a_second(what):
+def interrupted(what):
+    """The child's report of one call interrupted after a second."""
     try:
         p = subprocess.run([sys.executable, "-c", CHILD, what], capture_output=True, text=True,
                            timeout=25, env=os.environ)
@@ -75,6 +75,17 @@ def test_ctrl_c_stops_a_long_call_within_a_second(what):
     assert "latency" in out, f"{what}: finished in {out['finished']:.1f} s, not interrupted"
     print(f"{what}: KeyboardInterrupt {out['latency'] * 1000:.0f} ms after SIGINT, "
           f"{out['done']} of {out['total']} done in {out['running']:.2f} s")
+    return out
+
+
+@pytest.mark.parametrize("what", ["restitution", "ensemble", "table"])
+def test_ctrl_c_stops_a_long_call_within_a_second(what):
+    # a machine loaded far beyond its cores can keep any thread waiting for a second: a slow
+    # answer is tried twice more (a call that ignored Ctrl-C would run on for tens of seconds)
+    for _ in range(3):
+        out = interrupted(what)
+        if out["latency"] < 1.0:
+            break
     assert out["latency"] < 1.0
     if what != "table":  # a table's total grows round by round: its own length is unknown
         assert out["done"] < out["total"]  # stopped in the middle
