@@ -307,6 +307,22 @@ has err "D, fx and fz come from D_spectrum, so they describe no Cantor surface" 
 expect 0 "fit of the Dektak profile: no warning" -- "$ct" fit "$dektak" -o "$tmp/dk_fit.csv"
 [ ! -s "$tmp/err" ] && ! grep -q "warning" "$tmp/dk_fit.csv" && ok || bad "Dektak: a warning: $(cat "$tmp/err")"
 awk -F, '$1 ~ /^D/ && !($2 > 1 && $2 < 2) { exit 1 }' "$tmp/dk_fit.csv" && ok || bad "Dektak: a D outside (1, 2) unflagged"
+# scripts/measured takes a scene (any measured surface's) and -o OUTDIR, and --help is its own
+command -v gnuplot >/dev/null || fail "gnuplot (scripts' package gnuplot-nox) is needed for scripts/measured"
+expect 0 "scripts/measured --help" -- env CT_CANTACT="$ct" "$src/scripts/measured" --help
+has out "^Usage: scripts/measured \[SCENE.ini\] \[-o OUTDIR\]" "scripts/measured --help: its own usage"
+CT_CANTACT="$ct" "$src/scripts/measured" "$tmp/d.ini" -o "$tmp/meas" --set impact.velocity=0.001:3:6:log \
+    >"$tmp/out" 2>"$tmp/err" && ok || bad "scripts/measured SCENE.ini: $(cat "$tmp/err")"
+for f in measured.csv measured_fit.csv measured_bearing.csv measured_e.png measured_bearing.png; do
+    [ -s "$tmp/meas/$f" ] && ok || bad "scripts/measured SCENE.ini: no $f"
+done
+[ "$(grep -c '^[0-9]' "$tmp/meas/measured.csv")" -eq 6 ] && ok || bad "scripts/measured: not the scene's run at 6 speeds"
+cmp -s <(grep -v '^#' "$tmp/meas/measured_fit.csv") <(grep -v '^#' "$tmp/fit2.csv") && ok ||
+    bad "scripts/measured: its fit is not cantact fit's of the scene"
+expect 2 "scripts/measured OUTDIR (not a scene)" -- env CT_CANTACT="$ct" "$src/scripts/measured" "$tmp/meas"
+has err "not a scene (SCENE.ini; the output directory is -o OUTDIR)" "scripts/measured OUTDIR"
+expect 2 "scripts/measured of a Cantor scene" -- env CT_CANTACT="$ct" "$src/scripts/measured" "$tmp/cantor.ini" -o "$tmp/meas2"
+has err "a bearing-area curve is written for measured surfaces" "scripts/measured of a Cantor scene"
 expect 2 "fit: bad unit" -- "$ct" fit "$dektak" --unit furlong
 expect 2 "fit: bad band" -- "$ct" fit "$dektak" --lags 3:1
 expect 2 "fit: scene and file options" -- "$ct" fit "$tmp/d.ini" --unit um
