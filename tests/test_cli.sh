@@ -558,6 +558,8 @@ expect 2 "-o and --set output.file" -- "$ct" table -q "$tmp/s.ini" -o "$tmp/o1.c
 has err "output.file given twice on the command line" "-o and --set output.file"
 expect 2 "fit --unit twice" -- "$ct" fit "$src/tests/data/dektak-1.csv" --unit um --set surface.unit=nm
 has err "^cantact: --set surface.unit=nm: surface.unit given twice on the command line (also by --unit um)$" "fit --unit twice"
+expect 2 "fit --trim twice" -- "$ct" fit "$src/tests/data/dektak-1.csv" --trim 3 --trim 4
+has err "^cantact: --trim 4: --trim given twice on the command line (also --trim 3)$" "fit --trim twice"
 [ ! -e "$tmp/o1.csv" ] && [ ! -e "$tmp/o2.csv" ] && ok || bad "a key given twice: an output written"
 
 # A crushed layer in a scene given by mass and speed names the speed in m/s beside V*, and the

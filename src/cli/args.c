@@ -179,6 +179,12 @@ int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_o
                 ct_cli_fail("%s: too many options", cmd);
                 return EXIT_USAGE;
             }
+            const char *before = ct_args_extra(a, o->name);
+            if (before) { /* once, as every key */
+                ct_cli_fail("%s %s: %s given twice on the command line (also %s %s)", o->name,
+                            argv[k + 1], o->name, o->name, before);
+                return EXIT_USAGE;
+            }
             a->extra_name[a->nextra] = o->name;
             a->extra_value[a->nextra++] = argv[++k];
         } else if (s[0] == '-' && s[1]) {
