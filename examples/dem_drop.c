@@ -4,7 +4,7 @@
  * Build: cc -O2 dem_drop.c -lm -I/path/to/include   (cantact_table.h only: no libcantact)
  * Usage: dem_drop TABLE.csv [--height H] [--speed V0] [--gravity G] [--bounces N]
  *                 [--v-per-V-star S] [--steps-per-contact K] [--law tension|clipped]
- *                 [--check TOL]
+ *                 [--check TOL]     (dem_drop --help: the options and their defaults)
  *
  * The contact, per contact (the three lines a DEM code needs, marked below):
  *   at first touch, with the normal approach speed v_impact:
@@ -79,6 +79,36 @@ static void rk4(const sim *s, double z, double v, double h, double *z1, double *
     *v1 = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
 }
 
+static const char help[] =
+    "Usage: dem_drop TABLE.csv [--height H] [--speed V0] [--gravity G] [--bounces N]\n"
+    "                [--v-per-V-star S] [--steps-per-contact K] [--law tension|clipped]\n"
+    "                [--check TOL]\n"
+    "\n"
+    "A minimal DEM loop: a steel sphere (radius 2 mm) dropped on a flat wall, its linear\n"
+    "spring-dashpot normal contact (k_n = 1e5 N/m) damped per contact from e(v_impact) of a\n"
+    "cantact table (cantact table SCENE.ini -o TABLE.csv; read with include/cantact_table.h):\n"
+    "e = ct_tab_e_of_speed(v_impact), zeta = ct_tab_zeta_of_e(e, law), c_n = 2 zeta\n"
+    "sqrt(m k_n). Prints one CSV row per contact, the rebound speed beside e_table v_impact:\n"
+    "contact,t_s,v_impact_m_s,V_star,e_table,zeta,v_rebound_m_s,e_measured,\n"
+    "e_measured_minus_e_table,covered (covered 0: V* outside the table, its nearest end's e\n"
+    "used), and a summary line on stderr.\n"
+    "\n"
+    "Options:\n"
+    "  --height H            drop height [m], >= 0 (default 1)\n"
+    "  --speed V0            initial downward speed [m/s], >= 0 (default 0)\n"
+    "  --gravity G           [m/s^2], >= 0 (default 9.81; 0: the rebound is e v_impact up to\n"
+    "                        the integrator's error)\n"
+    "  --bounces N           contacts to run, >= 1 (default 8)\n"
+    "  --v-per-V-star S      impact speed per unit V* [m/s] (default: the table's v_per_V_star,\n"
+    "                        written when its scene gives [impact] mass; one of them is needed)\n"
+    "  --steps-per-contact K RK4 steps per damped contact time, >= 4 (default 400)\n"
+    "  --law tension|clipped the contact law: tension (F_n may pull; the default) or clipped\n"
+    "                        (F_n = max(0, ...), as Yade's and LAMMPS's limit_damping)\n"
+    "  --check TOL           exit 1 when some |v_rebound / v_impact - e_table| exceeds TOL\n"
+    "  -h, --help            this help\n"
+    "\n"
+    "Exit status: 0 done, 1 a --check failed, 2 bad input or usage.\n";
+
 static double arg_value(int argc, char **argv, int *k)
 {
     if (*k + 1 >= argc) {
@@ -103,7 +133,10 @@ int main(int argc, char **argv)
              .g = 9.81,
              .law = CT_TAB_TENSION};
     for (int k = 1; k < argc; k++) {
-        if (!strcmp(argv[k], "--height"))
+        if (!strcmp(argv[k], "-h") || !strcmp(argv[k], "--help")) {
+            fputs(help, stdout);
+            return fflush(stdout) || ferror(stdout) ? 2 : 0;
+        } else if (!strcmp(argv[k], "--height"))
             height = arg_value(argc, argv, &k);
         else if (!strcmp(argv[k], "--speed"))
             speed = arg_value(argc, argv, &k);
@@ -138,7 +171,8 @@ int main(int argc, char **argv)
         !(bounces >= 1.0)) {
         fprintf(stderr, "usage: dem_drop TABLE.csv [--height H >= 0] [--speed V0 >= 0] "
                         "[--gravity G >= 0] [--bounces N >= 1] [--v-per-V-star S] "
-                        "[--steps-per-contact K >= 4] [--law tension|clipped] [--check TOL]\n");
+                        "[--steps-per-contact K >= 4] [--law tension|clipped] [--check TOL] "
+                        "(dem_drop --help)\n");
         return 2;
     }
     ct_tab table;

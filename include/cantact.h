@@ -48,6 +48,7 @@ enum {
     CT_ENOCONV = 4,  /* a solve did not meet its tolerance */
     CT_EIO = 5,      /* a file could not be read or written */
     CT_ESKIPPED = 6, /* not run: an earlier impact of the same speed failed */
+    CT_EINTR = 7,    /* stopped: the caller's interrupt flag was set (the spec's interrupt) */
 };
 
 /* Returns a static, generic description of a status code. */
@@ -489,6 +490,12 @@ typedef struct {
 } ct_sweep_row;
 
 typedef void (*ct_progress_fn)(size_t done, size_t total, void *ctx);
+/* Long work (a sweep, an ensemble, a table) takes an optional interrupt flag: another thread
+ * (or a signal handler) sets *interrupt non-zero and the work stops at its next check, between
+ * blocks of work (a speed, a block of rods of a pass over them, a realisation, a batch of a
+ * table's impacts: a small fraction of a second apart), freeing what it made and returning
+ * CT_EINTR; the results handed out are then incomplete. The flag is only read; NULL: never
+ * stopped. Results that were not stopped do not depend on it, nor on a progress callback. */
 /* Called around every impact of a speed: phase 0 before it (b in the pre-impact state, c its
  * curve), phase 1 after it (b in the post-impact state, c NULL). Return non-zero to stop. */
 typedef int (*ct_observer_fn)(const ct_sweep_row *row, int phase, const ct_bundle *b,
@@ -530,6 +537,8 @@ typedef struct {
                            ensemble's realisations: no page faults for each new curve) */
     int dynamics;       /* 1: every row also gets its impact in time (ct_sweep_row.dyn); needs
                            the curve (the rod path is not taken) */
+    const volatile int *interrupt; /* optional: stops with CT_EINTR once *interrupt != 0 (the
+                                      rows are then incomplete) */
 } ct_sweep_spec;
 
 /* Runs every speed from b's state (b itself is not changed): rows[speed * impacts + i - 1]
@@ -654,6 +663,7 @@ typedef struct {
     ct_ensemble_split split;
     ct_progress_fn progress; /* optional: realisations done (called by one thread at a time) */
     void *progress_ctx;
+    const volatile int *interrupt; /* optional: stops with CT_EINTR once *interrupt != 0 */
 } ct_ensemble_spec;
 
 /* The samples of an ensemble: realisation first + r, row q = speed * impacts + impact - 1
@@ -725,6 +735,10 @@ typedef struct {
                             >= 1 (default 16) */
     ct_impact_opts opts; /* how each exact e is computed */
     ct_sweep_path path;
+    ct_progress_fn progress; /* optional: exact impacts computed, of those planned so far (the
+                                total grows when a round splits intervals) */
+    void *progress_ctx;
+    const volatile int *interrupt; /* optional: stops with CT_EINTR once *interrupt != 0 */
 } ct_table_spec;
 
 /* Fills spec with the defaults: tolerance 1e-6, monotone cubic, at most 100000 nodes, 16
@@ -927,8 +941,14 @@ int ct_profile_fit_on_reach(const ct_profile *p, const ct_profile_fit *fit, cons
 int ct_profile_fitted_e(const ct_profile *p, const ct_profile_fit *fit, const ct_layer *layer,
                         const double *W, size_t n, int threads, double *e_fit, double *e_asym,
                         double *V_fit);
-/* The fit as CSV: quantity,value,band_lo,band_hi,points,r2,rms_residual_ln (lengths in m). */
+/* The fit as CSV: quantity,value,band_lo,band_hi,points,r2,rms_residual_ln (lengths in m), after
+ * a '#' line on the source and, when a dimension is outside (1, 2), a '# warning: ' line with
+ * ct_profile_fit_warning's text. */
 int ct_profile_fit_write(FILE *f, const ct_profile_fit *fit, const char *source, size_t n);
+/* How many of the fit's three dimensions lie outside (1, 2), the range of a profile's fractal
+ * dimension (0: none, buf ""); buf gets one line naming them and, when the one Eq. 3 took is
+ * among them, that fx and fz describe no Cantor surface. */
+size_t ct_profile_fit_warning(const ct_profile_fit *fit, char *buf, size_t len);
 
 /* ---- output columns as data (src/columns.c) -------------------------------------- */
 /* The quantities of a sweep's rows, each a column: its name (the CSV header, Python's
@@ -1026,6 +1046,12 @@ void ct_key_describe(const ct_key *row, char *buf, size_t len);
 void ct_key_clear(const ct_key *row, void *settings);
 /* The word's index in "a|b|c", -1 when it is none of them. */
 int ct_word_index(const char *words, const char *word);
+/* The name of n nearest to given ("surface.fzz": "surface.fz"), for "did you mean": by edit
+ * distance (an insertion, deletion, substitution or swap of neighbours each counts 1), when it
+ * is close enough to be a slip: one edit when the part after the last dot has at most 3
+ * characters, two beyond; the first of equals. Its index, or n when none is that close
+ * (names equal to given and NULL names are passed over). */
+size_t ct_nearest_name(const char *given, const char *const *names, size_t n);
 
 /* The keys of a run that are not the surface's (sections impact, solver, table, ensemble),
  * where their rows (ct_run_keys_table) store them. */

@@ -565,7 +565,7 @@ enum { NODE_WORK_FACTOR = 2048 };
 /* Runs kernel over all blocks for m nodes and combines the block results in the fixed tree;
  * out[j * m + i] gets output j of node i. */
 static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *args, size_t m,
-                         int per_node, double *out)
+                         int per_node, double *out, const volatile int *interrupt)
 {
     const ptrdiff_t nb = (ptrdiff_t)b->nblocks;
     const size_t width = (size_t)per_node * CT_NODE_CHUNK;
@@ -593,10 +593,12 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
     for (ptrdiff_t c = 0; c < (ptrdiff_t)nchunks; c++) {
         const size_t i0 = (size_t)c * CT_NODE_CHUNK;
         const size_t mc = m - i0 < CT_NODE_CHUNK ? m - i0 : CT_NODE_CHUNK;
-        if (!ws) { /* serial: the same tree, one counter per output */
+        if (ct_interrupted(interrupt))
+            continue; /* stopped: the rest is not computed, CT_EINTR below */
+        if (!ws) {    /* serial: the same tree, one counter per output */
             double v[64][3 * CT_NODE_CHUNK], blk[3 * CT_NODE_CHUNK];
             int level[64], sp = 0;
-            for (ptrdiff_t j = 0; j < nb; j++) {
+            for (ptrdiff_t j = 0; j < nb && !ct_interrupted(interrupt); j++) {
                 size_t k0 = (size_t)j * CT_BLOCK;
                 size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
                 kernel(b, args, i0, mc, k0, k1, blk);
@@ -623,7 +625,8 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
         for (ptrdiff_t j = 0; j < nb; j++) {
             size_t k0 = (size_t)j * CT_BLOCK;
             size_t k1 = k0 + CT_BLOCK < b->n ? k0 + CT_BLOCK : b->n;
-            kernel(b, args, i0, mc, k0, k1, ws + (size_t)j * width);
+            if (!ct_interrupted(interrupt))
+                kernel(b, args, i0, mc, k0, k1, ws + (size_t)j * width);
         }
         for (ptrdiff_t stride = 1; stride < nb; stride *= 2)
             for (ptrdiff_t j = 0; j + stride < nb; j += 2 * stride)
@@ -634,14 +637,14 @@ static int blocked_apply(const ct_bundle *b, block_kernel kernel, const void *ar
                 out[(size_t)o * m + i0 + i] = ws[(size_t)o * CT_NODE_CHUNK + i];
     }
     free(ws);
-    return CT_OK;
+    return ct_interrupted(interrupt) ? ct_error_interrupted() : CT_OK;
 }
 
 static int blocked_many(const ct_bundle *b, enum sum_kind kind, double ua, double adv,
                         const double *ub, size_t m, double *out)
 {
     many_args a = {kind, ua, adv, ub};
-    return blocked_apply(b, many_kernel, &a, m, 1, out);
+    return blocked_apply(b, many_kernel, &a, m, 1, out, NULL);
 }
 
 /* Closed forms of impacts, each from its own state (b advanced to adv[i]): per rod and node
@@ -726,13 +729,14 @@ static void closed_kernel(const ct_bundle *b, const void *args, size_t i0, size_
 }
 
 int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
-                          size_t m, double *W_load, double *W_unload, double *P)
+                          size_t m, double *W_load, double *W_unload, double *P,
+                          const volatile int *interrupt)
 {
     closed_args a = {adv, u0, u1};
     double *out = malloc(3 * (m ? m : 1) * sizeof(double));
     if (!out)
         return ct_error_set(CT_ENOMEM, "closed forms of %zu impacts: out of memory", m);
-    int st = blocked_apply(b, closed_kernel, &a, m, 3, out);
+    int st = blocked_apply(b, closed_kernel, &a, m, 3, out, interrupt);
     memcpy(W_load, out, m * sizeof(double));
     memcpy(W_unload, out + m, m * sizeof(double));
     if (P)

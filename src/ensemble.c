@@ -112,7 +112,8 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
                         .impacts = sp->impacts,
                         .opts = sp->opts,
                         .path = sp->path,
-                        .curve = ws->curve};
+                        .curve = ws->curve,
+                        .interrupt = sp->interrupt};
     if (sp->opts.check == CT_CHECK_AUTO && r % CT_ENSEMBLE_CHECK_STRIDE != 0)
         sw.opts.check = CT_CHECK_NONE; /* the check's stride over the realisations */
     st = ct_sweep(ws->b, &sw, rows);
@@ -217,7 +218,7 @@ static void run_all(ensemble_run *e)
         limit = e->stop_at;
 #pragma omp atomic read
         stop = e->fatal;
-        if (stop || r > limit)
+        if (stop || r > limit || ct_interrupted(sp->interrupt))
             continue;
         double qe = NAN;
         int s = run_one(sp, out, (uint64_t)slot, e->by_realisation ? 1 : sp->threads,
@@ -297,7 +298,9 @@ int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
         ct_curve_free(e.ws[k].curve);
     }
     free(e.ws);
-    st = e.fatal ? ct_error_set(e.fatal, "%s", e.fatal_msg) : lowest_failure(&e);
+    st = ct_interrupted(sp->interrupt) ? ct_error_interrupted()
+         : e.fatal                     ? ct_error_set(e.fatal, "%s", e.fatal_msg)
+                                       : lowest_failure(&e);
     free(e.fails);
     return st;
 }

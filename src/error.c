@@ -20,6 +20,11 @@ int ct_error_set(int status, const char *fmt, ...)
     return status;
 }
 
+int ct_error_interrupted(void)
+{
+    return ct_error_set(CT_EINTR, "interrupted");
+}
+
 const char *ct_error_message(void)
 {
     return error_message;
@@ -42,6 +47,8 @@ const char *ct_strerror(int status)
         return "input/output error";
     case CT_ESKIPPED:
         return "not run: an earlier impact of the same speed failed";
+    case CT_EINTR:
+        return "interrupted";
     default:
         return "unknown error";
     }

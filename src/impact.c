@@ -95,7 +95,7 @@ static int crushed(double W, double Hstar)
 {
     return ct_error_set(CT_ERANGE,
                         "impact energy %.6g reaches u_max >= H* = %g (the layer would be "
-                        "crushed, strains >= 1): outside the model; lower V* or raise H",
+                        "crushed, strains >= 1): outside the model; lower the speed or raise H",
                         W, Hstar);
 }
 

@@ -29,6 +29,21 @@ int ct_error_set(int status, const char *fmt, ...) CT_PRINTF(2, 3);
             return ct_error_set(CT_EINVAL, "%s: %s is NULL", __func__, #ptr);                      \
     } while (0)
 
+/* Whether the caller's interrupt flag (cantact.h: a spec's interrupt; NULL: none) is set. Another
+ * thread sets it, so it is read as a relaxed atomic load: one load, checked between blocks of
+ * work. */
+static inline int ct_interrupted(const volatile int *flag)
+{
+#if defined(__GNUC__)
+    return flag && __atomic_load_n(flag, __ATOMIC_RELAXED) != 0;
+#else
+    return flag && *flag != 0;
+#endif
+}
+
+/* CT_EINTR with the one message of a stopped call. */
+int ct_error_interrupted(void);
+
 /* Sorts v ascending and drops repeated values; returns the new count. */
 size_t ct_sort_unique(double *v, size_t n);
 
@@ -246,9 +261,12 @@ static inline double ct_times_pow2(double z, double m, int e)
 /* Closed forms of m impacts in one pass over the rods: state i is b's advanced to adv[i]
  * (-INFINITY: b's own); W_load[i] its work from u0[i] to u1[i], W_unload[i] its recoverable
  * energy at u1[i] (bitwise ct_bundle_work and ct_bundle_elastic_energy of that state) and,
- * when P is not NULL, P[i] its force at u1[i]. */
+ * when P is not NULL, P[i] its force at u1[i]. Each impact's sums are its own: any split of
+ * the m impacts into calls gives the same bits. CT_EINTR once *interrupt is set (checked
+ * every block of rods; NULL: never). */
 int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u0, const double *u1,
-                          size_t m, double *W_load, double *W_unload, double *P);
+                          size_t m, double *W_load, double *W_unload, double *P,
+                          const volatile int *interrupt);
 
 /* ---- the paper's laws ---- */
 

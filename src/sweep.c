@@ -73,6 +73,8 @@ static int speed_by_state(const ct_bundle *b, const ct_curve *first, ct_curve *l
     for (size_t i = 0; i < impacts; i++) {
         ct_sweep_row *row = &rows[v * impacts + i];
         const ct_curve *c = first;
+        if (ct_interrupted(s->interrupt))
+            return ct_error_interrupted();
         if (changed) {
             if ((st = ct_curve_build(later, work)))
                 return st;
@@ -128,7 +130,8 @@ typedef struct {
  * H* instead, the first step's W(H*) - W rounds to an ulp of H*, which can put the iterate
  * left of a root much nearer the plane than H*, digits the iteration never gets back). */
 static int rods_start(const ct_bundle *b, size_t m, const double *U, const double *W_U,
-                      double W_crit0, double x0, const double *W, const rods_ws *ws)
+                      double W_crit0, double x0, const double *W, const rods_ws *ws,
+                      const volatile int *interrupt)
 {
     double *u0 = ws->u0, *Wc = ws->Wc, *Wl = ws->Wl, *P = ws->P;
     const double Hstar = ct_bundle_layer(b)->Hstar;
@@ -153,7 +156,8 @@ static int rods_start(const ct_bundle *b, size_t m, const double *U, const doubl
         ws->a0[q + k] = x0;
         ws->a1[q + k] = ws->a1[k];
     }
-    if (q && (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, 2 * q, Wl, ws->Wu, P)))
+    if (q &&
+        (st = ct_bundle_closed_many(b, ws->adv, ws->a0, ws->a1, 2 * q, Wl, ws->Wu, P, interrupt)))
         return st;
     for (size_t k = 0; k < q; k++) {
         const size_t j = open_[k];
@@ -168,7 +172,7 @@ static int rods_start(const ct_bundle *b, size_t m, const double *U, const doubl
 /* A shared geometric grid on the virgin state brackets every virgin speed from the right:
  * its iterate starts at the first grid point whose work exceeds its energy. */
 static int rods_bracket(const ct_bundle *b, size_t m, const double *U, const double *W, double x0,
-                        const rods_ws *ws)
+                        const rods_ws *ws, const volatile int *interrupt)
 {
     const double Hstar = ct_bundle_layer(b)->Hstar;
     double g[GRID], gW[GRID], gWu[GRID], gP[GRID], lo = x0 > 0.0 ? x0 : 0.0;
@@ -180,7 +184,7 @@ static int rods_bracket(const ct_bundle *b, size_t m, const double *U, const dou
         ws->a0[k] = x0;
     }
     g[GRID - 1] = Hstar;
-    if ((st = ct_bundle_closed_many(b, ws->adv, ws->a0, g, GRID, gW, gWu, gP)))
+    if ((st = ct_bundle_closed_many(b, ws->adv, ws->a0, g, GRID, gW, gWu, gP, interrupt)))
         return st;
     int below = 0; /* a speed whose root lies left of the grid's first point */
     for (size_t j = 0; j < m; j++)
@@ -201,7 +205,7 @@ static int rods_bracket(const ct_bundle *b, size_t m, const double *U, const dou
     for (int k = 0; k < GRID; k++)
         g[k] = low * pow(top / low, (double)(k + 1) / GRID);
     g[GRID - 1] = top;
-    if ((st = ct_bundle_closed_many(b, ws->adv, ws->a0, g, GRID, gW, gWu, gP)))
+    if ((st = ct_bundle_closed_many(b, ws->adv, ws->a0, g, GRID, gW, gWu, gP, interrupt)))
         return st;
     for (size_t j = 0; j < m; j++)
         if (U[j] == -INFINITY && ws->u[j] == top)
@@ -236,7 +240,7 @@ static void rods_row(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *r
         r->status = ct_error_set(CT_ERANGE,
                                  "impact energy %.6g reaches u_max >= H* = %g (the "
                                  "layer would be crushed, strains >= 1): outside "
-                                 "the model; lower V* or raise H",
+                                 "the model; lower the speed or raise H",
                                  W, Hstar);
     else if (!res->elastic && !(u - u0 > 16.0 * DBL_EPSILON * fabs(u0)))
         r->status =
@@ -283,8 +287,8 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
     double *u0 = buf, *u = u0 + m, *Wc = u + m, *lo = Wc + m, *hi = lo + m, *adv = hi + m,
            *a0 = adv + nodes, *a1 = a0 + nodes, *Wl = a1 + nodes, *Wu = Wl + nodes, *P = Wu + nodes;
     const rods_ws ws = {u0, u, Wc, adv, a0, a1, Wl, Wu, P, open_};
-    if ((st = rods_start(b, m, U, W_U, W_crit0, x0, W, &ws)) ||
-        (st = rods_bracket(b, m, U, W, x0, &ws)))
+    if ((st = rods_start(b, m, U, W_U, W_crit0, x0, W, &ws, s->interrupt)) ||
+        (st = rods_bracket(b, m, U, W, x0, &ws, s->interrupt)))
         goto done;
     /* Newton from the right */
     size_t nopen = 0;
@@ -300,7 +304,7 @@ static int rods_round(const ct_bundle *b, const ct_sweep_spec *s, size_t m, ct_s
             a0[k] = u0[j];
             a1[k] = u[j];
         }
-        if ((st = ct_bundle_closed_many(b, adv, a0, a1, nopen, Wl, Wu, P)))
+        if ((st = ct_bundle_closed_many(b, adv, a0, a1, nopen, Wl, Wu, P, s->interrupt)))
             goto done;
         size_t still = 0;
         for (size_t k = 0; k < nopen; k++) {
@@ -576,7 +580,46 @@ typedef struct {
     int nforks, fork_cap;            /* made, room for */
     double crit0; /* the first curve's critical energy rod by rod, or NaN (ct_critical_by_rods) */
     double dyn_held; /* bytes each of dw and its forks may hold from earlier blocks */
+    size_t done, shown; /* the block's speeds done, and the count last reported as progress */
 } sweep_ws;
+
+/* Reports progress (done speeds of the block's) when the count has grown: callers see it rise. */
+static void progress_to(const ct_sweep_spec *s, sweep_ws *w, size_t done)
+{
+    if (s->progress && done > w->shown) {
+        w->shown = done;
+        s->progress(done, s->nvel, s->progress_ctx);
+    }
+}
+
+/* Rod evaluations per slice of the closed-form batch when progress is reported (about a tenth
+ * of a second on the CI machine): the slices' sums are the batch's, bit for bit. */
+#define CT_PROGRESS_SLICE_WORK 67108864.0
+
+/* The fast path's closed forms of m impacts (the check's and W_unload's left to the rods), in
+ * slices when progress is reported, the fast speeds (nfast) counted done in proportion. */
+static int fast_batch(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w, size_t m,
+                      size_t nfast)
+{
+    /* whole multiples of two node chunks (of 64 nodes) per thread: bundle.c shares a slice's
+     * chunks among the threads, evenly then */
+    const size_t rods = ct_bundle_size(b) ? ct_bundle_size(b) : 1;
+    const size_t unit = 128 * (size_t)ct_bundle_threads(b);
+    size_t slice = (size_t)floor(CT_PROGRESS_SLICE_WORK / (double)rods / (double)unit + 0.5) * unit;
+    slice = slice < unit ? unit : slice;
+    if (!s->progress)
+        slice = m;
+    for (size_t i0 = 0; i0 < m;) {
+        const size_t n = m - i0 < 2 * slice ? m - i0 : slice; /* the last one takes the rest */
+        int st = ct_bundle_closed_many(b, w->adv + i0, w->u0 + i0, w->u1 + i0, n, w->Wl + i0,
+                                       w->Wu + i0, NULL, s->interrupt);
+        if (st)
+            return st;
+        i0 += n;
+        progress_to(s, w, (size_t)((double)nfast * (double)i0 / (double)m));
+    }
+    return CT_OK;
+}
 
 /* The fast path's impacts on the first curve: an impact that reaches past the state's earlier
  * maximum U sees the first curve shifted (ct_impact_on_curve), and impacts of equal energy
@@ -612,6 +655,12 @@ static int fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row
     for (size_t i = 0; i < impacts; i++) {
         size_t nr = 0;
         for (size_t v = 0; v < nv; v++) {
+            if (v % 4096 == 0 && ct_interrupted(s->interrupt)) {
+                free(U);
+                free(rv);
+                free(on);
+                return ct_error_interrupted();
+            }
             if (!on[v])
                 continue;
             ct_sweep_row *row = &rows[v * impacts + i];
@@ -648,7 +697,14 @@ static int fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row
                 W_U[v] = NAN;
             }
         }
-        const int rs = nr ? ct_bundle_closed_many(b, ra, r0, r1, nr, rWl, rWu, NULL) : CT_OK;
+        const int rs =
+            nr ? ct_bundle_closed_many(b, ra, r0, r1, nr, rWl, rWu, NULL, s->interrupt) : CT_OK;
+        if (rs == CT_EINTR) {
+            free(U);
+            free(rv);
+            free(on);
+            return rs;
+        }
         for (size_t k = 0; k < nr; k++) {
             const size_t v = rv[k];
             if (rs) {
@@ -659,9 +715,6 @@ static int fast_impacts(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row
             }
         }
     }
-    for (size_t v = 0; s->progress && v < nv; v++)
-        if (!w->by_state[v])
-            s->progress(v + 1, nv, s->progress_ctx);
     free(U);
     free(rv);
     free(on);
@@ -799,10 +852,10 @@ static int fast_dynamics(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_ro
 #endif
 #pragma omp for schedule(dynamic, 16)
         for (size_t v = 0; v < s->nvel; v++)
-            if (!w->by_state[v])
+            if (!w->by_state[v] && !ct_interrupted(s->interrupt))
                 fast_speed_dynamics(s, rows, dw, m, v);
     }
-    return CT_OK;
+    return ct_interrupted(s->interrupt) ? ct_error_interrupted() : CT_OK;
 }
 
 /* The fast path (every impact on the first curve, the closed-form check of all rows in
@@ -820,15 +873,21 @@ static int sweep_fast(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *
         !(w->Wu = malloc((nrows + 1) * sizeof(double))) ||
         !(w->slot = malloc((nrows + 1) * sizeof(size_t))))
         return ct_error_set(CT_ENOMEM, "sweep of %zu impacts: out of memory", nrows);
-    size_t m;
+    size_t m, nfast = 0;
     if ((st = fast_impacts(b, s, rows, w, closed, &m)))
         return st;
-    if (m && (st = ct_bundle_closed_many(b, w->adv, w->u0, w->u1, m, w->Wl, w->Wu, NULL)))
+    for (size_t v = 0; v < s->nvel; v++)
+        nfast += !w->by_state[v];
+    if ((st = fast_batch(b, s, w, m, nfast)))
         return st;
     for (size_t v = 0; v < s->nvel; v++)
         if (!w->by_state[v])
             fast_finish(s, rows, w, closed, v);
-    return w->dw ? fast_dynamics(b, s, rows, w) : CT_OK;
+    if (w->dw && (st = fast_dynamics(b, s, rows, w)))
+        return st;
+    w->done = nfast;
+    progress_to(s, w, w->done);
+    return CT_OK;
 }
 
 /* The general path for the speeds that need it (all of them when not fast): one state
@@ -850,8 +909,7 @@ static int sweep_by_state(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_r
             return st;
         if (s->stop_on_error && (st = first_failure(rows, nrows)))
             return st;
-        if (s->progress)
-            s->progress(v + 1, s->nvel, s->progress_ctx);
+        progress_to(s, w, ++w->done);
     }
     return CT_OK;
 }
@@ -902,6 +960,8 @@ static int sweep_prepare(const ct_bundle *b, const ct_sweep_spec *s, sweep_ws *w
     } else if ((st = ct_curve_build(w->first, b))) {
         return st;
     }
+    if (ct_interrupted(s->interrupt))
+        return ct_error_interrupted();
     if (w->dw && (st = ct_dyn_prepare(w->dw, w->first, L)))
         return st;
     w->crit0 = ct_critical_by_rods(b, w->first);
@@ -950,6 +1010,7 @@ static int sweep_block(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row 
     int st = CT_OK;
     const size_t nrows = s->nvel * (size_t)s->impacts;
     rows_not_run(s, rows);
+    w->done = w->shown = 0;
     if (!(w->by_state = calloc(s->nvel ? s->nvel : 1, 1)) ||
         !(w->check = malloc(s->nvel ? s->nvel : 1))) {
         st = ct_error_set(CT_ENOMEM, "sweep of %zu speeds: out of memory", s->nvel);
@@ -969,6 +1030,8 @@ static int sweep_block(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row 
     if (s->stop_on_error)
         st = first_failure(rows, nrows);
 done:
+    if (ct_interrupted(s->interrupt))
+        st = ct_error_interrupted();
     sweep_ws_end_block(w);
     return st;
 }
@@ -985,6 +1048,8 @@ int ct_sweep(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
         rows_not_run(s, rows);
         if ((st = sweep_by_rods(b, s, rows)))
             return st;
+        if (ct_interrupted(s->interrupt))
+            return ct_error_interrupted();
         reach_check(b, s, rows);
         return s->stop_on_error ? first_failure(rows, s->nvel * (size_t)s->impacts) : CT_OK;
     }
@@ -1035,6 +1100,10 @@ int ct_sweep_blocks(const ct_bundle *b, const ct_sweep_spec *s, size_t block, ct
         st = sweep_prepare(b, s, &w, &mask);
     for (size_t v0 = 0; !st && v0 < s->nvel; v0 += nb) {
         const size_t n = s->nvel - v0 < nb ? s->nvel - v0 : nb;
+        if (ct_interrupted(s->interrupt)) {
+            st = ct_error_interrupted();
+            break;
+        }
         block_progress bp = {s, v0};
         ct_sweep_spec sub = *s;
         sub.V_star = s->V_star + v0;
@@ -1045,9 +1114,13 @@ int ct_sweep_blocks(const ct_bundle *b, const ct_sweep_spec *s, size_t block, ct
             rows_not_run(&sub, rows);
             if (!(st = sweep_by_rods(b, &sub, rows)) && sub.stop_on_error)
                 st = first_failure(rows, n * impacts);
+            if (ct_interrupted(s->interrupt))
+                st = ct_error_interrupted();
         } else {
             st = sweep_block(b, &sub, rows, &w, mask + v0);
         }
+        if (st == CT_EINTR)
+            break;
         if (st && st != CT_ENOMEM) { /* a failed row under stop_on_error: its block is shown */
             const int failed = st;
             for (size_t k = 0; k < n * impacts; k++)

@@ -237,10 +237,20 @@ typedef struct {
     ct_curve *curve; /* the sweep's workspace, reused */
     ct_sweep_row *rows;
     size_t evaluations;
+    size_t planned; /* exact impacts asked for so far: the total the progress reports */
 } exact_ctx;
+
+/* A chunk's sweep progress as the table's: exact impacts computed of those planned. */
+static void chunk_progress(size_t done, size_t total, void *ctx)
+{
+    (void)total;
+    const exact_ctx *x = ctx;
+    x->spec->progress(x->evaluations + done, x->planned, x->spec->progress_ctx);
+}
 
 static int exact_e(exact_ctx *x, const double *V, size_t m, double *e)
 {
+    x->planned += m;
     for (size_t k0 = 0; k0 < m; k0 += CHUNK) {
         const size_t k1 = k0 + CHUNK < m ? k0 + CHUNK : m;
         ct_sweep_spec s = {.V_star = V + k0,
@@ -248,8 +258,11 @@ static int exact_e(exact_ctx *x, const double *V, size_t m, double *e)
                            .impacts = 1,
                            .opts = x->spec->opts,
                            .stop_on_error = 1,
+                           .progress = x->spec->progress ? chunk_progress : NULL,
+                           .progress_ctx = x,
                            .path = x->spec->path,
-                           .curve = x->curve};
+                           .curve = x->curve,
+                           .interrupt = x->spec->interrupt};
         int st = ct_sweep(x->b, &s, x->rows);
         if (st)
             return st;
@@ -689,6 +702,10 @@ int ct_table_build(ct_table **out, const ct_bundle *b, const ct_table_spec *spec
         goto done;
     for (size_t round = 1;; round++) {
         size_t nsplit = 0;
+        if (ct_interrupted(spec->interrupt)) {
+            st = ct_error_interrupted();
+            goto done;
+        }
         if ((st = round_table(&B)) || (st = check_round(&B, round, &nsplit)))
             goto done;
         if (!nsplit)

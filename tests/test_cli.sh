@@ -538,4 +538,77 @@ expect 2 "history, an untimed impact, stop" -- "$ct" run -q "$def" --set materia
     --set impact.V_star=3e-11 --set output.what=e,history -o "$tmp/hstop.csv"
 [ ! -e "$tmp/hstop.csv" ] && [ ! -e "$tmp/hstop_history.csv" ] && ok || bad "history, stop: a file left behind"
 
+# --set KEY= (empty) unsets a key: a scene given by mass and velocity switched to V*; a required
+# key unset is missing. A key given twice on the command line (--set, -o, options) is refused
+# like a duplicate in a scene file.
+expect 0 "unset mass and velocity, give V*" -- "$ct" run -q "$src/examples/scenes/cantor.ini" \
+    --set impact.mass= --set impact.velocity= --set impact.V_star=1e-3
+[ "$(head -1 "$tmp/out")" = "impact,V_star,u_max_over_h0,e,e_closed_form,quadrature_error,V_star_crit,u_release_over_h0,elastic" ] &&
+    [ "$(awk -F, 'NR == 2 { print $2 }' "$tmp/out")" = 0.001 ] && [ "$(wc -l <"$tmp/out")" -eq 2 ] && ok ||
+    bad "unset mass and velocity: $(cat "$tmp/out")"
+expect 2 "unset a required key" -- "$ct" run -q "$src/examples/scenes/cantor.ini" --set surface.H=
+has err "surface.H: required key missing" "unset a required key"
+expect 2 "unset an unknown key" -- "$ct" run -q "$tmp/s.ini" --set surface.fzz=
+has err "surface.fzz: unknown key (did you mean surface.fz?)" "unset an unknown key"
+expect 2 "--set twice" -- "$ct" run -q "$tmp/s.ini" --set surface.fz=1.2 --set "surface.fz = 1.4"
+has err "^cantact: --set surface.fz = 1.4: surface.fz given twice on the command line (also by --set surface.fz=1.2)$" "--set twice"
+expect 2 "-o twice" -- "$ct" run -q "$tmp/s.ini" -o "$tmp/o1.csv" -o "$tmp/o2.csv"
+has err "the output given twice" "-o twice"
+expect 2 "-o and --set output.file" -- "$ct" table -q "$tmp/s.ini" -o "$tmp/o1.csv" --set output.file="$tmp/o2.csv"
+has err "output.file given twice on the command line" "-o and --set output.file"
+expect 2 "fit --unit twice" -- "$ct" fit "$src/tests/data/dektak-1.csv" --unit um --set surface.unit=nm
+has err "^cantact: --set surface.unit=nm: surface.unit given twice on the command line (also by --unit um)$" "fit --unit twice"
+expect 2 "fit --trim twice" -- "$ct" fit "$src/tests/data/dektak-1.csv" --trim 3 --trim 4
+has err "^cantact: --trim 4: --trim given twice on the command line (also --trim 3)$" "fit --trim twice"
+[ ! -e "$tmp/o1.csv" ] && [ ! -e "$tmp/o2.csv" ] && ok || bad "a key given twice: an output written"
+
+# A crushed layer in a scene given by mass and speed names the speed in m/s beside V*, and the
+# unit E is read in (200 meant as GPa is 200 Pa); given by V*, neither
+expect 2 "crushed, SI scene" -- "$ct" run -q "$src/examples/scenes/profile.ini" \
+    --set material.E=200 --set material.sigma_y=0.4
+has err "impact speed 0.01 m/s (V\* = 1.909932730395228[0-9]), impact 1: impact energy 5e-07 reaches u_max >= H\* = 4.56906e-06 (the layer would be crushed" \
+    "crushed, SI scene: the speed in m/s"
+has err "lower the speed or raise H; with mass and speeds in SI units (kg, m/s) material.E = 200 is read in Pa: check its unit$" \
+    "crushed, SI scene: E's unit"
+expect 2 "crushed, SI Cantor scene (depth auto)" -- "$ct" run -q "$src/scripts/scenes/dem_table.ini" \
+    --set material.E=200 --set material.sigma_y=0.4
+has err "impact energy 125 (impact speed 0.01 m/s, V\* = 0.5) reaches u_max >= H\* = 10" \
+    "crushed in the depth's choice: the speed in m/s"
+expect 2 "crushed, table" -- "$ct" table -q "$src/examples/scenes/profile.ini" \
+    --set material.E=200 --set material.sigma_y=0.4
+has err "impact speed 1 m/s (V\* = 190.9932730395228[0-9]), impact 1:.*material.E = 200 is read in Pa" \
+    "crushed, table: the speed in m/s and E's unit"
+expect 2 "crushed, V* scene" -- "$ct" run -q "$tmp/s.ini" --set impact.V_star=3
+grep -q "m/s\|read in Pa\|lower V\*" "$tmp/err" && bad "crushed, V* scene: $(cat "$tmp/err")" || ok
+has err "^cantact: impact energy 4500 reaches u_max >= H\* = 10 (the layer would be crushed, strains >= 1): outside the model; lower the speed or raise H$" \
+    "crushed, V* scene"
+
+# Progress: a bar of the speeds on a terminal (script gives the program one), filled as the
+# closed-form check of a large sweep goes (steps before 100%); nothing off a terminal; the
+# same bytes either way
+command -v script >/dev/null || fail "script (util-linux) is needed for the terminal checks"
+cat >"$tmp/big.ini" <<INI
+[surface]
+fx = 1.5
+fz = 1.3
+H = 10
+depth = 17
+representation = segments
+[material]
+E = 500
+[impact]
+V_star = 1e-4:1e-2:600:log
+[solver]
+check = all
+threads = 1
+INI
+script -qec "'$ct' run -q '$tmp/big.ini' -o '$tmp/big_tty.csv'" /dev/null >"$tmp/tty" && ok ||
+    bad "run on a terminal"
+tr '\r' '\n' <"$tmp/tty" | grep -q '^\[#*  *\] *[1-9][0-9]% ([0-9]*/600)$' &&
+    tr '\r' '\n' <"$tmp/tty" | grep -q '^\[#*\] 100% (600/600)$' && ok ||
+    bad "run: no progress bar filling on a terminal: $(cat -v "$tmp/tty" | head -c 300)"
+expect 0 "run off a terminal" -- "$ct" run -q "$tmp/big.ini" -o "$tmp/big_pipe.csv"
+[ ! -s "$tmp/err" ] && ok || bad "run -q: progress off a terminal: $(cat -v "$tmp/err" | head -c 200)"
+cmp -s "$tmp/big_tty.csv" "$tmp/big_pipe.csv" && ok || bad "run: the e table differs with progress shown"
+
 finish

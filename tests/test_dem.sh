@@ -13,6 +13,15 @@ source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 set -eo pipefail
 cantact=$1 dem=$2 src=$3
 
+# --help (and -h): the usage, the options and their defaults on stdout, exit 0
+for h in --help -h; do
+    "$dem" $h >"$tmp/help" 2>"$tmp/help_err" || fail "dem_drop $h: exit $?"
+    grep -q "^Usage: dem_drop TABLE.csv" "$tmp/help" && grep -q -- "--law tension|clipped" "$tmp/help" &&
+        grep -q -- "--steps-per-contact K RK4 steps per damped contact time, >= 4 (default 400)" "$tmp/help" &&
+        [ ! -s "$tmp/help_err" ] || fail "dem_drop $h: no help on stdout: $(cat "$tmp/help" "$tmp/help_err")"
+done
+echo "ok: dem_drop --help"
+
 "$cantact" table -q "$src/scripts/scenes/dem_table.ini" -o "$tmp/e.csv" || fail "cantact table"
 speeds="0.02 0.08 0.15 0.3 0.7 1.5 3 6"
 for law in tension clipped; do

@@ -296,6 +296,49 @@ static void failed_impacts(void **state)
     ct_ensemble_samples_free(s);
 }
 
+/* An ensemble whose interrupt flag is set stops (CT_EINTR) on either split; set by the
+ * progress callback at the first realisation done, the realisations not yet started are not. */
+typedef struct {
+    size_t calls;
+    volatile int *stop;
+} stopping;
+
+static void stop_at_first(size_t done, size_t total, void *ctx)
+{
+    (void)done;
+    (void)total;
+    stopping *g = ctx;
+    g->calls++;
+    *g->stop = 1;
+}
+
+static void interrupt_stops_the_ensemble(void **state)
+{
+    (void)state;
+    for (int split = CT_SPLIT_REALISATIONS; split <= CT_SPLIT_RODS; split++) {
+        ct_ensemble_spec sp = spec_of(9, 0.3, 0, 40);
+        sp.threads = 2;
+        sp.split = (ct_ensemble_split)split;
+        volatile int stop = 1;
+        sp.interrupt = &stop;
+        ct_ensemble_samples *s;
+        assert_int_equal(ct_ensemble_samples_alloc(&s, sp.first, sp.count, NROWS), CT_OK);
+        assert_int_equal(ct_ensemble(&sp, s), CT_EINTR);
+        assert_string_equal(ct_error_message(), "interrupted");
+        stop = 0;
+        stopping g = {0, &stop};
+        sp.progress = stop_at_first;
+        sp.progress_ctx = &g;
+        assert_int_equal(ct_ensemble(&sp, s), CT_EINTR);
+        /* one realisation at a time: none after the first; else those under way */
+        if (split == CT_SPLIT_RODS)
+            assert_int_equal(g.calls, 1);
+        else
+            assert_true(g.calls >= 1 && g.calls <= 3);
+        ct_ensemble_samples_free(s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -305,6 +348,7 @@ int main(void)
         cmocka_unit_test(check_stride),
         cmocka_unit_test(spread_zero_ensemble),
         cmocka_unit_test(failed_impacts),
+        cmocka_unit_test(interrupt_stops_the_ensemble),
     };
     return cmocka_run_group_tests_name("ensemble", tests, NULL, NULL);
 }

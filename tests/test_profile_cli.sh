@@ -95,6 +95,21 @@ PY
 expect 2 "no unit anywhere" -- "$ct" run "$tmp/d.ini" --set surface.file="$tmp/nm_body.csv" -o "$tmp/none.csv"
 has err "nm_body.csv: the length unit of x and z is not given and its column names state none" "no unit"
 [ -e "$tmp/none.csv" ] && bad "no unit: a file was left" || ok
+# the message names the key that gives the unit (a scene) or the option (cantact fit PROFILE)
+has err "state none: give surface.unit (m, mm, um or nm; or surface.x_unit and surface.z_unit)$" \
+    "no unit: the key named"
+expect 2 "fit: no unit anywhere" -- "$ct" fit "$tmp/nm_body.csv"
+has err "state none: give --unit (m, mm, um or nm; or --x-unit and --z-unit)$" "fit, no unit: the option named"
+# the micro sign (and the Greek mu) as u: um typed as it is printed
+expect 0 "unit = µm" -- "$ct" run -q "$tmp/d.ini" --set surface.file="$tmp/nm_body.csv" \
+    --set "surface.unit=µm" -o "$tmp/e_micro.csv"
+expect 0 "unit = um" -- "$ct" run -q "$tmp/d.ini" --set surface.file="$tmp/nm_body.csv" \
+    --set surface.unit=um -o "$tmp/e_u.csv"
+cmp -s "$tmp/e_micro.csv" "$tmp/e_u.csv" && ok || bad "unit = µm is not um"
+expect 0 "fit --unit μm (Greek mu)" -- "$ct" fit "$tmp/nm_body.csv" --unit "μm" -o "$tmp/f_mu.csv"
+expect 0 "fit --unit um" -- "$ct" fit "$tmp/nm_body.csv" --unit um -o "$tmp/f_u.csv"
+cmp -s "$tmp/f_mu.csv" "$tmp/f_u.csv" && ok || bad "fit --unit μm is not um"
+expect 2 "unit = µx" -- "$ct" run -q "$tmp/d.ini" --set "surface.unit=µx"
 # Hstar in the file's unit: 10 Rt given in um as in nm gives the same e
 rt_um=$(awk -v r="$rt" 'BEGIN { printf "%.17g", 10 * r * 1e6 }')
 rt_nm=$(awk -v r="$rt" 'BEGIN { printf "%.17g", 10 * r * 1e9 }')
@@ -274,6 +289,40 @@ expect 2 "profile keys with a Cantor surface" -- "$ct" run "$tmp/cantor.ini" --s
 has err "surface.detrend = mean: only for surface.type = profile" "profile key with cantor"
 expect 2 "fit keys with a Cantor surface" -- "$ct" run "$tmp/cantor.ini" --set fit.lag_lo=1
 expect 2 "fit: unknown option" -- "$ct" fit "$dektak" --frob
+# a dimension outside (1, 2) is flagged, in the table and on stderr (even under -q): white noise
+# has a flat spectrum, C(q) ~ q^0, so D_spectrum = 5/2; the Dektak profile's three lie inside
+awk 'BEGIN { x = 12345; print "x (um),z (um)"
+    for (i = 0; i < 4000; i++) { s = 0; for (k = 0; k < 12; k++) { x = (x * 1103515245 + 12345) % 2147483648; s += x / 2147483648 }
+        printf "%d,%.9f\n", i, (s - 6) * 0.1 } }' >"$tmp/white.csv"
+expect 0 "fit of white noise" -- "$ct" fit -q "$tmp/white.csv" -o "$tmp/white_fit.csv"
+ds=$(awk -F, '$1 == "D_spectrum" { print $2 }' "$tmp/white_fit.csv")
+awk -v d="$ds" 'BEGIN { exit !(d > 2.3 && d < 2.7) }' && ok || bad "white noise: D_spectrum = $ds, not about 5/2"
+grep -q "^# warning: .*D_spectrum = .* outside (1, 2), the range of a fractal profile's dimension" "$tmp/white_fit.csv" &&
+    ok || bad "white noise: no warning in the table: $(head -3 "$tmp/white_fit.csv")"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && grep -q "^cantact: warning: .*D_spectrum = .* outside (1, 2)" "$tmp/err" && ok ||
+    bad "white noise: no warning on stderr: $(cat "$tmp/err")"
+grep -q "describe no Cantor surface" "$tmp/err" && bad "white noise: D from the variation flagged" || ok
+expect 0 "fit of white noise, D from the spectrum" -- "$ct" fit "$tmp/white.csv" --dimension spectrum -o "$tmp/white_fit2.csv"
+has err "D, fx and fz come from D_spectrum, so they describe no Cantor surface" "white noise: fx, fz flagged"
+expect 0 "fit of the Dektak profile: no warning" -- "$ct" fit "$dektak" -o "$tmp/dk_fit.csv"
+[ ! -s "$tmp/err" ] && ! grep -q "warning" "$tmp/dk_fit.csv" && ok || bad "Dektak: a warning: $(cat "$tmp/err")"
+awk -F, '$1 ~ /^D/ && !($2 > 1 && $2 < 2) { exit 1 }' "$tmp/dk_fit.csv" && ok || bad "Dektak: a D outside (1, 2) unflagged"
+# scripts/measured takes a scene (any measured surface's) and -o OUTDIR, and --help is its own
+command -v gnuplot >/dev/null || fail "gnuplot (scripts' package gnuplot-nox) is needed for scripts/measured"
+expect 0 "scripts/measured --help" -- env CT_CANTACT="$ct" "$src/scripts/measured" --help
+has out "^Usage: scripts/measured \[SCENE.ini\] \[-o OUTDIR\]" "scripts/measured --help: its own usage"
+CT_CANTACT="$ct" "$src/scripts/measured" "$tmp/d.ini" -o "$tmp/meas" --set impact.velocity=0.001:3:6:log \
+    >"$tmp/out" 2>"$tmp/err" && ok || bad "scripts/measured SCENE.ini: $(cat "$tmp/err")"
+for f in measured.csv measured_fit.csv measured_bearing.csv measured_e.png measured_bearing.png; do
+    [ -s "$tmp/meas/$f" ] && ok || bad "scripts/measured SCENE.ini: no $f"
+done
+[ "$(grep -c '^[0-9]' "$tmp/meas/measured.csv")" -eq 6 ] && ok || bad "scripts/measured: not the scene's run at 6 speeds"
+cmp -s <(grep -v '^#' "$tmp/meas/measured_fit.csv") <(grep -v '^#' "$tmp/fit2.csv") && ok ||
+    bad "scripts/measured: its fit is not cantact fit's of the scene"
+expect 2 "scripts/measured OUTDIR (not a scene)" -- env CT_CANTACT="$ct" "$src/scripts/measured" "$tmp/meas"
+has err "not a scene (SCENE.ini; the output directory is -o OUTDIR)" "scripts/measured OUTDIR"
+expect 2 "scripts/measured of a Cantor scene" -- env CT_CANTACT="$ct" "$src/scripts/measured" "$tmp/cantor.ini" -o "$tmp/meas2"
+has err "a bearing-area curve is written for measured surfaces" "scripts/measured of a Cantor scene"
 expect 2 "fit: bad unit" -- "$ct" fit "$dektak" --unit furlong
 expect 2 "fit: bad band" -- "$ct" fit "$dektak" --lags 3:1
 expect 2 "fit: scene and file options" -- "$ct" fit "$tmp/d.ini" --unit um

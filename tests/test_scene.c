@@ -139,6 +139,126 @@ static void unknown_section_and_key(void **state)
     expect_error("fx = 1.5\n", NULL, 0, "s.ini:1", "outside any section");
 }
 
+/* "Did you mean": the known name nearest to a slip (one edit in a name of up to 3 characters
+ * after its last dot, two beyond; a swap of neighbours is one edit), none when it is farther. */
+static void nearest_names(void **state)
+{
+    (void)state;
+    const char *names[] = {"surface.fx",
+                           "surface.fz",
+                           "surface.H",
+                           "impact.V_star",
+                           "solver.depth_tolerance",
+                           "ensemble.realisations",
+                           "surface"};
+    const size_t n = sizeof names / sizeof names[0];
+    struct {
+        const char *given;
+        size_t want; /* n: none */
+    } cases[] = {
+        {"surface.fzz", 1},            /* an extra letter */
+        {"surface.f", 0},              /* a letter lost: fx and fz tie, the first */
+        {"surface.zf", 1},             /* two letters swapped: one edit */
+        {"surface.h", 2},              /* the case of a letter */
+        {"surface.xy", n},             /* two edits in a short name: no slip */
+        {"surface.fx", 1},             /* the name itself passed over: the next nearest */
+        {"impact.V_str", 3},           /* a letter lost */
+        {"impact.v_sta", 3},           /* two edits in a longer name */
+        {"impact.velocity", n},        /* far from everything */
+        {"solver.depth_tolerence", 4}, /* a vowel */
+        {"ensemble.realizations", 5},  /* the spelling */
+        {"surfce", 6},                 /* a section */
+        {"srfce", 6},                  /* two edits in a name of over 3 characters */
+        {"srfc", n},                   /* three */
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        const size_t got = ct_nearest_name(cases[k].given, names, n);
+        if (got != cases[k].want)
+            fail_msg("%s: got %s, want %s", cases[k].given, got < n ? names[got] : "none",
+                     cases[k].want < n ? names[cases[k].want] : "none");
+    }
+    assert_int_equal(ct_nearest_name("x", NULL, 3), 3);
+}
+
+static void did_you_mean(void **state)
+{
+    (void)state;
+    char buf[512];
+    with_line(buf, sizeof buf, "fzz = 1.3");
+    expect_error(buf, NULL, 0, "s.ini:5: surface.fzz: unknown key (did you mean surface.fz?)",
+                 NULL);
+    expect_error("[surfce]\nfx=1.5\n", NULL, 0,
+                 "s.ini:1: [surfce]: unknown section (did you mean [surface]?) (known: ", NULL);
+    const char *sets[] = {"impakt.V_star=1"};
+    expect_error(good, sets, 1, "--set: [impakt]: unknown section (did you mean [impact]?)", NULL);
+    const char *sets2[] = {"output.wat=e"};
+    expect_error(good, sets2, 1, "--set: output.wat: unknown key (did you mean output.what?)",
+                 NULL);
+    const char *sets3[] = {"surface.colour=red"};
+    expect_error(good, sets3, 1, "--set: surface.colour: unknown key", NULL);
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, sets3, 1), CT_EINVAL);
+    assert_null(strstr(ct_scene_message(), "did you mean"));
+    /* the library's own, for a key of another kind (Python's Surface takes this path) */
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "cantor"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "uint", "mm", "here"), CT_EINVAL);
+    assert_string_equal(ct_error_message(), "here: surface.uint: unknown key (did you mean "
+                                            "surface.unit? only for surface.type = profile or "
+                                            "rods)");
+    assert_int_equal(ct_surface_set(s, "surface", "fzz", "1.3", ""), CT_EINVAL);
+    assert_string_equal(ct_error_message(), "surface.fzz: unknown key (did you mean surface.fz?)");
+    ct_surface_free(s);
+}
+
+/* One rule for a reversed range, a run's speeds and a table's: refused, the range turned round
+ * in the message (a run's speeds in another order are a list). */
+static void reversed_ranges(void **state)
+{
+    (void)state;
+    const char *a[] = {"impact.V_star=1e-2:1e-5:31:log"};
+    expect_error(good, a, 1,
+                 "--set: impact.V_star = 1e-2:1e-5:31:log: expected from:to:count[:log] with 0 < "
+                 "from < to: a range runs upwards (1e-5:1e-2:31:log; speeds in another order as "
+                 "a list a, b, c)",
+                 NULL);
+    const char *b[] = {"table.V_star=1e-2:1e-5"};
+    expect_error(good, b, 1,
+                 "--set: table.V_star = 1e-2:1e-5: expected from:to with 0 < from < to: a range "
+                 "runs upwards (1e-5:1e-2)",
+                 NULL);
+    const char *c[] = {"impact.V_star=1e-2:1e-2:2"};
+    expect_error(good, c, 1, "with 0 < from < to (or one speed: count 1)", NULL);
+    ct_scene sc; /* one speed, from = to; and a list in any order */
+    const char *d[] = {"impact.V_star=1e-2:1e-2:1"}, *e[] = {"impact.V_star=1e-2, 1e-5"};
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, d, 1), CT_OK);
+    assert_true(sc.nvel == 1 && sc.V_star[0] == 1e-2);
+    ct_scene_free(&sc);
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", good, e, 1), CT_OK);
+    assert_true(sc.nvel == 2 && sc.V_star[0] == 1e-2 && sc.V_star[1] == 1e-5);
+    ct_scene_free(&sc);
+}
+
+/* An override with an empty value unsets the key (its default applies); unsetting what the scene
+ * does not give changes nothing; an unknown key is refused as when set. */
+static void empty_override_unsets(void **state)
+{
+    (void)state;
+    const char *by_mass = "[surface]\nfx = 1.5\nfz = 1.3\nH = 10\n[material]\nE = 500\n"
+                          "[impact]\nmass = 1e-3\nvelocity = 0.5\n";
+    const char *sets[] = {"impact.mass=", "impact.velocity =", "impact.V_star=2e-3",
+                          "solver.nodes="};
+    ct_scene sc;
+    assert_int_equal(ct_scene_parse(&sc, "s.ini", by_mass, sets, 4), CT_OK);
+    assert_true(sc.nvel == 1 && sc.V_star[0] == 2e-3 && sc.mass == 0.0 &&
+                !sc.speeds_are_velocities);
+    ct_scene_free(&sc);
+    const char *h[] = {"surface.H="};
+    expect_error(good, h, 1, "surface.H: required key missing", NULL);
+    const char *u[] = {"surface.Hh="};
+    expect_error(good, u, 1, "--set: surface.Hh: unknown key (did you mean surface.H?)", NULL);
+}
+
 static void duplicate_key(void **state)
 {
     (void)state;
@@ -447,14 +567,25 @@ static void numbers_in_the_c_locale(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(defaults_and_values),     cmocka_unit_test(velocity_lists),
-        cmocka_unit_test(set_overrides),           cmocka_unit_test(unknown_section_and_key),
-        cmocka_unit_test(duplicate_key),           cmocka_unit_test(missing_required),
-        cmocka_unit_test(unparsable_numbers),      cmocka_unit_test(out_of_range),
-        cmocka_unit_test(malformed_line),          cmocka_unit_test(files_missing_and_binary),
-        cmocka_unit_test(long_lines_read_whole),   cmocka_unit_test(section_headers_checked),
-        cmocka_unit_test(list_fields_checked),     cmocka_unit_test(messages_say_what_happened),
+        cmocka_unit_test(defaults_and_values),
+        cmocka_unit_test(velocity_lists),
+        cmocka_unit_test(set_overrides),
+        cmocka_unit_test(unknown_section_and_key),
+        cmocka_unit_test(duplicate_key),
+        cmocka_unit_test(missing_required),
+        cmocka_unit_test(unparsable_numbers),
+        cmocka_unit_test(out_of_range),
+        cmocka_unit_test(malformed_line),
+        cmocka_unit_test(files_missing_and_binary),
+        cmocka_unit_test(long_lines_read_whole),
+        cmocka_unit_test(section_headers_checked),
+        cmocka_unit_test(list_fields_checked),
+        cmocka_unit_test(messages_say_what_happened),
         cmocka_unit_test(numbers_in_the_c_locale),
+        cmocka_unit_test(nearest_names),
+        cmocka_unit_test(did_you_mean),
+        cmocka_unit_test(reversed_ranges),
+        cmocka_unit_test(empty_override_unsets),
     };
     return cmocka_run_group_tests_name("scene", tests, NULL, NULL);
 }

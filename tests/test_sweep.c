@@ -11,6 +11,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "assert_rel.h"
 #include "cantact.h"
@@ -835,7 +836,7 @@ static void row_holds_results_or_its_message(void **state)
             assert_string_equal(
                 rows[2].message,
                 "impact energy 1.25e+06 reaches u_max >= H* = 10 (the layer would be "
-                "crushed, strains >= 1): outside the model; lower V* or raise H");
+                "crushed, strains >= 1): outside the model; lower the speed or raise H");
             assert_string_equal(rows[3].message, "not run: impact 1 of V* = 50 failed");
             ct_sweep_row copy = rows[3];
             memset(&rows[3], 'x', sizeof rows[3]);
@@ -1146,6 +1147,117 @@ static void large_lean_curve_on_threads(void **state)
     }
 }
 
+/* ---- stopping a sweep (cantact.h: the spec's interrupt) ---- */
+
+/* Every path stops at its first check when the flag is already set: CT_EINTR, "interrupted". */
+static void interrupt_set_stops_every_path(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 8, INFINITY), CT_OK);
+    const double V[3] = {1e-4, 1e-3, 1e-2};
+    static ct_sweep_row rows[3 * 2];
+    const volatile int stop = 1;
+    for (int path = CT_PATH_AUTO; path <= CT_PATH_LEAN; path++)
+        for (int variant = 0; variant < 3; variant++) {
+            ct_sweep_spec spec = {.V_star = V, .nvel = 3, .impacts = 2, .path = path};
+            ct_impact_opts_default(&spec.opts);
+            spec.dynamics = variant == 1 && path != CT_PATH_RODS && path != CT_PATH_LEAN;
+            if (variant == 2) { /* the general path: a composite rule carries every state */
+                spec.opts.rule = CT_QUAD_GAUSS;
+                spec.path = CT_PATH_CURVE;
+            }
+            assert_int_equal(ct_sweep(b, &spec, rows), CT_OK);
+            spec.interrupt = &stop;
+            assert_int_equal(ct_sweep(b, &spec, rows), CT_EINTR);
+            assert_string_equal(ct_error_message(), "interrupted");
+            assert_int_equal(ct_sweep_blocks(b, &spec, 1, collect, &(collected){rows, 0, 0}),
+                             CT_EINTR);
+        }
+    ct_bundle_free(b);
+}
+
+/* Progress of a sweep whose closed-form check is one long batch over many rods: reported in
+ * slices of the batch (more than one call before the last, the count rising), and the rows
+ * the same bits as without progress; a callback that sets the flag at its first call stops
+ * the batch there. */
+typedef struct {
+    size_t calls, last, total;
+    int rising;
+    volatile int *stop_at_first;
+    double first_at; /* when the first call came [s, CLOCK_MONOTONIC] */
+} progress_log;
+
+static double now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static void log_progress(size_t done, size_t total, void *ctx)
+{
+    progress_log *g = ctx;
+    g->rising &= done > g->last && done <= total;
+    g->last = done;
+    g->total = total;
+    if (!g->calls++)
+        g->first_at = now();
+    if (g->stop_at_first)
+        *g->stop_at_first = 1;
+}
+
+static void progress_in_slices_changes_no_bit(void **state)
+{
+    (void)state;
+    ct_params p = base();
+    ct_bundle *b;
+    assert_int_equal(ct_cantor_bundle(&b, &p, CT_REP_SEGMENTS, 16, INFINITY), CT_OK);
+    assert_true(ct_bundle_size(b) > 100000); /* slices of 512 impacts: 512 and 588 */
+    enum { NV = 1100 };
+    static double V[NV];
+    for (size_t v = 0; v < NV; v++)
+        V[v] = 1e-4 * pow(1e2, (double)v / (NV - 1));
+    static ct_sweep_row plain[NV], seen[NV];
+    for (int threads = 1; threads <= 2; threads++) {
+        ct_bundle_set_threads(b, threads);
+        ct_sweep_spec spec = {.V_star = V, .nvel = NV, .impacts = 1, .path = CT_PATH_CURVE};
+        ct_impact_opts_default(&spec.opts); /* the check of every row: one batch of NV impacts */
+        assert_int_equal(ct_sweep(b, &spec, plain), CT_OK);
+        progress_log g = {.rising = 1};
+        spec.progress = log_progress;
+        spec.progress_ctx = &g;
+        const double start = now();
+        assert_int_equal(ct_sweep(b, &spec, seen), CT_OK);
+        const double took = now() - start;
+        assert_true(g.calls >= 2); /* the batch in slices */
+        /* nothing reported before the first slice: the batch is nearly all of the sweep's time,
+         * its first of 2 or 3 slices over a quarter of it */
+        if (!(g.first_at - start > 0.25 * took))
+            fail_msg("%d threads: first progress after %.3f of %.3f s", threads, g.first_at - start,
+                     took);
+        assert_true(g.rising);
+        assert_int_equal(g.last, NV);
+        assert_int_equal(g.total, NV);
+        for (size_t k = 0; k < NV; k++) {
+            assert_int_equal(plain[k].status, CT_OK);
+            assert_int_equal(seen[k].status, CT_OK);
+            assert_false(isnan(seen[k].r.e_closed));
+            if (memcmp(&plain[k].r, &seen[k].r, sizeof plain[k].r))
+                fail_msg("%d threads: row %zu differs with progress", threads, k);
+        }
+        volatile int stop = 0;
+        progress_log h = {.rising = 1, .stop_at_first = &stop};
+        spec.progress_ctx = &h;
+        spec.interrupt = &stop;
+        assert_int_equal(ct_sweep(b, &spec, seen), CT_EINTR);
+        assert_int_equal(h.calls, 1); /* stopped in the batch, before its next slice */
+        assert_true(h.last < NV);
+    }
+    ct_bundle_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1169,6 +1281,8 @@ int main(void)
         cmocka_unit_test(stiff_rod_at_contact_states_its_rounding),
         cmocka_unit_test(lean_curve_equals_full_curve_bit_for_bit),
         cmocka_unit_test(large_lean_curve_on_threads),
+        cmocka_unit_test(interrupt_set_stops_every_path),
+        cmocka_unit_test(progress_in_slices_changes_no_bit),
     };
     return cmocka_run_group_tests_name("sweep", tests, NULL, NULL);
 }

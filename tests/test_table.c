@@ -859,6 +859,70 @@ static void bad_input(void **state)
     ct_bundle_free(b);
 }
 
+/* A table built with a progress callback is the same bits as without: its calls rise to the
+ * exact impacts computed, never past the total planned; a set interrupt flag stops the build
+ * (CT_EINTR), and one set by the callback at its first call stops it there. */
+typedef struct {
+    size_t calls, last, total;
+    int rising;
+    volatile int *stop;
+} table_progress;
+
+static void log_table_progress(size_t done, size_t total, void *ctx)
+{
+    table_progress *g = ctx;
+    g->rising &= done > g->last && done <= total && total >= g->total;
+    g->last = done;
+    g->total = total;
+    g->calls++;
+    if (g->stop)
+        *g->stop = 1;
+}
+
+static void progress_and_interrupt(void **state)
+{
+    (void)state;
+    ct_bundle *b = two_rods();
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = 1e-3;
+    spec.V_max = 0.3;
+    spec.tolerance = 1e-9;
+    ct_table *plain, *seen;
+    assert_int_equal(ct_table_build(&plain, b, &spec), CT_OK);
+    table_progress g = {.rising = 1};
+    spec.progress = log_table_progress;
+    spec.progress_ctx = &g;
+    assert_int_equal(ct_table_build(&seen, b, &spec), CT_OK);
+    ct_table_info a, c;
+    ct_table_get_info(plain, &a);
+    ct_table_get_info(seen, &c);
+    assert_true(g.rising && g.calls > 1);
+    assert_int_equal(g.last, c.evaluations);
+    assert_int_equal(g.total, c.evaluations);
+    const size_t n = ct_table_size(plain);
+    assert_int_equal(ct_table_size(seen), n);
+    assert_true(!memcmp(&a, &c, sizeof a));
+    assert_true(!memcmp(ct_table_V_star(plain), ct_table_V_star(seen), n * sizeof(double)));
+    assert_true(!memcmp(ct_table_e(plain), ct_table_e(seen), n * sizeof(double)));
+    assert_true(!memcmp(ct_table_slope(plain), ct_table_slope(seen), n * sizeof(double)));
+    ct_table_free(seen);
+    volatile int stop = 1;
+    spec.interrupt = &stop;
+    spec.progress = NULL;
+    assert_int_equal(ct_table_build(&seen, b, &spec), CT_EINTR);
+    assert_null(seen);
+    stop = 0;
+    table_progress h = {.rising = 1, .stop = &stop};
+    spec.progress = log_table_progress;
+    spec.progress_ctx = &h;
+    assert_int_equal(ct_table_build(&seen, b, &spec), CT_EINTR);
+    assert_string_equal(ct_error_message(), "interrupted");
+    assert_int_equal(h.calls, 1);
+    ct_table_free(plain);
+    ct_bundle_free(b);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -873,6 +937,7 @@ int main(void)
         cmocka_unit_test(rule_from_the_basis),
         cmocka_unit_test(slope_limit_stays_between_nodes),
         cmocka_unit_test(bad_input),
+        cmocka_unit_test(progress_and_interrupt),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

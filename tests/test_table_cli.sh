@@ -53,6 +53,20 @@ has lin.csv "^# interpolation = linear" "linear header"
 expect 0 "table to stdout" -- "$ct" table -q "$tmp/s.ini"
 grep -q "^V_star,e,de_dlnV_star$" "$tmp/out" && ok || bad "stdout table"
 
+# progress: on a terminal (script gives the program one) the exact impacts computed of those
+# planned so far, up to the summary's count; off a terminal nothing but the summary; the table
+# the same bytes either way
+command -v script >/dev/null || fail "script (util-linux) is needed for the terminal checks"
+script -qec "'$ct' table '$tmp/s.ini' --set table.tolerance=1e-8 -o '$tmp/tty.csv'" /dev/null \
+    >"$tmp/tty" && ok || bad "table on a terminal"
+n=$(sed -n 's/.*; \([0-9]*\) exact impacts, .*/\1/p' "$tmp/tty")
+tr '\r' '\n' <"$tmp/tty" | grep -q "^$n of $n exact impacts (more while intervals fail)" && ok ||
+    bad "table: no progress on a terminal: $(cat -v "$tmp/tty" | head -c 300)"
+expect 0 "table off a terminal" -- "$ct" table "$tmp/s.ini" --set table.tolerance=1e-8 -o "$tmp/pipe.csv"
+[ "$(wc -l <"$tmp/err")" -eq 1 ] && ! grep -q "exact impacts (more" "$tmp/err" && ok ||
+    bad "table: progress off a terminal: $(cat -v "$tmp/err")"
+cmp -s "$tmp/tty.csv" "$tmp/pipe.csv" && ok || bad "the table differs with progress shown"
+
 # the thread count changes no byte
 OMP_NUM_THREADS=1 "$ct" table -q "$tmp/s.ini" -o "$tmp/t1.csv"
 OMP_NUM_THREADS=2 "$ct" table -q "$tmp/s.ini" --set solver.threads=2 -o "$tmp/t2.csv"
@@ -91,7 +105,7 @@ frob = 1|frob: unknown key
 BAD
 printf '[tabel]\nx = 1\n' >>"$tmp/b1.ini"
 expect 2 "unknown section" -- "$ct" table "$tmp/b1.ini"
-has err "unknown section (known: surface, body, material, impact, solver, output, ensemble, table, fit)" "section list"
+has err "unknown section (did you mean \[table\]?) (known: surface, body, material, impact, solver, output, ensemble, table, fit)" "section list"
 # one speed in [impact] and no table.V_star: no range
 sed 's/^V_star = .*/V_star = 1e-3/' "$tmp/s.ini" >"$tmp/one.ini"
 expect 2 "no range" -- "$ct" table "$tmp/one.ini"

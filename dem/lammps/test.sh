@@ -47,6 +47,8 @@ else
     trap 'rm -rf "$work"' EXIT
 fi
 
+status=0
+
 # ---- build ----
 t=$(date +%s.%N)
 "$here/build.sh" "$work/build"
@@ -61,9 +63,38 @@ t=$(date +%s.%N)
 "$cantact" table scripts/scenes/dem_table.ini -o "$work/e_table.csv"
 echo "test.sh: table: $(elapsed "$t") s"
 
+# ---- the example, from another directory: found, its log where asked, nothing left behind ----
+t=$(date +%s.%N)
+mkdir "$work/elsewhere"
+had_log=0
+[ ! -e "$repo/log.lammps" ] || had_log=1
+ratio() { sed -n 's/^rebound ratio (v2 - v1) \/ v = //p' "$1"; }
+(cd "$work/elsewhere" && "$here/two_spheres.sh" ../e_table.csv --lib "$work/build/libcantact_lammps.so" \
+    --log "$work/two.log" >"$work/two.out" 2>&1) || { echo "test.sh: FAIL: two_spheres.sh from another directory" >&2; status=1; }
+lmp -nocite -log none -in dem/lammps/in.two_spheres -var table "$work/e_table.csv" \
+    -var lib "$work/build/libcantact_lammps.so" >"$work/root.out" 2>&1
+r1=$(ratio "$work/two.out") r2=$(ratio "$work/root.out") r3=$(ratio "$work/two.log")
+if [ -n "$r1" ] && [ "$r1" = "$r2" ] && [ "$r1" = "$r3" ] && [ -z "$(ls -A "$work/elsewhere")" ] &&
+    { [ "$had_log" = 1 ] || [ ! -e "$repo/log.lammps" ]; }; then
+    echo "test.sh: the example from another directory: rebound ratio $r1 as from the root, its log where asked, no log.lammps left"
+else
+    echo "test.sh: FAIL: the example from another directory: ratios '$r1' '$r2' (root) '$r3' (log); left: $(ls -A "$work/elsewhere")" >&2
+    status=1
+fi
+# lmp itself from elsewhere: the missing file named, not lmp's bare "Could not open Python file"
+(cd "$work/elsewhere" && lmp -nocite -log none -in "$here/in.two_spheres" -var table ../e_table.csv \
+    -var lib "$work/build/libcantact_lammps.so" >"$work/bare.out" 2>&1) || true
+if grep -q "in.two_spheres: dem/lammps/cantact_load.py not found" "$work/bare.out" &&
+    ! grep -q "Could not open Python file" "$work/bare.out"; then
+    echo "test.sh: lmp -in in.two_spheres from elsewhere names the loader it cannot find"
+else
+    echo "test.sh: FAIL: lmp from elsewhere: $(tail -n 3 "$work/bare.out")" >&2
+    status=1
+fi
+echo "test.sh: the example: $(elapsed "$t") s"
+
 # ---- the collisions ----
 t=$(date +%s.%N)
-status=0
 python3 "$here/collide_test.py" --lmp lmp --lib "$work/build/libcantact_lammps.so" \
     --loader "$here/cantact_load.py" --table "$work/e_table.csv" \
     --e-of-speed "$work/e_of_speed" --work "$work/runs" || status=$?

@@ -15,6 +15,7 @@ from ._ffi import ffi, lib
 from ._bodies import body_of, is_default
 from ._results import Restitution, finite_info
 from ._surfaces import Surface, cantor_params, random_cantor, surface_of
+from ._work import Work
 
 # The paper's laws by the library's names (ct_law_name).
 LAWS = {ffi.string(lib.ct_law_name(k)).decode(): k
@@ -74,7 +75,7 @@ def _speeds(surface, V_star, mass, speed, keys, name="V_star"):
 
 def restitution(surface, V_star=None, *, mass=None, speed=None, body=None, impacts=1,
                 quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True, path="auto",
-                errors="raise", time=False):
+                errors="raise", time=False, progress=None):
     """e and the rest of each impact: for each speed, `impacts` impacts from the virgin surface
     (the plastic strain carried from one to the next). Speeds as V_star (dimensionless) or as
     mass and speed (in the units of the surface's parameters: V* = sqrt(m v^2/(2 l0 E h0));
@@ -86,9 +87,12 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, body=None, impac
     impact); errors="rows" returns failed rows with their status and message instead.
     time=True adds each impact in time (t_contact_over_tau, t_load_over_tau,
     t_unload_over_tau, P_peak_over_PY, e_kinematic, unload_period_over_tau,
-    dem_time_step_over_tau; MODEL.md §11)."""
+    dem_time_step_over_tau; MODEL.md §11). progress: True for a bar on stderr, or a callable
+    progress(done, total) of the speeds done. Ctrl-C stops the sweep within a fraction of a
+    second (KeyboardInterrupt)."""
     surface = surface_of("surface", surface)
     body = body_of("body", body)
+    work = Work(progress, "restitution", "speeds")
     keys = _run_keys("restitution()", RESTITUTION_KEYS, impacts=impacts, quadrature=quadrature,
                      nodes=nodes, tolerance=tolerance, check=check, path=path, errors=errors)
     V = _speeds(surface, V_star, mass, speed, keys)
@@ -110,7 +114,9 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, body=None, impac
         spec.stop_on_error = 0 if solver.skip_failed else 1
         spec.path = solver.path
         spec.dynamics = 1 if time else 0
-        _ok(lib.ct_sweep(b, spec, rows))
+        spec.progress = work.callback
+        spec.interrupt = work.flag
+        work.run(lambda: lib.ct_sweep(b, spec, rows))
         return Restitution(V, impacts, rows, lib.ct_bundle_layer(b), info, surface, bool(time))
 
 
@@ -182,16 +188,19 @@ class Ensemble:
 
 def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisations, first=0,
              impacts=1, quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True,
-             path="auto", threads=0, split="auto", errors="raise"):
+             path="auto", threads=0, split="auto", errors="raise", progress=None):
     """Realisations first .. first + realisations - 1 of a RandomCantor surface, each built,
     swept and dropped by the library (ct_ensemble: the samples do not depend on the thread
     count or the split). errors="raise" raises the lowest failing realisation's error;
     errors="rows" keeps failed samples as NaN with their status. body: the flat strip only
     (None or Flat()): the library's ensemble (ct_ensemble_spec) takes no body, so a curved
     one is refused rather than left out; restitution(RandomCantor(..., realisation=k),
-    body=...) strikes one realisation with it."""
+    body=...) strikes one realisation with it. progress: True for a bar on stderr, or a
+    callable progress(done, total) of the realisations done. Ctrl-C stops it within a
+    fraction of a second (KeyboardInterrupt)."""
     surface = surface_of("surface", surface)
     body = body_of("body", body)
+    work = Work(progress, "ensemble", "realisations")
     ok, why = surface.supports("ensemble")
     if not ok:  # the kind's reason
         raise invalid(f"surface: a {type(surface).__name__} of type = {surface.kind}: {why}")
@@ -221,6 +230,8 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
     spec.stop_on_error = 0 if solver.skip_failed else 1
     spec.threads = solver.threads
     spec.split = keys.values.split
+    spec.progress = work.callback
+    spec.interrupt = work.flag
     nrows = V.size * impacts
     # 3 doubles and a status per sample, in the library and again in the arrays returned
     with memory(f"ensemble: {count * nrows} samples ({count} realisations x {nrows} rows; "
@@ -229,7 +240,7 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
         out = ffi.new("ct_ensemble_samples **")
         _ok(lib.ct_ensemble_samples_alloc(out, first, count, nrows))
         s = ffi.gc(out[0], lib.ct_ensemble_samples_free)
-        _ok(lib.ct_ensemble(spec, s))
+        work.run(lambda: lib.ct_ensemble(spec, s))
         return Ensemble(V, impacts, s, surface._units()["u"])
 
 
@@ -664,16 +675,20 @@ class Table:
 
 def table(surface, V_star=None, *, mass=None, speed=None, body=None, tolerance=1e-6,
           interpolation="monotone_cubic", max_nodes=100000, check_points=16,
-          quadrature="breakpoints", nodes=64, check=True, path="auto"):
+          quadrature="breakpoints", nodes=64, check=True, path="auto", progress=None):
     """e(V*) of the first impact on the virgin surface as a table whose interpolation meets
     `tolerance` (absolute, in e) at every checked point (ct_table_build): V_star = (from, to),
     or mass and speed = (from, to). A mass (with either) sets the table's v_per_V_star =
     sqrt(2 l0 E h0 / m), the impact speed per unit V* with the surface's physical l0, E, h0, as
     `cantact table` writes it from [impact] mass (1 / ct_V_star_of(m, 1, l0, E, h0)). body:
     what strikes the rods (None: the flat strip), as in restitution(). Raises NoConvergence
-    when max_nodes would not do."""
+    when max_nodes would not do. progress: True for a bar on stderr, or a callable
+    progress(done, total) of the exact impacts computed of those planned so far (the total
+    grows as rounds split intervals). Ctrl-C stops the build within a fraction of a second
+    (KeyboardInterrupt)."""
     surface = surface_of("surface", surface)
     body = body_of("body", body)
+    work = Work(progress, "table", "exact impacts")
     keys = _run_keys("table()", TABLE_KEYS, tolerance=tolerance, interpolation=interpolation,
                      max_nodes=max_nodes, check_points=check_points, quadrature=quadrature,
                      nodes=nodes, check=check, path=path)
@@ -694,9 +709,11 @@ def table(surface, V_star=None, *, mass=None, speed=None, body=None, tolerance=1
     spec.check_points = k.check_points
     spec.opts = solver.opts
     spec.path = solver.path
+    spec.progress = work.callback
+    spec.interrupt = work.flag
     b, _ = surface._build(np.array([spec.V_min, spec.V_max]), 1, solver.opts, body=body)
     out = ffi.new("ct_table **")
-    _ok(lib.ct_table_build(out, b, spec))
+    work.run(lambda: lib.ct_table_build(out, b, spec))
     t = Table(ffi.gc(out[0], lib.ct_table_free), spec.tolerance)
     t.header["check_points"] = int(spec.check_points)
     t.header["worst_at_none"] = not math.isfinite(t.info["worst_V_star"])

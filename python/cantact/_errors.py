@@ -6,7 +6,8 @@ raises OutOfMemory naming the size asked for (memory() around the allocations of
 a number the library hands back must be finite where its status says it succeeded
 (_check.finite_result). boundary() wraps every public function and method (__init__.py
 applies it to everything the module exports) and turns whatever escaped those checks into the
-module's classes: MemoryError into OutOfMemory, the errors of a bad argument (TypeError,
+module's classes (an exception of the caller's own progress callback excepted, raised as it
+is): MemoryError into OutOfMemory, the errors of a bad argument (TypeError,
 ValueError, OverflowError, LookupError, ArithmeticError) into InvalidInput (a TypeError into
 InvalidType, an InvalidInput that is a TypeError too), both naming the call."""
 import contextlib
@@ -23,6 +24,7 @@ STATUS_NAMES = {
     lib.CT_ENOCONV: "CT_ENOCONV",
     lib.CT_EIO: "CT_EIO",
     lib.CT_ESKIPPED: "CT_ESKIPPED",
+    lib.CT_EINTR: "CT_EINTR",
 }
 
 
@@ -145,10 +147,14 @@ def boundary(fn, name=None):
             return fn(*args, **kwargs)
         except Error:
             raise
-        except MemoryError as exc:
-            detail = str(exc)
-            raise out_of_memory(f"{name}" + (f" ({detail})" if detail else "")) from None
-        except _ARGUMENT_ERRORS as exc:
+        except BaseException as exc:
+            if getattr(exc, "__cantact_callers__", False):
+                raise  # raised by the caller's own callback (progress): as it is
+            if not isinstance(exc, (MemoryError,) + _ARGUMENT_ERRORS):
+                raise
+            if isinstance(exc, MemoryError):
+                detail = str(exc)
+                raise out_of_memory(f"{name}" + (f" ({detail})" if detail else "")) from None
             cls = InvalidType if isinstance(exc, TypeError) else InvalidInput
             raise cls(lib.CT_EINVAL, f"{name}: {exc} ({type(exc).__name__})") from exc
 

@@ -16,6 +16,7 @@ enum {
     CT_ENOCONV = 4,
     CT_EIO = 5,
     CT_ESKIPPED = 6,
+    CT_EINTR = 7,
 };
 const char *ct_strerror(int status);
 const char *ct_error_message(void);
@@ -213,6 +214,7 @@ typedef struct {
     ct_sweep_path path;
     ct_curve *curve;
     int dynamics;
+    const volatile int *interrupt;
 } ct_sweep_spec;
 int ct_sweep(const ct_bundle *b, const ct_sweep_spec *spec, ct_sweep_row *rows);
 int ct_series_load(const ct_params *p, double u, double *P);
@@ -263,6 +265,7 @@ typedef struct {
     ct_ensemble_split split;
     ct_progress_fn progress;
     void *progress_ctx;
+    const volatile int *interrupt;
 } ct_ensemble_spec;
 typedef struct {
     uint64_t first, count;
@@ -302,6 +305,9 @@ typedef struct {
     size_t check_points;
     ct_impact_opts opts;
     ct_sweep_path path;
+    ct_progress_fn progress;
+    void *progress_ctx;
+    const volatile int *interrupt;
 } ct_table_spec;
 void ct_table_spec_default(ct_table_spec *spec);
 typedef struct ct_table ct_table;

@@ -157,6 +157,7 @@ int main(void)
     FIELD(ct_sweep_spec, path);
     FIELD(ct_sweep_spec, curve);
     FIELD(ct_sweep_spec, dynamics);
+    FIELD(ct_sweep_spec, interrupt);
     SIZE(ct_random_cantor);
     FIELD(ct_random_cantor, params);
     FIELD(ct_random_cantor, dist);
@@ -178,6 +179,7 @@ int main(void)
     FIELD(ct_ensemble_spec, split);
     FIELD(ct_ensemble_spec, progress);
     FIELD(ct_ensemble_spec, progress_ctx);
+    FIELD(ct_ensemble_spec, interrupt);
     SIZE(ct_ensemble_samples);
     FIELD(ct_ensemble_samples, first);
     FIELD(ct_ensemble_samples, count);
@@ -210,6 +212,9 @@ int main(void)
     FIELD(ct_table_spec, check_points);
     FIELD(ct_table_spec, opts);
     FIELD(ct_table_spec, path);
+    FIELD(ct_table_spec, progress);
+    FIELD(ct_table_spec, progress_ctx);
+    FIELD(ct_table_spec, interrupt);
     SIZE(ct_table_info);
     FIELD(ct_table_info, V_star_crit);
     FIELD(ct_table_info, worst_error);

@@ -151,3 +151,18 @@ def test_hostile_round_four():
         cantact.Profile(z=z, dx=1e-6, dy=1e-6, E=2e11, sigma_y=4e8, H=10)
     with pytest.raises(cantact.InvalidInput, match=r"missing: dy\)"):
         cantact.Profile(z=z.reshape(4, 10), dx=1e-6, E=2e11, sigma_y=4e8, H=10)
+
+
+def test_unknown_keys_say_the_nearest():
+    """A slip in a key's name is answered with the nearest key (the library's words, the same as
+    the program's), naming the kinds that take it when the surface's own does not."""
+    with pytest.raises(cantact.InvalidInput, match=r"surface\.fzz: unknown key \(did you mean "
+                                                   r"surface\.fz\?\)"):
+        cantact.Surface("cantor", fx=1.5, fzz=1.3, H=10, E=500)
+    with pytest.raises(cantact.InvalidInput, match=r"surface\.uint: unknown key \(did you mean "
+                                                   r"surface\.unit\? only for surface\.type = "
+                                                   r"profile or rods\)"):
+        cantact.Surface("cantor", uint="mm")
+    with pytest.raises(cantact.InvalidInput) as info:
+        cantact.Surface("cantor", colour="red")
+    assert "did you mean" not in str(info.value)

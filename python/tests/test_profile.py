@@ -280,3 +280,19 @@ def test_levelling_that_points_cannot_determine():
     # the same grid levelled by its mean only is a surface
     p = cantact.Profile(z=z, dx=1.0, dy=1.0, E=2.0, sigma_y=1.0, H=2.0, detrend="mean")
     assert p.stats["Rt"] > 0
+
+
+def test_micro_sign_is_u(tmp_path):
+    """unit="µm" (the micro sign) and "μm" (the Greek mu) are um, as typed where µm is printed;
+    without a unit the message names the key that gives it."""
+    x = np.linspace(0.0, 100.0, 201)
+    z = 0.3 * np.sin(x / 3.0) + 0.1 * np.cos(x * 1.7)
+    path = tmp_path / "p.txt"
+    np.savetxt(path, np.column_stack([x, z]))
+    r = {}
+    for unit in ("um", "µm", "μm"):
+        p = cantact.Profile(str(path), E=2e11, sigma_y=4e8, H=10, unit=unit)
+        r[unit] = cantact.restitution(p, V_star=[1e-3, 1e-2]).e
+    assert np.array_equal(r["um"], r["µm"]) and np.array_equal(r["um"], r["μm"])
+    with pytest.raises(cantact.InvalidInput, match=r"give surface\.unit \(m, mm, um or nm"):
+        cantact.Profile(str(path), E=2e11, sigma_y=4e8, H=10)

@@ -156,7 +156,7 @@ def test_failed_rows_when_asked():
                                 time=time)
         assert (r.message[[0, 2]] == "").all()
         assert r.message[1, 0] == ("impact energy 500 reaches u_max >= H* = 10 (the layer would be "
-                                   "crushed, strains >= 1): outside the model; lower V* or raise H")
+                                   "crushed, strains >= 1): outside the model; lower the speed or raise H")
         assert r.message[1, 1] == "not run: impact 1 of V* = 1 failed"
 
 

@@ -4,6 +4,8 @@
 #include "output.h"
 #include "ranks.h"
 
+#include <ctype.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -19,6 +21,46 @@ void ct_cli_fail(const char *fmt, ...)
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     fprintf(stderr, "cantact: %s\n", msg);
+}
+
+void ct_cli_fail_scene(const ct_scene *sc, int st, const char *msg)
+{
+    if (!sc || !(sc->mass > 0.0)) {
+        ct_cli_fail("%s", msg);
+        return;
+    }
+    /* the V* the message names, also as the speed the scene gave (speed = V* / v_per_V*); or
+     * the impact energy it names [the layer's units], with both */
+    char out[1024];
+    const char *at = strstr(msg, "V* = "), *energy = strstr(msg, "impact energy ");
+    const double per = ct_speed_to_V_star(&sc->scales, sc->mass, 1.0);
+    size_t n = 0;
+    char *end;
+    if (at && per > 0.0) {
+        const double V = strtod(at + 5, &end);
+        if (end != at + 5 && isfinite(V)) {
+            n = (size_t)snprintf(out, sizeof out, "%.*simpact speed %.6g m/s (V* = %.*s)",
+                                 (int)(at - msg), msg, V / per, (int)(end - at - 5), at + 5);
+            msg = end;
+        }
+    } else if (energy && per > 0.0) {
+        const double W = strtod(energy + 14, &end);
+        const double V = sqrt(W / sc->scales.energy_scale);
+        if (end != energy + 14 && isfinite(V) && V > 0.0) {
+            n = (size_t)snprintf(out, sizeof out, "%.*s (impact speed %.6g m/s, V* = %.6g)",
+                                 (int)(end - msg), msg, V / per, V);
+            msg = end;
+        }
+    }
+    if (n < sizeof out)
+        n += (size_t)snprintf(out + n, sizeof out - n, "%s", msg);
+    /* a crushed layer in SI units: most often E given in GPa or MPa, read in Pa */
+    if (st == CT_ERANGE && strstr(msg, "would be crushed") && n < sizeof out)
+        snprintf(out + n, sizeof out - n,
+                 "; with mass and speeds in SI units (kg, m/s) material.E = %g is read in Pa: "
+                 "check its unit",
+                 sc->scales.physical.E);
+    ct_cli_fail("%s", out);
 }
 
 int ct_cli_status_exit(int st)
@@ -39,6 +81,49 @@ static const ct_opt *find_opt(const ct_opt *opts, const char *name)
         if (!strcmp(o->name, name))
             return o;
     return NULL;
+}
+
+/* The key a "section.key=value" override sets, trimmed, into buf ("" when malformed: the scene
+ * says so). */
+static void override_key(const char *set, char *buf, size_t len)
+{
+    const char *eq = strchr(set, '=');
+    const char *a = set, *b = eq ? eq : set;
+    while (a < b && isspace((unsigned char)*a))
+        a++;
+    while (b > a && isspace((unsigned char)b[-1]))
+        b--;
+    snprintf(buf, len, "%.*s", (int)(b - a), a);
+}
+
+/* How the user wrote override k: "--set surface.fz=1.6", "-o out.csv", "--unit um". */
+static void override_shown(const ct_args *a, size_t k, char *buf, size_t len)
+{
+    const char *w = a->set_where[k], *eq = strchr(a->sets[k], '=');
+    if (!strcmp(w, "--set") || !eq)
+        snprintf(buf, len, "--set %s", a->sets[k]);
+    else
+        snprintf(buf, len, "%s %s", w, eq + 1);
+}
+
+/* Every key once on the command line (--set, -o, a subcommand's options), as in a scene file: a
+ * second one is refused, naming both. -1, or EXIT_USAGE. */
+static int repeated_keys(const ct_args *a)
+{
+    for (size_t j = 1; j < a->nsets; j++) {
+        char kj[160], ki[160], sj[300], si[300];
+        override_key(a->sets[j], kj, sizeof kj);
+        for (size_t i = 0; kj[0] && i < j; i++) {
+            override_key(a->sets[i], ki, sizeof ki);
+            if (strcmp(ki, kj))
+                continue;
+            override_shown(a, j, sj, sizeof sj);
+            override_shown(a, i, si, sizeof si);
+            ct_cli_fail("%s: %s given twice on the command line (also by %s)", sj, kj, si);
+            return EXIT_USAGE;
+        }
+    }
+    return -1;
 }
 
 int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_opt *opts,
@@ -73,6 +158,10 @@ int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_o
             a->set_where[a->nsets] = "--set";
             a->sets[a->nsets++] = s + 6;
         } else if (!strcmp(s, "-o")) {
+            if (output) {
+                ct_cli_fail("-o %s: the output given twice (also -o %s)", argv[k + 1], output);
+                return EXIT_USAGE;
+            }
             output = argv[++k]; /* applied last, as a --set output.file */
         } else if (o && o->key) {
             const char *v = argv[++k];
@@ -88,6 +177,12 @@ int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_o
         } else if (o) {
             if (a->nextra == sizeof a->extra_name / sizeof a->extra_name[0]) {
                 ct_cli_fail("%s: too many options", cmd);
+                return EXIT_USAGE;
+            }
+            const char *before = ct_args_extra(a, o->name);
+            if (before) { /* once, as every key */
+                ct_cli_fail("%s %s: %s given twice on the command line (also %s %s)", o->name,
+                            argv[k + 1], o->name, o->name, before);
                 return EXIT_USAGE;
             }
             a->extra_name[a->nextra] = o->name;
@@ -116,7 +211,7 @@ int ct_args_parse(ct_args *a, int argc, char **argv, const char *cmd, const ct_o
         a->set_where[a->nsets] = "-o";
         a->sets[a->nsets++] = set;
     }
-    return -1;
+    return repeated_keys(a);
 }
 
 void ct_args_free(ct_args *a)

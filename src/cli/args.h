@@ -44,6 +44,11 @@ void ct_cli_fail(const char *fmt, ...)
     __attribute__((format(printf, 1, 2)))
 #endif
     ;
+/* A library failure of a prepared scene's computation, one line as ct_cli_fail: in a scene
+ * given by mass and speed, the V* it names also as the impact speed in m/s, and a crushed
+ * layer adds the unit material.E is read in (E given in GPa gives speeds a million times too
+ * strong). */
+void ct_cli_fail_scene(const ct_scene *sc, int st, const char *msg);
 /* Exit status of a library status: 2 for bad input, 1 for a failed computation. */
 int ct_cli_status_exit(int st);
 

@@ -113,13 +113,13 @@ static int report(ct_ens_outputs *o, const ct_scene *sc, const ct_ensemble_sampl
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
     ct_ens_table t;
     if (st) {
-        ct_cli_fail("%s", err);
+        ct_cli_fail_scene(sc, st, err);
         return ct_cli_status_exit(st);
     }
     if (!sc->skip_failed && all->failed_realisation != UINT64_MAX) {
         /* solver.on_error = stop: the lowest failing realisation, then row */
         const size_t k = (size_t)(all->failed_realisation - all->first) * nrows + all->failed_row;
-        ct_cli_fail("%s", all->message);
+        ct_cli_fail_scene(sc, all->status[k], all->message);
         return ct_cli_status_exit(all->status[k]);
     }
     if (table_from_samples(&t, all, sc->scales.layer.h0)) {

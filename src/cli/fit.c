@@ -6,6 +6,7 @@
 #include "args.h"
 #include "output.h"
 
+#include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -57,6 +58,45 @@ static int band(ct_surface *s, const char *opt, const char *v, const char *lo_ke
     return 0;
 }
 
+/* The options of a PROFILE and the keys they set ("--unit" for "surface.unit"). */
+static const ct_opt fit_opts[] = {
+    {"--unit", "surface.unit"},
+    {"--x-unit", "surface.x_unit"},
+    {"--z-unit", "surface.z_unit"},
+    {"--spacing", "surface.spacing"},
+    {"--detrend", "surface.detrend"},
+    {"--dimension", "fit.dimension"},
+    {"--trim", NULL},
+    {"--depths", NULL},
+    {"--lags", NULL},
+    {NULL, NULL},
+};
+
+/* A message about a PROFILE given on the command line: the keys its options set named as those
+ * options ("give --unit (m, mm, um or nm; ...)"), as the user typed them. */
+static void fail_in_options(const char *msg)
+{
+    char out[1024];
+    size_t n = 0;
+    for (const char *p = msg; *p && n + 1 < sizeof out;) {
+        const ct_opt *hit = NULL;
+        for (const ct_opt *o = fit_opts; o->name && !hit; o++) {
+            const size_t len = o->key ? strlen(o->key) : 0;
+            if (len && !strncmp(p, o->key, len) && !isalnum((unsigned char)p[len]) &&
+                p[len] != '_' && (p == msg || !isalnum((unsigned char)p[-1])))
+                hit = o;
+        }
+        if (hit) {
+            n += (size_t)snprintf(out + n, sizeof out - n, "%s", hit->name);
+            p += strlen(hit->key);
+        } else {
+            out[n++] = *p++;
+        }
+    }
+    out[n < sizeof out ? n : sizeof out - 1] = '\0';
+    ct_cli_fail("%s", out);
+}
+
 /* The profile surface of a file and the options; its output path in *out. */
 static int file_surface(const ct_args *a, const char *file, ct_surface **s, const char **out)
 {
@@ -93,7 +133,7 @@ static int file_surface(const ct_args *a, const char *file, ct_surface **s, cons
         ((v = ct_args_extra(a, "--lags")) && band(*s, "--lags", v, "lag_lo", "lag_hi")))
         return EXIT_USAGE;
     if ((st = ct_surface_check(*s, file)) || (st = ct_surface_prepare(*s, NULL))) {
-        ct_cli_fail("%s", ct_error_message());
+        fail_in_options(ct_error_message());
         return ct_cli_status_exit(st);
     }
     return -1;
@@ -101,24 +141,12 @@ static int file_surface(const ct_args *a, const char *file, ct_surface **s, cons
 
 int ct_cli_fit(int argc, char **argv)
 {
-    static const ct_opt opts[] = {
-        {"--unit", "surface.unit"},
-        {"--x-unit", "surface.x_unit"},
-        {"--z-unit", "surface.z_unit"},
-        {"--spacing", "surface.spacing"},
-        {"--detrend", "surface.detrend"},
-        {"--dimension", "fit.dimension"},
-        {"--trim", NULL},
-        {"--depths", NULL},
-        {"--lags", NULL},
-        {NULL, NULL},
-    };
     ct_args a;
     ct_scene sc;
     memset(&sc, 0, sizeof sc);
     ct_surface *s = NULL;
     const char *out_path = "-";
-    int rc = ct_args_parse(&a, argc, argv, "fit", opts, 1);
+    int rc = ct_args_parse(&a, argc, argv, "fit", fit_opts, 1);
     if (rc < 0 && a.help) {
         fputs(fit_help, stdout);
         rc = EXIT_DONE;
@@ -159,6 +187,11 @@ int ct_cli_fit(int argc, char **argv)
         ct_out_abort(&out);
         rc = ct_cli_status_exit(st);
     }
+    ct_profile_fit fit;
+    char warning[512];
+    if (rc < 0 && !ct_surface_profile(s, NULL, &fit) &&
+        ct_profile_fit_warning(&fit, warning, sizeof warning))
+        ct_cli_fail("warning: %s", warning); /* said even under -q: the table is suspect */
     if (rc < 0)
         rc =
             ct_out_commit(&out, err, sizeof err) ? (ct_cli_fail("%s", err), EXIT_USAGE) : EXIT_DONE;

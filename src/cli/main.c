@@ -71,7 +71,7 @@ static const char *run_help_tail =
     "speed, each said in a note on stderr.\n"
     "\n"
     "Options:\n"
-    "  --set section.key=value   override a scene key (repeatable)\n"
+    "  --set section.key=value   override a scene key (each once; key= unsets it)\n"
     "  -o FILE                   same as --set output.file=FILE ('-' for stdout)\n"
     "  -q                        no summary on stderr\n"
     "  --realisations a:b        ensembles: only realisations a .. b-1, written as the\n"

@@ -534,21 +534,33 @@ void ct_progress_start(ct_progress *p, size_t total)
     p->total = total;
     p->done = 0;
     p->last_shown = -1;
+    p->unit = NULL;
+}
+
+void ct_progress_to(ct_progress *p, size_t done, size_t total)
+{
+    const int grew = total != p->total;
+    p->done = done;
+    p->total = total;
+    if (!p->enabled || !total)
+        return;
+    int pct = (int)(100.0 * (double)done / (double)total);
+    if (pct == p->last_shown && !grew)
+        return;
+    p->last_shown = pct;
+    int width = 40, fill = pct * width / 100;
+    if (p->unit) /* a total that grows: the counts, no bar that would fill and empty again */
+        fprintf(stderr, "\r%zu of %zu %s", p->done, p->total, p->unit);
+    else
+        fprintf(stderr, "\r[%.*s%*s] %3d%% (%zu/%zu)", fill,
+                "########################################", width - fill, "", pct, p->done,
+                p->total);
+    fflush(stderr);
 }
 
 void ct_progress_step(ct_progress *p)
 {
-    p->done++;
-    if (!p->enabled)
-        return;
-    int pct = (int)(100.0 * (double)p->done / (double)p->total);
-    if (pct == p->last_shown)
-        return;
-    p->last_shown = pct;
-    int width = 40, fill = pct * width / 100;
-    fprintf(stderr, "\r[%.*s%*s] %3d%% (%zu/%zu)", fill, "########################################",
-            width - fill, "", pct, p->done, p->total);
-    fflush(stderr);
+    ct_progress_to(p, p->done + 1, p->total);
 }
 
 void ct_progress_end(ct_progress *p)

@@ -49,14 +49,20 @@ int ct_out_is_input(const char *output, const char *input);
 /* 1 when both paths name one existing file (hard links and symbolic links included). */
 int ct_out_same_file(const char *a, const char *b);
 
+/* A progress bar on stderr, drawn only when stderr is a terminal (DESIGN.md: long work shows
+ * progress there and nothing otherwise). */
 typedef struct {
     int enabled;
     size_t total, done;
     int last_shown;
+    const char *unit; /* NULL: a bar of done/total; else for a total that grows, the counts
+                         "done of total unit" */
 } ct_progress;
 
 void ct_progress_start(ct_progress *p, size_t total);
 void ct_progress_step(ct_progress *p);
+/* done of total (a total that grows is redrawn at once); a no-op off a terminal */
+void ct_progress_to(ct_progress *p, size_t done, size_t total);
 void ct_progress_end(ct_progress *p);
 
 #endif

@@ -212,7 +212,7 @@ static ct_sweep_spec spec_of(const ct_scene *sc, ct_progress *prog)
         .impacts = sc->impacts,
         .opts = sc->opts,
         .stop_on_error = !sc->skip_failed,
-        .progress = show_progress,
+        .progress = prog->enabled ? show_progress : NULL, /* a bar on a terminal only */
         .progress_ctx = prog,
         .path = sc->path,
         /* with a history too: an impact whose motion fails is then a failed row (skipped
@@ -388,7 +388,7 @@ static int run_bounce(ct_scene *sc, int quiet)
     ct_scene_request(sc, 0, &req);
     if ((st = ct_surface_build(sc->surface, &req, &b, &info))) {
         ct_out_abort(&out);
-        ct_cli_fail("%s", ct_error_message());
+        ct_cli_fail_scene(sc, st, ct_error_message());
         return ct_cli_status_exit(st);
     }
     if (!quiet) {
@@ -402,7 +402,7 @@ static int run_bounce(ct_scene *sc, int quiet)
     ct_bundle_free(b);
     if (st) {
         ct_out_abort(&out);
-        ct_cli_fail("%s", err);
+        ct_cli_fail_scene(sc, st, err);
         return ct_cli_status_exit(st);
     }
     if (ct_out_commit(&out, err, sizeof err)) {
@@ -532,7 +532,7 @@ static int sweep_and_write(ct_scene *sc, output_list *outs, ct_bundle *b, int qu
     if (!st && fp)
         st = ct_surface_write_profile(sc->surface, b, fp);
     if (st) {
-        ct_cli_fail("%s", ct_error_message());
+        ct_cli_fail_scene(sc, st, ct_error_message());
         free(rows);
         return ct_cli_status_exit(st);
     }
@@ -603,7 +603,7 @@ static int sweep_streamed(ct_scene *sc, output_list *outs, const ct_bundle *b, i
     ct_cli_notes(sc->surface, quiet); /* (no kind's after-sweep step: what needs it is not
                                         streamed) */
     if (st) {
-        ct_cli_fail("%s", ct_error_message());
+        ct_cli_fail_scene(sc, st, ct_error_message());
         return ct_cli_status_exit(st);
     }
     tally_notes(&c.t, sc, ct_bundle_size(b), quiet);
@@ -699,7 +699,7 @@ static int run_sweep(ct_scene *sc, int quiet)
     }
     ct_scene_request(sc, !!(sc->what & CT_OUT_PROFILE), &req);
     if ((st = ct_surface_build(sc->surface, &req, &b, &info))) {
-        ct_cli_fail("%s", ct_error_message());
+        ct_cli_fail_scene(sc, st, ct_error_message());
         close_outputs(&outs);
         return ct_cli_status_exit(st);
     }

@@ -166,6 +166,32 @@ static int section_known(const char *section)
     return 0;
 }
 
+/* " did you mean X?" for the known key (any kind's or the CLI's: "surface.fz") or, key NULL,
+ * the known section ("[surface]") nearest to what was given (ct_nearest_name); "" when none is
+ * that close. */
+static void did_you_mean(const char *section, const char *key, char *buf, size_t len)
+{
+    enum { CAP = 512 };
+    static _Thread_local char names[CAP][80];
+    const char *list[CAP];
+    char given[160];
+    size_t n = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; any_row(i) && n < CAP; i++) {
+        const ct_key *r = any_row(i);
+        if (key)
+            snprintf(names[n], sizeof names[n], "%s.%s", r->section, r->name);
+        else
+            snprintf(names[n], sizeof names[n], "%s", r->section);
+        list[n] = names[n];
+        n++;
+    }
+    snprintf(given, sizeof given, key ? "%s.%s" : "%s", section, key ? key : "");
+    const size_t k = ct_nearest_name(given, list, n);
+    if (k < n)
+        snprintf(buf, len, key ? " (did you mean %s?)" : " (did you mean [%s]?)", list[k]);
+}
+
 static entry *find_entry(parse_state *s, const char *section, const char *key)
 {
     for (size_t k = 0; k < s->n; k++)
@@ -177,16 +203,20 @@ static entry *find_entry(parse_state *s, const char *section, const char *key)
 static int store(parse_state *s, const char *section, const char *key, const char *value,
                  const char *where)
 {
-    char known[200];
+    char known[200], hint[200];
     if (!section_known(section)) {
         section_list(known, sizeof known);
+        did_you_mean(section, NULL, hint, sizeof hint);
         if (strcmp(where, "--set"))
-            return scene_error(CT_EINVAL, "%s:%d: [%s]: unknown section (known: %s)", s->name,
-                               s->section_line, section, known);
-        return scene_error(CT_EINVAL, "--set: [%s]: unknown section (known: %s)", section, known);
+            return scene_error(CT_EINVAL, "%s:%d: [%s]: unknown section%s (known: %s)", s->name,
+                               s->section_line, section, hint, known);
+        return scene_error(CT_EINVAL, "--set: [%s]: unknown section%s (known: %s)", section, hint,
+                           known);
     }
-    if (!key_known(section, key) || strlen(key) >= sizeof s->entries[0].key)
-        return scene_error(CT_EINVAL, "%s: %s.%s: unknown key", where, section, key);
+    if (!key_known(section, key) || strlen(key) >= sizeof s->entries[0].key) {
+        did_you_mean(section, key, hint, sizeof hint);
+        return scene_error(CT_EINVAL, "%s: %s.%s: unknown key%s", where, section, key, hint);
+    }
     entry *e = find_entry(s, section, key);
     if (e && strcmp(where, "--set") && strncmp(e->where, "--set", 5))
         return scene_error(CT_EINVAL, "%s: %s.%s: duplicate key (first set at %s)", where, section,
@@ -280,9 +310,10 @@ static char *section_line(parse_state *s, const char *p, size_t n, char *buf, in
     memcpy(name, a, (size_t)(b - a));
     name[b - a] = '\0';
     if (!section_known(name)) {
-        char msg[400], known[200];
+        char msg[500], known[200], hint[200];
         section_list(known, sizeof known);
-        snprintf(msg, sizeof msg, "%%s:%%d: [%%s]: unknown section (known: %s)", known);
+        did_you_mean(name, NULL, hint, sizeof hint);
+        snprintf(msg, sizeof msg, "%%s:%%d: [%%s]: unknown section%s (known: %s)", hint, known);
         return reader_error(s, msg, name);
     }
     s->section_line = s->line;
@@ -621,6 +652,32 @@ static void trim_copy(char *dst, size_t cap, const char *begin, const char *end)
     dst[n] = '\0';
 }
 
+/* --set section.key= (an empty value): the key as if the scene had not given it, so that its
+ * default or another key applies (a scene given by mass and velocity switched to V*). A key
+ * the scene does not give stays unset; an unknown one is refused as by store. */
+static int unset(parse_state *s, const char *section, const char *key)
+{
+    char known[200], hint[200];
+    if (!section_known(section)) {
+        section_list(known, sizeof known);
+        did_you_mean(section, NULL, hint, sizeof hint);
+        return scene_error(CT_EINVAL, "--set: [%s]: unknown section%s (known: %s)", section, hint,
+                           known);
+    }
+    if (!key_known(section, key)) {
+        did_you_mean(section, key, hint, sizeof hint);
+        return scene_error(CT_EINVAL, "--set: %s.%s: unknown key%s", section, key, hint);
+    }
+    entry *e = find_entry(s, section, key);
+    if (e) {
+        free(e->value);
+        const size_t k = (size_t)(e - s->entries);
+        memmove(e, e + 1, (s->n - k - 1) * sizeof *e);
+        s->n--;
+    }
+    return CT_OK;
+}
+
 static int apply_overrides(parse_state *s, const char *const *overrides, size_t n)
 {
     for (size_t k = 0; k < n; k++) {
@@ -638,7 +695,7 @@ static int apply_overrides(parse_state *s, const char *const *overrides, size_t 
         trim_copy(section, sizeof section, o, dot);
         trim_copy(key, sizeof key, dot + 1, eq);
         trim_copy(value, vlen, eq + 1, eq + 1 + strlen(eq + 1));
-        int st = store(s, section, key, value, "--set");
+        int st = value[0] ? store(s, section, key, value, "--set") : unset(s, section, key);
         free(value);
         if (st)
             return st;

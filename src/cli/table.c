@@ -23,7 +23,8 @@ const char *const ct_cli_table_help =
     "middles in ln V*) until the interpolation reproduces the exact model within [table]\n"
     "tolerance at every checked point (check_points inside each interval); V*_c is a node and\n"
     "e = 1 exactly below it. The worst error found is printed and written in the header. The\n"
-    "run fails (exit 1, no output) rather than write a table that misses its tolerance.\n"
+    "run fails (exit 1, no output) rather than write a table that misses its tolerance. On a\n"
+    "terminal, stderr shows the exact impacts computed of those planned so far.\n"
     "\n"
     "Writes CSV: '# key = value' header lines (scene, surface, units, interpolation and its\n"
     "formula, V_star_crit, tolerance, worst_error, v_per_V_star when [impact] gives mass),\n"
@@ -38,13 +39,19 @@ const char *const ct_cli_table_help =
     "[impact] impacts is not used: a table is of the first impact on the virgin surface.\n"
     "\n"
     "Options:\n"
-    "  --set section.key=value   override a scene key (repeatable)\n"
+    "  --set section.key=value   override a scene key (each once; key= unsets it)\n"
     "  -o FILE                   same as --set output.file=FILE ('-' for stdout)\n"
     "  -q                        no summary on stderr\n"
     "  -h, --help                this help\n";
 
+static void show_progress(size_t done, size_t total, void *ctx)
+{
+    ct_progress_to(ctx, done, total);
+}
+
 /* The surface planned for the table's range (depth auto from its smallest speed, the rods its
- * largest reaches) and the table built on it. */
+ * largest reaches) and the table built on it, its progress (exact impacts computed of those
+ * planned so far) on a terminal. */
 static int build_table(const ct_scene *sc, ct_bundle **b, ct_table **t, ct_plan_info *info)
 {
     double range[2] = {sc->table_V_min, sc->table_V_max};
@@ -64,7 +71,18 @@ static int build_table(const ct_scene *sc, ct_bundle **b, ct_table **t, ct_plan_
     spec.opts = sc->opts;
     spec.path = sc->path;
     int st = ct_surface_build(sc->surface, &req, b, info);
-    return st ? st : ct_table_build(t, *b, &spec);
+    if (st)
+        return st;
+    ct_progress prog;
+    ct_progress_start(&prog, 2);
+    prog.unit = "exact impacts (more while intervals fail)";
+    if (prog.enabled) {
+        spec.progress = show_progress;
+        spec.progress_ctx = &prog;
+    }
+    st = ct_table_build(t, *b, &spec);
+    ct_progress_end(&prog);
+    return st;
 }
 
 int ct_cli_table(int argc, char **argv)
@@ -102,7 +120,7 @@ int ct_cli_table(int argc, char **argv)
     }
     opened = 1;
     if ((st = build_table(&sc, &b, &t, &info))) {
-        ct_cli_fail("%s", ct_error_message());
+        ct_cli_fail_scene(&sc, st, ct_error_message());
         rc = ct_cli_status_exit(st);
         goto done;
     }

@@ -30,6 +30,51 @@ int ct_word_index(const char *words, const char *word)
     }
 }
 
+/* Edit distance of a and b (insertions, deletions, substitutions and swaps of neighbours each
+ * count 1: the optimal string alignment distance), or cap when it is at least cap. */
+static size_t edit_distance(const char *a, const char *b, size_t cap)
+{
+    const size_t n = strlen(a), m = strlen(b);
+    if (n > 62 || m > 62 || (n > m ? n - m : m - n) >= cap)
+        return cap;
+    size_t d[64][64];
+    for (size_t i = 0; i <= n; i++)
+        d[i][0] = i;
+    for (size_t j = 0; j <= m; j++)
+        d[0][j] = j;
+    for (size_t i = 1; i <= n; i++)
+        for (size_t j = 1; j <= m; j++) {
+            size_t best = d[i - 1][j - 1] + (a[i - 1] != b[j - 1]);
+            best = d[i - 1][j] + 1 < best ? d[i - 1][j] + 1 : best;
+            best = d[i][j - 1] + 1 < best ? d[i][j - 1] + 1 : best;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+                d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    return d[n][m] < cap ? d[n][m] : cap;
+}
+
+size_t ct_nearest_name(const char *given, const char *const *names, size_t n)
+{
+    if (!given || !names)
+        return n;
+    /* a slip: one edit in a short name (its last part, after a dot), two in a longer one */
+    const char *dot = strrchr(given, '.');
+    const size_t tail = strlen(dot ? dot + 1 : given), allowed = tail <= 3 ? 1 : 2;
+    size_t best = n, best_d = allowed + 1;
+    for (size_t k = 0; k < n; k++) {
+        if (!names[k] || !strcmp(names[k], given))
+            continue;
+        const size_t d = edit_distance(given, names[k], best_d);
+        if (d < best_d) {
+            best_d = d;
+            best = k;
+        }
+    }
+    return best;
+}
+
 /* "a, b or c" from "a|b|c" */
 static void words_list(const char *words, char *buf, size_t len)
 {
@@ -152,6 +197,15 @@ static int speeds_range(const char *v, ct_speeds *out)
     const double from = ends[0], to = ends[1];
     if (!(from > 0.0) || !(to > 0.0))
         return ct_error_set(CT_EINVAL, "from and to must be > 0");
+    /* one rule for every range (table.V_star's too): it runs upwards */
+    if (to == from && cnt > 1)
+        return ct_error_set(CT_EINVAL, "expected from:to:count[:log] with 0 < from < to (or one "
+                                       "speed: count 1)");
+    if (to < from)
+        return ct_error_set(CT_EINVAL,
+                            "expected from:to:count[:log] with 0 < from < to: a range runs "
+                            "upwards (%s:%s:%s%s; speeds in another order as a list a, b, c)",
+                            parts[1], parts[0], parts[2], logscale ? ":log" : "");
     double *vals = malloc((size_t)cnt * sizeof(double));
     if (!vals)
         return ct_error_set(CT_ENOMEM, "out of memory");
@@ -211,6 +265,10 @@ static int parse_range2(const ct_key *row, const char *v, double *out)
         return ct_error_set(CT_EINVAL, "expected from:to (two numbers, 0 < from < to)");
     if (!read_number(parts[0], &a, &why) || !read_number(parts[1], &b, &why))
         return ct_error_set(CT_EINVAL, "%s", why);
+    if (a > 0.0 && b > 0.0 && b < a)
+        return ct_error_set(CT_EINVAL,
+                            "expected from:to with 0 < from < to: a range runs upwards (%s:%s)",
+                            parts[1], parts[0]);
     if (!(a > 0.0 && b > a))
         return ct_error_set(CT_EINVAL, "expected from:to with 0 < from < to");
     out[0] = a;
@@ -269,6 +327,27 @@ static int parse_words(const ct_key *row, const char *v, unsigned *out)
     return CT_OK;
 }
 
+/* A word with the micro sign (U+00B5) or the Greek small mu (U+03BC), in UTF-8, spelt with u
+ * as the words are ("µm" is "um"): 1 when it held one (and fits). */
+static int micro_as_u(const char *v, char *buf, size_t len)
+{
+    size_t n = 0;
+    int found = 0;
+    for (const unsigned char *p = (const unsigned char *)v; *p; p++) {
+        if (n + 2 > len)
+            return 0;
+        if ((p[0] == 0xC2 && p[1] == 0xB5) || (p[0] == 0xCE && p[1] == 0xBC)) {
+            buf[n++] = 'u';
+            p++;
+            found = 1;
+        } else {
+            buf[n++] = (char)*p;
+        }
+    }
+    buf[n] = '\0';
+    return found;
+}
+
 static int parse_value(const ct_key *row, const char *v, void *at)
 {
     double x;
@@ -311,6 +390,9 @@ static int parse_value(const ct_key *row, const char *v, void *at)
         return CT_OK;
     case CT_KEY_WORD: {
         int w = ct_word_index(row->words, v);
+        char spelt[64];
+        if (w < 0 && micro_as_u(v, spelt, sizeof spelt))
+            w = ct_word_index(row->words, spelt);
         if (w < 0)
             return ct_error_set(CT_EINVAL, "%s", row->range);
         *(int *)at = w;
@@ -405,7 +487,8 @@ void ct_key_describe(const ct_key *row, char *buf, size_t len)
             snprintf(buf, len, "text: %s", row->range);
         break;
     case CT_KEY_SPEEDS:
-        snprintf(buf, len, "numbers > 0: a, b, c or from:to:count[:log]");
+        snprintf(buf, len,
+                 "numbers > 0: a, b, c (in that order) or from:to:count[:log] (from < to)");
         break;
     case CT_KEY_RANGE:
         snprintf(buf, len, "from:to, 0 < from < to");

@@ -196,7 +196,8 @@ static int solve_virgin(const ct_params *p, long N, double W, double *u, double 
         else if (!(*u < p->Hstar))
             st = ct_error_set(CT_ERANGE,
                               "impact energy %.6g reaches u_max >= H* = %g (the layer would be "
-                              "crushed, strains >= 1): outside the model; lower V* or raise H",
+                              "crushed, strains >= 1): outside the model; lower the speed or "
+                              "raise H",
                               W, p->Hstar);
     }
     ct_curve_free(c);

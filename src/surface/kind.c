@@ -244,6 +244,44 @@ static void kinds_with(const char *section, const char *name, char *buf, size_t 
         }
 }
 
+/* " (did you mean section.key?)" for the key of some kind nearest to section.name, the surface's
+ * own kind first (a key of another kind names it); "" when none is that close. */
+static void nearest_key(const ct_kind *own, const char *section, const char *name, char *buf,
+                        size_t len)
+{
+    enum { CAP = 256 };
+    char given[160], names[CAP][80];
+    const char *list[CAP];
+    const ct_kind *of[CAP];
+    size_t n = 0;
+    buf[0] = '\0';
+    snprintf(given, sizeof given, "%s.%s", section, name);
+    for (size_t pass = 0; pass < 2; pass++)
+        for (size_t k = 0; k < NKINDS; k++) {
+            const ct_kind *d = registry[k];
+            if ((d == own) != (pass == 0))
+                continue;
+            for (size_t r = 0; r < d->nkeys && n < CAP; r++, n++) {
+                snprintf(names[n], sizeof names[n], "%s.%s", d->keys[r].section, d->keys[r].name);
+                list[n] = names[n];
+                of[n] = d;
+            }
+        }
+    const size_t k = ct_nearest_name(given, list, n);
+    if (k == n)
+        return;
+    if (of[k] == own) { /* own keys came first: a name several kinds have is the own kind's */
+        snprintf(buf, len, " (did you mean %s?)", list[k]);
+        return;
+    }
+    char kinds[160];
+    const char *dot = strchr(list[k], '.');
+    char sec[80];
+    snprintf(sec, sizeof sec, "%.*s", (int)(dot - list[k]), list[k]);
+    kinds_with(sec, dot + 1, kinds, sizeof kinds);
+    snprintf(buf, len, " (did you mean %s? only for surface.type = %s)", list[k], kinds);
+}
+
 int ct_surface_set(ct_surface *s, const char *section, const char *name, const char *value,
                    const char *where)
 {
@@ -260,8 +298,12 @@ int ct_surface_set(ct_surface *s, const char *section, const char *name, const c
     if (!row) {
         char kinds[200];
         kinds_with(section, name, kinds, sizeof kinds);
-        if (!kinds[0])
-            return ct_error_set(CT_EINVAL, "%s%s%s.%s: unknown key", at, colon, section, name);
+        if (!kinds[0]) {
+            char hint[400];
+            nearest_key(s->kind, section, name, hint, sizeof hint);
+            return ct_error_set(CT_EINVAL, "%s%s%s.%s: unknown key%s", at, colon, section, name,
+                                hint);
+        }
         return ct_error_set(CT_EINVAL, "%s%s%s.%s = %s: only for surface.type = %s (not %s)", at,
                             colon, section, name, shown, kinds, s->kind->name);
     }

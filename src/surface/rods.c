@@ -49,8 +49,9 @@ static const double unit_metres[] = {1.0, 1e-3, 1e-6, 1e-9};
 static const ct_key rods_keys[] = {
     {"surface", "file", CT_KEY_TEXT, 0, 0, CT_KEY_FILE, NULL, "must be a path", "",
      "a file of rods: rows of top, area and optionally length, separated by commas, semicolons "
-     "or blanks, no field empty (a header naming each column once may come first; with one, "
-     "columns x and y place each rod); relative to the scene's directory",
+     "or blanks, no field empty; lines starting with # or ; are comments (a header naming each "
+     "column once may come first; with one, columns x and y place each rod); relative to the "
+     "scene's directory",
      AT(file)},
     {"surface", "rods", CT_KEY_TEXT, 0, 0, 0, NULL,
      "must be top:area[:length], ... (no field empty)", "",

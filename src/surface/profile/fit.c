@@ -585,6 +585,36 @@ static void fit_row(FILE *f, const char *name, double value, const ct_fit_line *
         fputs(",,,,,\n", f);
 }
 
+size_t ct_profile_fit_warning(const ct_profile_fit *fit, char *buf, size_t len)
+{
+    static const char *const names[] = {"D_variation", "D_structure", "D_spectrum"};
+    const double D[] = {fit->D_variation, fit->D_structure, fit->D_spectrum};
+    const ct_fit_line *line[] = {&fit->variation, &fit->structure, &fit->spectrum};
+    size_t bad = 0, n = 0;
+    if (len)
+        buf[0] = '\0';
+    for (int k = 0; k < 3; k++) {
+        if (D[k] > 1.0 && D[k] < 2.0)
+            continue;
+        n += (size_t)snprintf(buf + n, len > n ? len - n : 0, "%s%s = %.4g (r2 %.3g)",
+                              bad ? ", " : "", names[k], D[k], line[k]->r2);
+        bad++;
+    }
+    if (!bad)
+        return 0;
+    const int used = fit->dimension - CT_DIM_VARIATION;
+    const int used_bad = !(D[used] > 1.0 && D[used] < 2.0);
+    snprintf(buf + n, len > n ? len - n : 0,
+             " outside (1, 2), the range of a fractal profile's dimension: not self-affine in "
+             "%s%s%s",
+             bad > 1 ? "those bands" : "that band", used_bad ? "; D, fx and fz come from " : "",
+             used_bad ? names[used] : "");
+    if (used_bad && n < len)
+        snprintf(buf + strlen(buf), len - strlen(buf),
+                 ", so they describe no Cantor surface (1 < fz < 2, fx > 1)");
+    return bad;
+}
+
 int ct_profile_fit_write(FILE *f, const ct_profile_fit *fit, const char *source, size_t n)
 {
     CT_NEED(f);
@@ -599,6 +629,9 @@ int ct_profile_fit_write(FILE *f, const ct_profile_fit *fit, const char *source,
             "structure-function lags [m], spectrum wavenumbers [1/m]; D (into Eq. 3) from the "
             "%s estimate\n",
             source, n, names[fit->dimension - CT_DIM_VARIATION]);
+    char warning[512];
+    if (ct_profile_fit_warning(fit, warning, sizeof warning))
+        fprintf(f, "# warning: %s\n", warning);
     fputs("quantity,value,band_lo,band_hi,points,r2,rms_residual_ln\n", f);
     fit_row(f, "Rq_m", fit->stats.Rq, NULL);
     fit_row(f, "Ra_m", fit->stats.Ra, NULL);

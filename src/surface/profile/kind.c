@@ -140,7 +140,9 @@ static int profile_prepare(ct_surface *s, const char *dir)
     char *path = ct_path_join(dir, c->file);
     if (!path)
         return ct_error_set(CT_ENOMEM, "out of memory");
-    int st = ct_profile_read(path, &opts, &c->profile);
+    int st = ct_profile_read_giving(
+        path, &opts, "surface.unit (m, mm, um or nm; or surface.x_unit and surface.z_unit)",
+        &c->profile);
     free(path);
     if (st)
         return st;

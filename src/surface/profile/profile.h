@@ -10,6 +10,10 @@
 #define LEVEL_TEAM_MIN (1u << 18)
 #define LEVEL_CHUNK (1u << 16)
 
+/* ct_profile_read, a missing length unit's message ending "give <give>": the kind names its
+ * keys ("surface.unit (m, mm, um or nm; ...)"), ct_profile_read "it (m, mm, um or nm)". */
+int ct_profile_read_giving(const char *path, const ct_profile_read_opts *opts, const char *give,
+                           ct_profile **out);
 /* The heights' peak to valley (the raw heights' Rt: one pass, no statistics). */
 double ct_profile_heights_span(const ct_profile *p);
 /* ct_profile_bundle with p's statistics known (sp), filled on threads threads (0: the OpenMP

@@ -7,6 +7,7 @@
 #define _DEFAULT_SOURCE /* getline, strcasecmp */
 #include "internal.h"
 #include "number.h"
+#include "profile.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -176,6 +177,7 @@ static void header_units(const char *line, int one_column, double *xu, double *z
 /* A text profile while it is read. */
 typedef struct {
     const char *path;
+    const char *give;        /* how a missing unit is given: "it (m, mm, um or nm)" */
     ct_profile_read_opts *o; /* units found in the column names are filled in */
     int one_column;          /* heights only, at the spacing o->dx */
     int dektak, in_header, headers;
@@ -212,10 +214,11 @@ static int data_start(text_reader *r)
     if ((o->x_unit == 0.0 && !one_column) || o->z_unit == 0.0 || (one_column && o->x_unit == 0.0))
         return ct_error_set(CT_EINVAL,
                             "%s: the length unit of %s is not given and its column "
-                            "names state none: give it (m, mm, um or nm)",
+                            "names state none: give %s",
                             r->path,
                             o->z_unit == 0.0 ? (one_column ? "the heights" : "x and z")
-                                             : "x (the spacing)");
+                                             : "x (the spacing)",
+                            r->give);
     const double step = o->dx * o->x_unit;
     if (one_column && !(isfinite(step) && step > 0.0 && isnormal(step)))
         return ct_error_set(CT_EINVAL,
@@ -331,10 +334,12 @@ static int starts_with_number(const char *t)
     return end != t;
 }
 
-static int read_text(const char *path, FILE *f, const ct_profile_read_opts *given, ct_profile **out)
+static int read_text(const char *path, FILE *f, const ct_profile_read_opts *given, const char *give,
+                     ct_profile **out)
 {
     ct_profile_read_opts opts = *given;
-    text_reader r = {.path = path, .o = &opts, .one_column = opts.dx > 0.0, .in_header = 1};
+    text_reader r = {
+        .path = path, .give = give, .o = &opts, .one_column = opts.dx > 0.0, .in_header = 1};
     char *line = NULL;
     size_t cap = 0;
     int st = CT_OK;
@@ -809,6 +814,12 @@ done:
 
 int ct_profile_read(const char *path, const ct_profile_read_opts *opts, ct_profile **out)
 {
+    return ct_profile_read_giving(path, opts, "it (m, mm, um or nm)", out);
+}
+
+int ct_profile_read_giving(const char *path, const ct_profile_read_opts *opts, const char *give,
+                           ct_profile **out)
+{
     CT_NEED(path);
     CT_NEED(out);
     *out = NULL;
@@ -845,7 +856,7 @@ int ct_profile_read(const char *path, const ct_profile_read_opts *opts, ct_profi
     /* numbers in the C locale whatever the caller's (per thread) */
     locale_t c = newlocale(LC_ALL_MASK, "C", (locale_t)0);
     locale_t before = c ? uselocale(c) : (locale_t)0;
-    int st = read_text(path, f, &o, out);
+    int st = read_text(path, f, &o, give, out);
     if (c) {
         uselocale(before);
         freelocale(c);
