@@ -75,6 +75,10 @@ void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double le
 void ct_bundle_set_surface(ct_bundle *b, const ct_rod_meta_kind *kind, void *meta, size_t omitted);
 /* The largest u_max [length] b's rods describe (INFINITY: no limit) and, when finite, why. */
 double ct_bundle_reach(const ct_bundle *b, char *why, size_t len);
+/* CT_OK when an impact to u_max [length] stays within what b's rods describe; CT_ERANGE naming
+ * u_max / h0 and the reach's reason when it passes it (a curved body's face reaching past the
+ * border of a surface that does not repeat). Every impact of the library passes through it. */
+int ct_reach_check(const ct_bundle *b, double u_max);
 /* The metadata if b was made by this kind of surface, else NULL. */
 const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_rod_meta_kind *kind);
 /* Events a curve of b's state would hold (two per run of identical rods): one pass. */

@@ -480,6 +480,76 @@ static void periodic_as_laid_out_by_hand(void **state)
     unlink(p3);
 }
 
+/* The border rule holds on every path an impact takes: one that reaches the border fails the
+ * same way in a sweep (with and without an observer: the observer never sees it), ct_impact,
+ * ct_impact_history and a bounce, and leaves the state as it was. */
+static int observed;
+static int count_observed(const ct_sweep_row *row, int phase, const ct_bundle *b, const ct_curve *c,
+                          void *ctx)
+{
+    (void)row, (void)phase, (void)b, (void)c, (void)ctx;
+    observed++;
+    return 0;
+}
+
+static void the_border_holds_on_every_path(void **state)
+{
+    (void)state;
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/ct_border_%d.csv", (int)getpid());
+    ct_surface *s = tiled_profile(path, 1, 0);
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    /* the periodic test's impact at 0.25 mm: u_max 20 um, the face past the left edge */
+    const ct_body here = body_of(1, 5e-3, 0.25e-3, NAN);
+    const double W = 5.0, V = sqrt(W / sc.physical_energy_scale);
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &here};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    ct_sweep_row row;
+    ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 1, .opts = req.opts};
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_ERANGE);
+    assert_non_null(strstr(row.message, "reaches the border of the surface"));
+    observed = 0;
+    spec.observe = count_observed;
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_ERANGE);
+    assert_int_equal(observed, 0);
+    /* one impact, its history and a bounce, in the layer's units (tau = 1 for m = E l0 / h0) */
+    const ct_layer *L = ct_bundle_layer(b);
+    const double Wl = V * V * L->l0 * L->E * L->h0, m = L->E * L->l0 / L->h0,
+                 v1 = sqrt(2.0 * Wl / m);
+    ct_bundle *copy;
+    assert_int_equal(ct_bundle_clone(&copy, b), CT_OK);
+    ct_impact_result res[3];
+    ct_dynamics dyn[3];
+    size_t n = 9;
+    assert_int_equal(ct_impact(copy, Wl, NULL, &res[0]), CT_ERANGE);
+    assert_non_null(strstr(ct_error_message(), "reaches the border of the surface"));
+    for (size_t k = 0; k < ct_bundle_size(copy); k++) { /* the state as it was */
+        ct_rod_info r;
+        ct_bundle_rod(copy, k, &r);
+        assert_true(r.plastic_strain == 0.0);
+    }
+    assert_int_equal(ct_impact_history(b, m, v1, 10, &res[0], &dyn[0], NULL), CT_ERANGE);
+    assert_int_equal(ct_bounce(b, m, v1, 3, 0.0, res, dyn, &n), CT_ERANGE);
+    assert_int_equal(n, 0);
+    /* a gentle impact stays inside, on every path */
+    const double Vg = sqrt(1e-9 / sc.physical_energy_scale), Wg = Vg * Vg * L->l0 * L->E * L->h0;
+    spec.V_star = &Vg;
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_OK);
+    assert_int_equal(ct_impact(copy, Wg, NULL, &res[0]), CT_OK);
+    assert_int_equal(ct_bounce(b, m, sqrt(2.0 * Wg / m), 3, 0.0, res, dyn, &n), CT_OK);
+    assert_int_equal(n, 3);
+    ct_bundle_free(copy);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    unlink(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -488,6 +558,7 @@ int main(void)
         cmocka_unit_test(one_rod_at_an_offset),
         cmocka_unit_test(profile_intervals_met_at_their_nearest_point),
         cmocka_unit_test(periodic_as_laid_out_by_hand),
+        cmocka_unit_test(the_border_holds_on_every_path),
         cmocka_unit_test(flat_body_changes_nothing),
         cmocka_unit_test(shapes_a_surface_cannot_carry),
     };
