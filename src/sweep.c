@@ -992,8 +992,11 @@ int ct_sweep_blocks(const ct_bundle *b, const ct_sweep_spec *s, size_t block, ct
         sub.progress_ctx = &bp;
         if (rods) {
             rows_not_run(&sub, rows);
-            if (!(st = sweep_by_rods(b, &sub, rows)) && sub.stop_on_error)
-                st = first_failure(rows, n * impacts);
+            if (!(st = sweep_by_rods(b, &sub, rows))) {
+                reach_check(b, &sub, rows);
+                if (sub.stop_on_error)
+                    st = first_failure(rows, n * impacts);
+            }
         } else {
             st = sweep_block(b, &sub, rows, &w, mask + v0);
         }

@@ -492,6 +492,13 @@ static int count_observed(const ct_sweep_row *row, int phase, const ct_bundle *b
     return 0;
 }
 
+static int keep_row(const ct_sweep_row *rows, size_t n, void *ctx)
+{
+    assert_int_equal(n, 1);
+    *(ct_sweep_row *)ctx = rows[0];
+    return 0;
+}
+
 static void the_border_holds_on_every_path(void **state)
 {
     (void)state;
@@ -517,6 +524,17 @@ static void the_border_holds_on_every_path(void **state)
     assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
     assert_int_equal(row.status, CT_ERANGE);
     assert_int_equal(observed, 0);
+    spec.observe = NULL;
+    for (int p = CT_PATH_CURVE; p <= CT_PATH_LEAN; p++) { /* whole, and in blocks */
+        spec.path = (ct_sweep_path)p;
+        row.status = CT_OK;
+        assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+        assert_int_equal(row.status, CT_ERANGE);
+        row.status = CT_OK;
+        assert_int_equal(ct_sweep_blocks(b, &spec, 1, keep_row, &row), CT_OK);
+        assert_int_equal(row.status, CT_ERANGE);
+    }
+    spec.path = CT_PATH_AUTO;
     /* one impact, its history and a bounce, in the layer's units (tau = 1 for m = E l0 / h0) */
     const ct_layer *L = ct_bundle_layer(b);
     const double Wl = V * V * L->l0 * L->E * L->h0, m = L->E * L->l0 / L->h0,
