@@ -568,6 +568,56 @@ static void the_border_holds_on_every_path(void **state)
     unlink(path);
 }
 
+/* what = profile under a body is in the surface's frame: a rod's residual top is its top on
+ * the surface plus its plastic set (strain x length), the face's gap in a column of its own;
+ * a rod the impact did not yield keeps its top. */
+static void profile_residual_top_on_the_surface(void **state)
+{
+    (void)state;
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/ct_resid_%d.csv", (int)getpid());
+    ct_surface *s = tiled_profile(path, 1, 0);
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    const ct_body body = body_of(1, 5e-3, 0.8e-3, NAN);
+    const double V = sqrt(1e-2 / sc.physical_energy_scale);
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    const ct_layer *L = ct_bundle_layer(b);
+    ct_impact_result res;
+    assert_int_equal(ct_impact(b, V * V * L->l0 * L->E * L->h0, NULL, &res), CT_OK);
+    assert_true(res.e < 0.99); /* some rods yielded, others not */
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    assert_int_equal(ct_surface_write_profile(s, b, f), CT_OK);
+    fclose(f);
+    const char *line = strchr(text, '\n') + 1;
+    size_t yielded = 0, kept = 0;
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        long rod;
+        double x_lo, x_hi, top, gap, area, length, residual;
+        assert_int_equal(sscanf(line, "%ld,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &rod, &x_lo, &x_hi, &top,
+                                &gap, &area, &length, &residual),
+                         8);
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        const double set = r.plastic_strain * r.length / L->h0;
+        assert_true(fabs(residual - (top + set)) <= 1e-12 * (top + set + gap));
+        assert_true(fabs(top + gap - r.top / L->h0) <= 1e-12 * (r.top / L->h0));
+        yielded += r.plastic_strain > 0.0;
+        kept += r.plastic_strain == 0.0 && residual == top;
+        line = strchr(line, '\n') + 1;
+    }
+    assert_true(yielded > 0 && kept > 0 && yielded + kept == ct_bundle_size(b));
+    free(text);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    unlink(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -577,6 +627,7 @@ int main(void)
         cmocka_unit_test(profile_intervals_met_at_their_nearest_point),
         cmocka_unit_test(periodic_as_laid_out_by_hand),
         cmocka_unit_test(the_border_holds_on_every_path),
+        cmocka_unit_test(profile_residual_top_on_the_surface),
         cmocka_unit_test(flat_body_changes_nothing),
         cmocka_unit_test(shapes_a_surface_cannot_carry),
     };

@@ -512,7 +512,7 @@ int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f)
                              m->gap[k] / h0,
                              r.area / l0,
                              r.length / h0,
-                             (r.top + r.plastic_strain * r.length) / h0};
+                             (r.top - m->gap[k] + r.plastic_strain * r.length) / h0};
         ct_put_long(f, (long)k + 1);
         for (int i = 0; i < 9; i++) {
             if (!areal && (i == 2 || i == 3))
