@@ -247,6 +247,9 @@ static void shapes_a_surface_cannot_carry(void **state)
     bad = body_of(2, 0.0, NAN, NAN);
     assert_int_equal(ct_surface_build(sp, &req, &b, NULL), CT_EINVAL);
     assert_non_null(strstr(ct_error_message(), "needs a radius"));
+    bad = body_of(2, 1.0, NAN, 0.0); /* y without x */
+    assert_int_equal(ct_surface_build(sp, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "without x"));
     ct_surface_free(c);
     ct_surface_free(sl);
     ct_surface_free(sp);

@@ -215,6 +215,8 @@ static int apex_of(const ct_body *body, const ct_body_kind *d, const extent *e, 
                             "body.position = %g, %g: a cylinder's apex is placed by x alone "
                             "(its axis lies across the line)",
                             pos[0], pos[1]);
+    if (isnan(pos[0]) && !isnan(pos[1]))
+        return ct_error_set(CT_EINVAL, "body.position: y = %g without x", pos[1]);
     if (!isnan(pos[0]) && isnan(pos[1]) && d->dims == 2)
         return ct_error_set(CT_EINVAL, "body.position = %g: a sphere's apex needs x and y", pos[0]);
     *px = isnan(pos[0]) ? 0.5 * (e->x_lo + e->x_hi) : pos[0] / hx;

@@ -405,6 +405,12 @@ static int cli_values(parse_state *s, ct_scene_keys *k, ct_body *body)
         if (st)
             return bad(e, ct_error_message());
     }
+    /* a radius or an apex without a shape: the shape was forgotten (the flat strip would run,
+     * ignoring them); a shape given as flat may keep a curved body's keys (to compare) */
+    entry *er = find_entry(s, "body", "radius"), *ep = find_entry(s, "body", "position");
+    if ((er || ep) && !find_entry(s, "body", "shape"))
+        return bad(er ? er : ep, "without body.shape the body is the flat strip, which has no "
+                                 "radius or apex: give body.shape = cylinder or sphere");
     return CT_OK;
 }
 
