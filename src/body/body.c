@@ -37,12 +37,13 @@ static const ct_key body_keys[] = {
      "over an areal one",
      AT(shape)},
     {"body", "radius", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
-     "R of a cylinder or sphere, in the surface's length unit (metres for profiles and maps, "
-     "the rods' unit, l0's unit for Cantor surfaces)",
+     "R of a cylinder or sphere, in the surface's length unit (metres for profiles, maps and "
+     "rods given surface.unit, whatever unit their files use; else the rods' own unit; l0's "
+     "unit for Cantor surfaces)",
      AT(radius)},
     {"body", "position", CT_KEY_POINT, 0, 0, 0, NULL, "must be x, or x and y (finite numbers)",
-     "the middle of the surface", "where the apex lands: x on a line, x and y on a plane [length]",
-     AT(position)},
+     "the middle of the surface",
+     "where the apex lands: x on a line, x and y on a plane [length, as the radius]", AT(position)},
     {"surface", "periodic", CT_KEY_WORD, 0, 0, 0, "false|true", "must be false or true", "false",
      "true: the surface repeats as measured (a Cantor surface with period l0) as far as a curved "
      "body's face reaches; false: a contact that reaches its border fails",
