@@ -441,6 +441,14 @@ static void periodic_as_laid_out_by_hand(void **state)
     assert_int_equal(impact_of(three, &laid, W, &e3, &u3, msg, sizeof msg), CT_OK);
     assert_true(fabs(e1 - e3) <= 1e-12 * e3 && fabs(u1 - u3) <= 1e-12 * u3);
     assert_true(e1 < 0.99); /* a plastic impact, reached into the neighbours */
+    /* the same spot periods away, either way: the same surface under the face */
+    for (int k = -40; k <= 40; k += 7) {
+        ct_body far = periodic;
+        far.position[0] = 0.25e-3 + k * 1.6e-3;
+        double ek, uk;
+        assert_int_equal(impact_of(one, &far, W, &ek, &uk, msg, sizeof msg), CT_OK);
+        assert_true(fabs(ek - e1) <= 1e-12 * e1 && fabs(uk - u1) <= 1e-12 * u1);
+    }
     /* and near the period's other end, into the copy on the right */
     periodic.position[0] = 1.45e-3;
     laid.position[0] = 3.05e-3;

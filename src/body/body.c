@@ -422,7 +422,16 @@ static int shifted(const meeting *m, double H, ct_bundle **out)
     return CT_OK;
 }
 
-/* The copies of a periodic surface the face can reach: K periods each way with K P > R. */
+/* d modulo the period P, in [0, P] (fmod is exact) */
+static double in_period(double d, double P)
+{
+    const double r = fmod(d, P);
+    return r < 0.0 ? r + P : r;
+}
+
+/* The copies of a periodic surface the face can reach: K periods each way with K P > R, about
+ * the apex moved into the base period (the copies lie about the base, and an apex periods away
+ * would find some of its surface missing). */
 static int copies_of(meeting *m)
 {
     if (!m->body->periodic)
@@ -442,6 +451,9 @@ static int copies_of(meeting *m)
                             m->body->radius, m->period_x * m->hx, (2 * kx + 1) * (2 * ky + 1));
     m->kx = (int)kx;
     m->ky = (int)ky;
+    m->px = m->e.x_lo + in_period(m->px - m->e.x_lo, m->period_x);
+    if (m->d->dims == 2)
+        m->py = m->e.y_lo + in_period(m->py - m->e.y_lo, m->period_y);
     return CT_OK;
 }
 
