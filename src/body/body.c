@@ -152,8 +152,8 @@ static double body_reach(const void *meta, char *why, size_t len)
     return m->reach;
 }
 
-static const ct_rod_meta_kind body_rods = {"body", body_rod_info, body_meta_clone, body_meta_free,
-                                           body_reach};
+static const ct_rod_meta_kind body_rods = {"body",         body_rod_info, body_meta_clone,
+                                           body_meta_free, body_reach,    NULL};
 
 /* The surface's extent (over every footprint) and whether it is a line (1), a plane (2), or
  * holds rods that stand at no single place (0); whether any rod is a point. */
@@ -442,6 +442,11 @@ static int copies_of(meeting *m)
                             "repeat (a profile or a map does)");
     m->period_x = m->e.x_hi - m->e.x_lo;
     m->period_y = m->d->dims == 2 ? m->e.y_hi - m->e.y_lo : 0.0;
+    double px, py; /* a map's grid, its invalid edge points included */
+    if (ct_bundle_period(m->b, &px, &py)) {
+        m->period_x = px;
+        m->period_y = m->d->dims == 2 ? py : 0.0;
+    }
     const double R = m->body->radius / m->hx;
     const double kx = ceil(R / m->period_x), ky = m->d->dims == 2 ? ceil(R / m->period_y) : 0.0;
     if (!(kx < 1e4 && ky < 1e4 && (2 * kx + 1) * (2 * ky + 1) * (double)ct_bundle_size(m->b) < 1e9))

@@ -656,8 +656,8 @@ static void rods_rod_info(const void *meta, size_t k, ct_rod_info *info)
     info->footprint = (ct_footprint){CT_FOOTPRINT_POINT, x, x, y, y};
 }
 
-static const ct_rod_meta_kind rods_meta_kind = {"rods", rods_rod_info, rods_meta_clone,
-                                                rods_meta_free, NULL};
+static const ct_rod_meta_kind rods_meta_kind = {"rods",         rods_rod_info, rods_meta_clone,
+                                                rods_meta_free, NULL,          NULL};
 
 static int rods_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
                       ct_plan_info *info)
