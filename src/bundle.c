@@ -376,6 +376,11 @@ double ct_bundle_reach(const ct_bundle *b, char *why, size_t len)
     return b->kind && b->kind->reach ? b->kind->reach(b->meta, why, len) : INFINITY;
 }
 
+int ct_bundle_period(const ct_bundle *b, double *x, double *y)
+{
+    return b->kind && b->kind->period ? b->kind->period(b->meta, x, y) : 0;
+}
+
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info)
 {
     CT_NEED(b);

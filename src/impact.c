@@ -330,6 +330,15 @@ int ct_impact_check(const ct_impact_opts *opts, const ct_impact_result *res)
     return CT_OK;
 }
 
+int ct_reach_check(const ct_bundle *b, double u_max)
+{
+    char why[240];
+    const double limit = ct_bundle_reach(b, why, sizeof why);
+    if (!(u_max > limit))
+        return CT_OK;
+    return ct_error_set(CT_ERANGE, "u_max/h0 = %.6g: %s", u_max / ct_bundle_layer(b)->h0, why);
+}
+
 int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_impact_opts *opts,
                    ct_impact_result *res)
 {
@@ -343,7 +352,8 @@ int ct_impact_eval(const ct_bundle *b, const ct_curve *c, double W, const ct_imp
     }
     int st;
     if ((st = ct_impact_on_curve(c, ct_bundle_layer(b), -INFINITY, ct_critical_by_rods(b, c), W,
-                                 opts, res)))
+                                 opts, res)) ||
+        (st = ct_reach_check(b, res->u_max)))
         return st;
     const double u0 = res->u_contact, u = res->u_max;
     if (opts->check || opts->rule == CT_QUAD_CLOSED) {

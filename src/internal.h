@@ -76,6 +76,10 @@ typedef struct {
     /* optional: the largest u_max [length] at which the rods still describe what the body
      * meets (beyond it the face reaches past the surface's border), with why in words */
     double (*reach)(const void *meta, char *why, size_t len);
+    /* optional: 1 and the period [length] in x and y of the surface repeated as measured, when
+     * its rods' footprints may span less (a map's grid, nx dx by ny dy, its invalid edge points
+     * included); 0: the footprints' extent is the period */
+    int (*period)(const void *meta, double *x, double *y);
 } ct_rod_meta_kind;
 
 /* A bundle of n rods with uninitialised arrays (filled by the caller through
@@ -90,6 +94,13 @@ void ct_bundle_fill(ct_bundle *b, size_t k0, size_t count, double top, double le
 void ct_bundle_set_surface(ct_bundle *b, const ct_rod_meta_kind *kind, void *meta, size_t omitted);
 /* The largest u_max [length] b's rods describe (INFINITY: no limit) and, when finite, why. */
 double ct_bundle_reach(const ct_bundle *b, char *why, size_t len);
+/* 1 and the period [length] of b's surface repeated as measured, when its kind knows one
+ * beyond its rods' footprints (ct_rod_meta_kind.period); 0 otherwise. */
+int ct_bundle_period(const ct_bundle *b, double *x, double *y);
+/* CT_OK when an impact to u_max [length] stays within what b's rods describe; CT_ERANGE naming
+ * u_max / h0 and the reach's reason when it passes it (a curved body's face reaching past the
+ * border of a surface that does not repeat). Every impact of the library passes through it. */
+int ct_reach_check(const ct_bundle *b, double u_max);
 /* The metadata if b was made by this kind of surface, else NULL. */
 const void *ct_bundle_surface_meta(const ct_bundle *b, const ct_rod_meta_kind *kind);
 /* Events a curve of b's state would hold (two per run of identical rods): one pass. */

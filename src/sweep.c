@@ -454,22 +454,17 @@ static int use_rods(const ct_bundle *b, const ct_sweep_spec *s)
  * surface's border) fail, naming the reach; a later impact of the same speed is not run. */
 static void reach_check(const ct_bundle *b, const ct_sweep_spec *s, ct_sweep_row *rows)
 {
-    char why[200];
-    const double limit = ct_bundle_reach(b, why, sizeof why);
-    if (!(limit < INFINITY))
+    char why[8];
+    if (!(ct_bundle_reach(b, why, sizeof why) < INFINITY))
         return;
     const size_t impacts = (size_t)s->impacts;
-    const double h0 = ct_bundle_layer(b)->h0;
     for (size_t v = 0; v < s->nvel; v++)
         for (size_t i = 0, failed = 0; i < impacts; i++) {
             ct_sweep_row *row = &rows[v * impacts + i];
             if (failed && row->status != CT_ESKIPPED)
                 fail_row(row, CT_ESKIPPED, "not run: an earlier impact of this speed failed");
-            else if (!failed && row->status == CT_OK && row->r.u_max > limit) {
-                char msg[sizeof row->message];
-                snprintf(msg, sizeof msg, "u_max/h0 = %.6g: %s", row->r.u_max / h0, why);
-                fail_row(row, CT_ERANGE, msg);
-            }
+            else if (!failed && row->status == CT_OK && ct_reach_check(b, row->r.u_max))
+                fail_row(row, CT_ERANGE, ct_error_message());
             failed |= row->status != CT_OK && row->status != CT_ESKIPPED;
         }
 }
@@ -1112,8 +1107,11 @@ int ct_sweep_blocks(const ct_bundle *b, const ct_sweep_spec *s, size_t block, ct
         sub.progress_ctx = &bp;
         if (rods) {
             rows_not_run(&sub, rows);
-            if (!(st = sweep_by_rods(b, &sub, rows)) && sub.stop_on_error)
-                st = first_failure(rows, n * impacts);
+            if (!(st = sweep_by_rods(b, &sub, rows))) {
+                reach_check(b, &sub, rows);
+                if (sub.stop_on_error)
+                    st = first_failure(rows, n * impacts);
+            }
             if (ct_interrupted(s->interrupt))
                 st = ct_error_interrupted();
         } else {

@@ -247,6 +247,9 @@ static void shapes_a_surface_cannot_carry(void **state)
     bad = body_of(2, 0.0, NAN, NAN);
     assert_int_equal(ct_surface_build(sp, &req, &b, NULL), CT_EINVAL);
     assert_non_null(strstr(ct_error_message(), "needs a radius"));
+    bad = body_of(2, 1.0, NAN, 0.0); /* y without x */
+    assert_int_equal(ct_surface_build(sp, &req, &b, NULL), CT_EINVAL);
+    assert_non_null(strstr(ct_error_message(), "without x"));
     ct_surface_free(c);
     ct_surface_free(sl);
     ct_surface_free(sp);
@@ -438,6 +441,14 @@ static void periodic_as_laid_out_by_hand(void **state)
     assert_int_equal(impact_of(three, &laid, W, &e3, &u3, msg, sizeof msg), CT_OK);
     assert_true(fabs(e1 - e3) <= 1e-12 * e3 && fabs(u1 - u3) <= 1e-12 * u3);
     assert_true(e1 < 0.99); /* a plastic impact, reached into the neighbours */
+    /* the same spot periods away, either way: the same surface under the face */
+    for (int k = -40; k <= 40; k += 7) {
+        ct_body far = periodic;
+        far.position[0] = 0.25e-3 + k * 1.6e-3;
+        double ek, uk;
+        assert_int_equal(impact_of(one, &far, W, &ek, &uk, msg, sizeof msg), CT_OK);
+        assert_true(fabs(ek - e1) <= 1e-12 * e1 && fabs(uk - u1) <= 1e-12 * u1);
+    }
     /* and near the period's other end, into the copy on the right */
     periodic.position[0] = 1.45e-3;
     laid.position[0] = 3.05e-3;
@@ -480,6 +491,144 @@ static void periodic_as_laid_out_by_hand(void **state)
     unlink(p3);
 }
 
+/* The border rule holds on every path an impact takes: one that reaches the border fails the
+ * same way in a sweep (with and without an observer: the observer never sees it), ct_impact,
+ * ct_impact_history and a bounce, and leaves the state as it was. */
+static int observed;
+static int count_observed(const ct_sweep_row *row, int phase, const ct_bundle *b, const ct_curve *c,
+                          void *ctx)
+{
+    (void)row, (void)phase, (void)b, (void)c, (void)ctx;
+    observed++;
+    return 0;
+}
+
+static int keep_row(const ct_sweep_row *rows, size_t n, void *ctx)
+{
+    assert_int_equal(n, 1);
+    *(ct_sweep_row *)ctx = rows[0];
+    return 0;
+}
+
+static void the_border_holds_on_every_path(void **state)
+{
+    (void)state;
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/ct_border_%d.csv", (int)getpid());
+    ct_surface *s = tiled_profile(path, 1, 0);
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    /* the periodic test's impact at 0.25 mm: u_max 20 um, the face past the left edge */
+    const ct_body here = body_of(1, 5e-3, 0.25e-3, NAN);
+    const double W = 5.0, V = sqrt(W / sc.physical_energy_scale);
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &here};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    ct_sweep_row row;
+    ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 1, .opts = req.opts};
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_ERANGE);
+    assert_non_null(strstr(row.message, "reaches the border of the surface"));
+    observed = 0;
+    spec.observe = count_observed;
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_ERANGE);
+    assert_int_equal(observed, 0);
+    spec.observe = NULL;
+    for (int p = CT_PATH_CURVE; p <= CT_PATH_LEAN; p++) { /* whole, and in blocks */
+        spec.path = (ct_sweep_path)p;
+        row.status = CT_OK;
+        assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+        assert_int_equal(row.status, CT_ERANGE);
+        row.status = CT_OK;
+        assert_int_equal(ct_sweep_blocks(b, &spec, 1, keep_row, &row), CT_OK);
+        assert_int_equal(row.status, CT_ERANGE);
+    }
+    spec.path = CT_PATH_AUTO;
+    /* one impact, its history and a bounce, in the layer's units (tau = 1 for m = E l0 / h0) */
+    const ct_layer *L = ct_bundle_layer(b);
+    const double Wl = V * V * L->l0 * L->E * L->h0, m = L->E * L->l0 / L->h0,
+                 v1 = sqrt(2.0 * Wl / m);
+    ct_bundle *copy;
+    assert_int_equal(ct_bundle_clone(&copy, b), CT_OK);
+    ct_impact_result res[3];
+    ct_dynamics dyn[3];
+    size_t n = 9;
+    assert_int_equal(ct_impact(copy, Wl, NULL, &res[0]), CT_ERANGE);
+    assert_non_null(strstr(ct_error_message(), "reaches the border of the surface"));
+    for (size_t k = 0; k < ct_bundle_size(copy); k++) { /* the state as it was */
+        ct_rod_info r;
+        ct_bundle_rod(copy, k, &r);
+        assert_true(r.plastic_strain == 0.0);
+    }
+    assert_int_equal(ct_impact_history(b, m, v1, 10, &res[0], &dyn[0], NULL), CT_ERANGE);
+    assert_int_equal(ct_bounce(b, m, v1, 3, 0.0, res, dyn, &n), CT_ERANGE);
+    assert_int_equal(n, 0);
+    /* a gentle impact stays inside, on every path */
+    const double Vg = sqrt(1e-9 / sc.physical_energy_scale), Wg = Vg * Vg * L->l0 * L->E * L->h0;
+    spec.V_star = &Vg;
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_OK);
+    assert_int_equal(ct_impact(copy, Wg, NULL, &res[0]), CT_OK);
+    assert_int_equal(ct_bounce(b, m, sqrt(2.0 * Wg / m), 3, 0.0, res, dyn, &n), CT_OK);
+    assert_int_equal(n, 3);
+    ct_bundle_free(copy);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    unlink(path);
+}
+
+/* what = profile under a body is in the surface's frame: a rod's residual top is its top on
+ * the surface plus its plastic set (strain x length), the face's gap in a column of its own;
+ * a rod the impact did not yield keeps its top. */
+static void profile_residual_top_on_the_surface(void **state)
+{
+    (void)state;
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/ct_resid_%d.csv", (int)getpid());
+    ct_surface *s = tiled_profile(path, 1, 0);
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    const ct_body body = body_of(1, 5e-3, 0.8e-3, NAN);
+    const double V = sqrt(1e-2 / sc.physical_energy_scale);
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    const ct_layer *L = ct_bundle_layer(b);
+    ct_impact_result res;
+    assert_int_equal(ct_impact(b, V * V * L->l0 * L->E * L->h0, NULL, &res), CT_OK);
+    assert_true(res.e < 0.99); /* some rods yielded, others not */
+    char *text = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&text, &len);
+    assert_int_equal(ct_surface_write_profile(s, b, f), CT_OK);
+    fclose(f);
+    const char *line = strchr(text, '\n') + 1;
+    size_t yielded = 0, kept = 0;
+    for (size_t k = 0; k < ct_bundle_size(b); k++) {
+        long rod;
+        double x_lo, x_hi, top, gap, area, length, residual;
+        assert_int_equal(sscanf(line, "%ld,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &rod, &x_lo, &x_hi, &top,
+                                &gap, &area, &length, &residual),
+                         8);
+        ct_rod_info r;
+        ct_bundle_rod(b, k, &r);
+        const double set = r.plastic_strain * r.length / L->h0;
+        assert_true(fabs(residual - (top + set)) <= 1e-12 * (top + set + gap));
+        assert_true(fabs(top + gap - r.top / L->h0) <= 1e-12 * (r.top / L->h0));
+        yielded += r.plastic_strain > 0.0;
+        kept += r.plastic_strain == 0.0 && residual == top;
+        line = strchr(line, '\n') + 1;
+    }
+    assert_true(yielded > 0 && kept > 0 && yielded + kept == ct_bundle_size(b));
+    free(text);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    unlink(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -488,6 +637,8 @@ int main(void)
         cmocka_unit_test(one_rod_at_an_offset),
         cmocka_unit_test(profile_intervals_met_at_their_nearest_point),
         cmocka_unit_test(periodic_as_laid_out_by_hand),
+        cmocka_unit_test(the_border_holds_on_every_path),
+        cmocka_unit_test(profile_residual_top_on_the_surface),
         cmocka_unit_test(flat_body_changes_nothing),
         cmocka_unit_test(shapes_a_surface_cannot_carry),
     };

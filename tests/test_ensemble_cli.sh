@@ -40,6 +40,28 @@ awk -F, 'NR > 1 { if ($3 != 23 || !($7 <= $8 && $8 <= $9 && $7 > 0 && $9 <= 1)) 
     d = $6 - $5 / sqrt(23); if (d < 0) d = -d; if (d > 1e-15) exit 1
     if ($22 == "" || $22 <= 0 || $22 > 1) exit 1 }' "$tmp/ens.csv" && ok || bad "ensemble rows: $(sed -n 2,3p "$tmp/ens.csv")"
 
+# a curved body is refused with an ensemble (each realisation is built without it: its e
+# would be the flat strip's), in one line; one realisation under the body runs
+for how in scene set; do
+    if [ $how = scene ]; then
+        printf '[body]\nshape = cylinder\nradius = 10\n' | cat "$tmp/r.ini" - >"$tmp/rb.ini"
+        args=("$tmp/rb.ini")
+    else
+        args=("$tmp/r.ini" --set body.shape=cylinder --set body.radius=10)
+    fi
+    rm -f "$tmp/body_ens.csv"
+    expect 2 "ensemble under a cylinder ($how)" -- "$ct" run -q "${args[@]}" -o "$tmp/body_ens.csv"
+    grep -q "body.shape = cylinder: not with \[ensemble\] realisations" "$tmp/err" && ok ||
+        bad "ensemble under a body: not refused naming body.shape: $(cat "$tmp/err")"
+    [ ! -e "$tmp/body_ens.csv" ] && ok || bad "ensemble under a body: refused, yet written"
+done
+expect 0 "flat body with an ensemble" -- "$ct" run -q "$tmp/r.ini" --set body.shape=flat \
+    --set ensemble.realisations=2 -o "$tmp/flat_ens.csv"
+sed '/^\[ensemble\]/,$d' "$tmp/r.ini" >"$tmp/r1.ini"
+expect 0 "one realisation under a cylinder" -- "$ct" run -q "$tmp/r1.ini" \
+    --set surface.realisation=3 --set body.shape=cylinder --set body.radius=10 \
+    --set surface.periodic=true -o "$tmp/one_body.csv"
+
 # the same bytes for 1 and 2 threads and either split
 OMP_NUM_THREADS=1 "$ct" run -q "$tmp/r.ini" -o "$tmp/t1.csv" || bad "1 thread"
 "$ct" run -q "$tmp/r.ini" --set solver.threads=2 --set ensemble.split=rods -o "$tmp/rods.csv" || bad "split rods"

@@ -676,4 +676,15 @@ refused "merge of a part cut short" "the parts hold 7 rows, not whole realisatio
     "$ct" merge -q "$tmp/r.ini" "$tmp/short.csv" "$tmp/p1.csv" -o "$tmp/x.csv"
 [ -e "$tmp/x.csv" ] && bad "a refused merge wrote its output" || ok
 
+# a body's radius or apex without body.shape (review): the flat strip ran and ignored them; a
+# shape given as flat keeps them (to compare a ball with the strip by --set body.shape=flat)
+refused "radius without a shape" "without body.shape the body is the flat strip" -- \
+    "$ct" run -q "$src/examples/scenes/cantor.ini" --set body.radius=3 -o "$tmp/noshape.csv"
+[ ! -e "$tmp/noshape.csv" ] && ok || bad "radius without a shape: refused, yet written"
+refused "apex without a shape" "without body.shape the body is the flat strip" -- \
+    "$ct" run -q "$src/examples/scenes/cantor.ini" --set body.position=0.3 -o "$tmp/noshape.csv"
+"$ct" run -q "$src/examples/scenes/sphere.ini" --set body.shape=flat \
+    --set impact.velocity=0.01 -o "$tmp/flat.csv" 2>"$tmp/err" && [ -s "$tmp/flat.csv" ] && ok ||
+    bad "a sphere's scene run as the flat strip: $(cat "$tmp/err")"
+
 finish hostile-cli

@@ -610,8 +610,28 @@ static void every_rod_knows_its_footprint(void **state)
         assert_true(fabs(r.footprint.x_lo - px[k] * 1e-3) <= 1e-18);
         assert_true(fabs(r.footprint.y_lo - py[k] * 1e-3) <= 1e-18);
         assert_true(fabs(r.top - top[k] * 1e-3) <= 1e-18);
+        assert_true(fabs(r.area - area[k] * 1e-6) <= 1e-21); /* an area on a plane: mm^2 */
     }
+    ct_scales scp;
+    ct_surface_scales(s, &scp);
+    assert_true(fabs(scp.layer.l0 - 4.5e-6) <= 1e-21);
     ct_bundle_free(b);
+    /* l0 given for rods on a plane: an area too */
+    assert_int_equal(ct_surface_set(s, "surface", "l0", "2", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    ct_surface_scales(s, &scp);
+    assert_true(fabs(scp.layer.l0 - 2e-6) <= 1e-21);
+    ct_surface_free(s);
+    /* rods on a line keep the areas of a line model, lengths per unit depth: mm */
+    write_file(path, "x; top; area\n-1; 0; 1\n0; 0.5; 2\n2.5; 0.25; 1.5\n");
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "file", path, ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "unit", "mm", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "100", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    ct_surface_scales(s, &scp);
+    assert_true(fabs(scp.layer.l0 - 4.5e-3) <= 1e-18);
     ct_surface_free(s);
     /* y without x, and positions without a header, are refused naming why */
     write_file(path, "y,top,area\n1,0,1\n2,0.5,1\n");

@@ -167,12 +167,22 @@ for kind in $kinds; do
     for body in $bodies; do
         args=("${extra[@]}" --set "body.shape=$body")
         [ "$body" = flat ] || args+=(--set body.radius=10 --set surface.periodic=true)
-        for output in e time curve profile; do
+        for output in e time curve history profile compare; do
+            [ "$(given "$kind" "$output")" = 1 ] || continue
             out=$tmp/$kind.$body.$output.csv
             body_check "$kind x $body x $output" "$out" "$ct" run -q "$scene" "${args[@]}" \
                 --set "output.what=$output" -o "$out"
             [ "$output" = e ] && [ -s "$out" ] && [ "$body" != flat ] && worked=$((worked + 1))
         done
+        out=$tmp/$kind.$body.bounce.csv
+        body_check "$kind x $body x bounce" "$out" "$ct" run -q "$scene" "${args[@]}" \
+            --set impact.velocity=0.1 --set impact.sequence=bounce --set impact.impacts=3 \
+            --set output.what=bounce -o "$out"
+        if [ "$(given "$kind" ensemble)" = 1 ]; then
+            out=$tmp/$kind.$body.ensemble.csv
+            body_check "$kind x $body x ensemble" "$out" "$ct" run -q "$scene" "${args[@]}" \
+                --set ensemble.realisations=3 --set output.what=ensemble -o "$out"
+        fi
         out=$tmp/$kind.$body.table.csv
         body_check "$kind x $body x table" "$out" "$ct" table -q "$scene" "${args[@]}" \
             --set table.tolerance=1e-3 -o "$out"
@@ -182,7 +192,7 @@ done
 rc_scene=$src/examples/scenes/random_cantor.ini
 body_check "random_cantor x cylinder x ensemble" "$tmp/ens.csv" "$ct" run -q "$rc_scene" \
     --set ensemble.realisations=3 --set body.shape=cylinder --set body.radius=10 -o "$tmp/ens.csv"
-grep -q "struck by the flat strip alone" "$tmp/stderr" && ok ||
+grep -q "not with \[ensemble\] realisations" "$tmp/stderr" && ok ||
     bad "an ensemble under a cylinder: not refused: $(cat "$tmp/stderr")"
 # a curved body is not refused everywhere: at least a cylinder and a sphere ran somewhere
 [ $worked -ge 2 ] && ok || bad "curved bodies ran on only $worked kind(s)"

@@ -699,6 +699,71 @@ static int teardown(void **state)
     return system(cmd) == 0 ? 0 : -1;
 }
 
+/* e and u_max [m] of one impact of energy W [J] under a sphere of R = 20 um at (x, y) on the
+ * map of file name (levelled not at all, H = 10), repeated or not. */
+static double sphere_on_map(const char *name, int periodic, double x, double y, double W, double *u)
+{
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "profile"), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "file", path_of(name), ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "detrend", "none", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "2e11", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "sigma_y", "4e8", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    ct_body body;
+    ct_body_defaults(&body);
+    body.shape = 2;
+    body.radius = 2e-5;
+    body.position[0] = x;
+    body.position[1] = y;
+    body.periodic = periodic;
+    const double V = sqrt(W / sc.physical_energy_scale);
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *b;
+    assert_int_equal(ct_surface_build(s, &req, &b, NULL), CT_OK);
+    ct_sweep_row row;
+    ct_sweep_spec spec = {.V_star = &V, .nvel = 1, .impacts = 1, .opts = req.opts};
+    assert_int_equal(ct_sweep(b, &spec, &row), CT_OK);
+    assert_int_equal(row.status, CT_OK);
+    ct_bundle_free(b);
+    ct_surface_free(s);
+    *u = row.r.u_max;
+    return row.r.e;
+}
+
+/* A map repeats with its grid, nx dx by ny dy, also when the points along an edge are invalid
+ * (those pixels have no rods, so the rods span a column less): a sphere on a 9 x 9 map whose
+ * last column is invalid, repeated, meets what it meets on the map laid out 3 x 3 by hand. */
+static void map_repeats_with_its_grid(void **state)
+{
+    (void)state;
+    enum { N = 9, M = 3 * N };
+    static unsigned char one[N * N * 8], three[M * M * 8];
+    for (int j = 0; j < M; j++)
+        for (int i = 0; i < M; i++) {
+            const int a = i % N, c = j % N;
+            const double z = a == N - 1 ? NAN : 1e-7 * sin(1.3 * a + 2.1 * c) * cos(0.7 * a * c);
+            put_le(three + 8 * (j * M + i), &z, 8);
+            if (i < N && j < N)
+                put_le(one + 8 * (j * N + i), &z, 8);
+        }
+    write_x3p("one.x3p", x3p_xml(N, N, "D", 1.0, 0), one, sizeof one, "bindata/data.bin", NULL, 0);
+    write_x3p("three.x3p", x3p_xml(M, M, "D", 1.0, 0), three, sizeof three, "bindata/data.bin",
+              NULL, 0);
+    /* pixels 2 um x 3 um: the apex at (14, 12) um of the period, near its invalid column, the
+     * face reaching into the next period across it */
+    double u1, u3;
+    const double W = 2e-11;
+    const double e1 = sphere_on_map("one.x3p", 1, 14e-6, 12e-6, W, &u1);
+    const double e3 = sphere_on_map("three.x3p", 0, 14e-6 + N * 2e-6, 12e-6 + N * 3e-6, W, &u3);
+    assert_true(e1 < 0.9); /* plastic */
+    assert_true(fabs(e1 - e3) <= 1e-12 * e3 && fabs(u1 - u3) <= 1e-12 * u3);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -711,6 +776,7 @@ int main(void)
         cmocka_unit_test(text_readers),
         cmocka_unit_test(dektak),
         cmocka_unit_test(x3p_reader),
+        cmocka_unit_test(map_repeats_with_its_grid),
         cmocka_unit_test(bearing_law_recovered),
         cmocka_unit_test(dimension_of_a_known_profile),
         cmocka_unit_test(dimension_of_a_grid),

@@ -37,12 +37,13 @@ static const ct_key body_keys[] = {
      "over an areal one",
      AT(shape)},
     {"body", "radius", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
-     "R of a cylinder or sphere, in the surface's length unit (metres for profiles and maps, "
-     "the rods' unit, l0's unit for Cantor surfaces)",
+     "R of a cylinder or sphere, in the surface's length unit (metres for profiles, maps and "
+     "rods given surface.unit, whatever unit their files use; else the rods' own unit; l0's "
+     "unit for Cantor surfaces)",
      AT(radius)},
     {"body", "position", CT_KEY_POINT, 0, 0, 0, NULL, "must be x, or x and y (finite numbers)",
-     "the middle of the surface", "where the apex lands: x on a line, x and y on a plane [length]",
-     AT(position)},
+     "the middle of the surface",
+     "where the apex lands: x on a line, x and y on a plane [length, as the radius]", AT(position)},
     {"surface", "periodic", CT_KEY_WORD, 0, 0, 0, "false|true", "must be false or true", "false",
      "true: the surface repeats as measured (a Cantor surface with period l0) as far as a curved "
      "body's face reaches; false: a contact that reaches its border fails",
@@ -151,8 +152,8 @@ static double body_reach(const void *meta, char *why, size_t len)
     return m->reach;
 }
 
-static const ct_rod_meta_kind body_rods = {"body", body_rod_info, body_meta_clone, body_meta_free,
-                                           body_reach};
+static const ct_rod_meta_kind body_rods = {"body",         body_rod_info, body_meta_clone,
+                                           body_meta_free, body_reach,    NULL};
 
 /* The surface's extent (over every footprint) and whether it is a line (1), a plane (2), or
  * holds rods that stand at no single place (0); whether any rod is a point. */
@@ -215,6 +216,8 @@ static int apex_of(const ct_body *body, const ct_body_kind *d, const extent *e, 
                             "body.position = %g, %g: a cylinder's apex is placed by x alone "
                             "(its axis lies across the line)",
                             pos[0], pos[1]);
+    if (isnan(pos[0]) && !isnan(pos[1]))
+        return ct_error_set(CT_EINVAL, "body.position: y = %g without x", pos[1]);
     if (!isnan(pos[0]) && isnan(pos[1]) && d->dims == 2)
         return ct_error_set(CT_EINVAL, "body.position = %g: a sphere's apex needs x and y", pos[0]);
     *px = isnan(pos[0]) ? 0.5 * (e->x_lo + e->x_hi) : pos[0] / hx;
@@ -419,7 +422,16 @@ static int shifted(const meeting *m, double H, ct_bundle **out)
     return CT_OK;
 }
 
-/* The copies of a periodic surface the face can reach: K periods each way with K P > R. */
+/* d modulo the period P, in [0, P] (fmod is exact) */
+static double in_period(double d, double P)
+{
+    const double r = fmod(d, P);
+    return r < 0.0 ? r + P : r;
+}
+
+/* The copies of a periodic surface the face can reach: K periods each way with K P > R, about
+ * the apex moved into the base period (the copies lie about the base, and an apex periods away
+ * would find some of its surface missing). */
 static int copies_of(meeting *m)
 {
     if (!m->body->periodic)
@@ -430,6 +442,11 @@ static int copies_of(meeting *m)
                             "repeat (a profile or a map does)");
     m->period_x = m->e.x_hi - m->e.x_lo;
     m->period_y = m->d->dims == 2 ? m->e.y_hi - m->e.y_lo : 0.0;
+    double px, py; /* a map's grid, its invalid edge points included */
+    if (ct_bundle_period(m->b, &px, &py)) {
+        m->period_x = px;
+        m->period_y = m->d->dims == 2 ? py : 0.0;
+    }
     const double R = m->body->radius / m->hx;
     const double kx = ceil(R / m->period_x), ky = m->d->dims == 2 ? ceil(R / m->period_y) : 0.0;
     if (!(kx < 1e4 && ky < 1e4 && (2 * kx + 1) * (2 * ky + 1) * (double)ct_bundle_size(m->b) < 1e9))
@@ -439,6 +456,9 @@ static int copies_of(meeting *m)
                             m->body->radius, m->period_x * m->hx, (2 * kx + 1) * (2 * ky + 1));
     m->kx = (int)kx;
     m->ky = (int)ky;
+    m->px = m->e.x_lo + in_period(m->px - m->e.x_lo, m->period_x);
+    if (m->d->dims == 2)
+        m->py = m->e.y_lo + in_period(m->py - m->e.y_lo, m->period_y);
     return CT_OK;
 }
 
@@ -514,7 +534,7 @@ int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f)
                              m->gap[k] / h0,
                              r.area / l0,
                              r.length / h0,
-                             (r.top + r.plastic_strain * r.length) / h0};
+                             (r.top - m->gap[k] + r.plastic_strain * r.length) / h0};
         ct_put_long(f, (long)k + 1);
         for (int i = 0; i < 9; i++) {
             if (!areal && (i == 2 || i == 3))

@@ -28,8 +28,9 @@ extern const ct_body_kind ct_body_flat, ct_body_cylinder, ct_body_sphere;
  * sc: the surface's scales (the rods' units against the body's). */
 int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **b, ct_plan_info *info);
 /* what = profile of rods a curved body met: each rod's footprint [the surface's length unit],
- * its top on the surface, the face's gap there, area, length and residual top after the
- * impacts (in h0 and l0). CT_EINVAL when b was not met by a curved body. */
+ * its top on the surface, the face's gap there, area, length and residual top on the surface
+ * after the impacts, top + plastic strain x length (in h0 and l0). CT_EINVAL when b was not
+ * met by a curved body. */
 int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f);
 /* 1 when b's rods were met by a curved body (their tops shifted). */
 int ct_body_met(const ct_bundle *b);

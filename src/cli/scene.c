@@ -436,6 +436,12 @@ static int cli_values(parse_state *s, ct_scene_keys *k, ct_body *body)
         if (st)
             return bad(e, ct_error_message());
     }
+    /* a radius or an apex without a shape: the shape was forgotten (the flat strip would run,
+     * ignoring them); a shape given as flat may keep a curved body's keys (to compare) */
+    entry *er = find_entry(s, "body", "radius"), *ep = find_entry(s, "body", "position");
+    if ((er || ep) && !find_entry(s, "body", "shape"))
+        return bad(er ? er : ep, "without body.shape the body is the flat strip, which has no "
+                                 "radius or apex: give body.shape = cylinder or sphere");
     return CT_OK;
 }
 
@@ -590,12 +596,13 @@ static int ensemble_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
         entry *e = find_entry(s, "surface", "realisation");
         return bad(e, "names the one realisation of a run without [ensemble]");
     }
-    /* the library's ensembles build their realisations for the flat strip alone: a curved body
-     * would be dropped without a word */
-    if (er && sc->body.shape != 0)
-        return bad(er, "an ensemble's realisations are struck by the flat strip alone: a curved "
-                       "body (body.shape) is computed one realisation at a time "
-                       "(surface.realisation = k, without [ensemble])");
+    /* the ensemble builds every realisation without a body (ct_ensemble_spec has none): a
+     * curved body would be ignored, its e the flat strip's */
+    entry *eb = find_entry(s, "body", "shape");
+    if (er && eb && sc->body.shape != 0)
+        return bad(eb, "not with [ensemble] realisations: an ensemble is of the flat strip (each "
+                       "realisation is built without the body); run one realisation under the "
+                       "body with surface.realisation = k instead");
     sc->split = (ct_ensemble_split)k->run.split;
     return CT_OK;
 }

@@ -48,7 +48,8 @@ static void *cantor_clone(const void *meta)
     return m;
 }
 
-static const ct_rod_meta_kind cantor_kind = {"cantor", cantor_rod_info, cantor_clone, free, NULL};
+static const ct_rod_meta_kind cantor_kind = {"cantor", cantor_rod_info, cantor_clone, free, NULL,
+                                             NULL};
 
 void ct_cantor_layer(const ct_params *p, ct_layer *layer)
 {

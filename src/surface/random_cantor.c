@@ -298,8 +298,8 @@ static void *random_clone(const void *meta)
     return m;
 }
 
-static const ct_rod_meta_kind random_kind = {"random_cantor", random_rod_info, random_clone,
-                                             random_free, NULL};
+static const ct_rod_meta_kind random_kind = {
+    "random_cantor", random_rod_info, random_clone, random_free, NULL, NULL};
 
 int ct_random_cantor_piece(const ct_bundle *b, size_t k, uint64_t *g)
 {

@@ -57,7 +57,10 @@ static const ct_key rods_keys[] = {
      "must be top:area[:length], ... (no field empty)", "",
      "rods inline: top:area[:length], ... (or give file)", AT(rods)},
     {"surface", "unit", CT_KEY_WORD, 0, 0, 0, "m|mm|um|nm", "must be m, mm, um or nm",
-     "the scene's units", "the unit of tops, areas, lengths, Hstar, h0 and l0", AT(unit)},
+     "the scene's units",
+     "the unit of tops, areas, lengths, Hstar, h0 and l0 (areas and l0 of rods placed by x and y: "
+     "its square)",
+     AT(unit)},
     {"surface", "Hstar", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "",
      "layer thickness H* [unit] (or give H; neither when the rods give their lengths)", AT(Hstar)},
     {"surface", "H", CT_KEY_NUMBER, 1.0, INFINITY, 0, NULL, "must satisfy H > 1 (H* = H h0)", "",
@@ -65,7 +68,9 @@ static const ct_key rods_keys[] = {
     {"surface", "h0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "the deepest top",
      "reference depth [unit]: results are per h0", AT(h0)},
     {"surface", "l0", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "the total area",
-     "reference length [unit]: forces are per sigma_y l0", AT(l0)},
+     "reference length [unit] (rods placed by x and y: an area [unit^2]): forces are per sigma_y "
+     "l0",
+     AT(l0)},
     {"material", "E", CT_KEY_NUMBER, 0.0, INFINITY, CT_KEY_REQUIRED, NULL, "must be > 0", "",
      "Young's modulus", AT(E)},
     {"material", "sigma_y", CT_KEY_NUMBER, 0.0, INFINITY, 0, NULL, "must be > 0", "1",
@@ -458,6 +463,13 @@ static int rod_error(const ct_surface *s, const rods_config *c, size_t k, const 
     return ct_error_set(CT_EINVAL, "%s: rod %zu: %s", c->source, k + 1, why);
 }
 
+/* The factor of an area in the unit u [m per unit]: rods placed on a plane (x and y) have
+ * areas, u^2; any other set, lengths per unit depth of the body (a line model), u. */
+static double area_unit(const rods_config *c, double u)
+{
+    return c->y ? u * u : u;
+}
+
 /* Every rod in the unit u [m per unit; 1: as given] and checked; the deepest top, the total
  * area and the shallowest bottom (top + length; infinite without lengths). */
 static int check_rods(const ct_surface *s, rods_config *c, int lengths, double u, double *deepest,
@@ -467,7 +479,7 @@ static int check_rods(const ct_surface *s, rods_config *c, int lengths, double u
     *bottom = INFINITY;
     for (size_t k = 0; k < c->n; k++) {
         c->top[k] *= u;
-        c->area[k] *= u;
+        c->area[k] *= area_unit(c, u);
         if (!(c->top[k] >= 0.0) || !isfinite(c->top[k]))
             return rod_error(s, c, k, "top = %g: must be finite and >= 0", c->top[k]);
         if (!(c->area[k] > 0.0) || !isfinite(c->area[k]))
@@ -529,7 +541,7 @@ static int rods_prepare(ct_surface *s, const char *dir)
                             "for every rod)",
                             c->source);
     double h0 = ct_surface_given(s, "surface", "h0") ? c->h0 * u : deepest;
-    const double l0 = ct_surface_given(s, "surface", "l0") ? c->l0 * u : total;
+    const double l0 = ct_surface_given(s, "surface", "l0") ? c->l0 * area_unit(c, u) : total;
     double Hstar = lengths ? bottom : given_Hstar ? c->Hstar * u : NAN;
     if (!(h0 > 0.0)) {
         if (given_H)
@@ -668,8 +680,8 @@ static void rods_rod_info(const void *meta, size_t k, ct_rod_info *info)
     info->footprint = (ct_footprint){CT_FOOTPRINT_POINT, x, x, y, y};
 }
 
-static const ct_rod_meta_kind rods_meta_kind = {"rods", rods_rod_info, rods_meta_clone,
-                                                rods_meta_free, NULL};
+static const ct_rod_meta_kind rods_meta_kind = {"rods",         rods_rod_info, rods_meta_clone,
+                                                rods_meta_free, NULL,          NULL};
 
 static int rods_build(const ct_surface *s, const ct_build_request *r, ct_bundle **out,
                       ct_plan_info *info)

@@ -89,8 +89,20 @@ static void profile_rod_info(const void *m, size_t k, ct_rod_info *info)
     info->x_right = x + right;
 }
 
-static const ct_rod_meta_kind profile_kind = {"profile", profile_rod_info, profile_meta_clone,
-                                              profile_meta_free, NULL};
+/* A grid repeats with its whole extent, nx dx by ny dy, whatever points along its edges are
+ * invalid (its pixels' footprints then span less); a line's footprints span its period. */
+static int profile_period(const void *m, double *x, double *y)
+{
+    const ct_profile *p = ((const profile_meta *)m)->p;
+    if (p->ny < 2)
+        return 0;
+    *x = (double)p->nx * p->dx;
+    *y = (double)p->ny * p->dy;
+    return 1;
+}
+
+static const ct_rod_meta_kind profile_kind = {
+    "profile", profile_rod_info, profile_meta_clone, profile_meta_free, NULL, profile_period};
 
 int ct_profile_bundle(ct_bundle **out, const ct_profile *p, double E, double sigma_y, double Hstar)
 {
