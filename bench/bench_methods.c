@@ -19,6 +19,7 @@
  * Usage: bench_methods [--quick] [--budget SECONDS] [--runs N]
  * CSV on stdout, '#' lines are comments. */
 #include "cantact.h"
+#include "internal.h"
 #include "common.h"
 
 #include <math.h>

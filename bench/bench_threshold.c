@@ -7,6 +7,7 @@
  * uses a team from 64 x CT_PARALLEL_MIN_RODS rods. Both in one warm process: a short run
  * also pays the team's start and its spinning workers, which this does not see. */
 #include "cantact.h"
+#include "internal.h"
 #include "common.h"
 
 #include <math.h>

@@ -11,6 +11,14 @@
 #define CT_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define CT_PRINTF(a, b)
+/* The two depth searches behind ct_cantor_choose_depth (the one public chooser): the smallest
+ * depth N whose truncation changes forces and energies, relative to the smallest impact of
+ * energy W_min, by less than tol (*bound: the bound reached); and the fractal limit to double
+ * precision (the bound below 1e-15 and the tips within 1e-15 eps_y H* of the reference plane, so
+ * that the first yield, hence V*_c, has converged too). */
+int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound);
+int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound);
+
 /* CT_OK when the n speeds V are finite and > 0 (V may be NULL when n = 0). */
 int ct_check_speeds(const double *V, size_t n);
 
@@ -63,6 +71,14 @@ static inline void ct_add_comp(double *s, double *c, double x)
  * (curve.c): results are computed block by block in a fixed order and tree, so they do not
  * depend on the thread count, which only decides who computes which block. */
 #define CT_BLOCK 2048
+
+/* Bundles below this many rods are summed by one thread (docs/benchmarks.md: the threshold
+ * benchmark's figure). ct_bundle_set_parallel_min changes it for one bundle: for the threshold
+ * benchmark and the tests that make a small bundle use a team. Results do not depend on it. */
+#define CT_PARALLEL_MIN_RODS 4096
+void ct_bundle_set_parallel_min(ct_bundle *b, size_t rods);
+/* The sweep's auto path takes the lean curve from this many rods (cantact/sweep.h says when). */
+#define CT_LEAN_RODS 262144
 
 /* ---- for surface builders (src/surface/) ---- */
 
@@ -286,6 +302,14 @@ int ct_bundle_closed_many(const ct_bundle *b, const double *adv, const double *u
 int ct_asym_impact(const ct_params *p, int consistent, double W, double *u_max, double *e);
 /* The same under the series (Eqs. 12-24, breakpoint quadrature of its energies). */
 int ct_series_impact(const ct_params *p, double W, double *u_max, double *e);
+
+/* The two depth searches behind ct_cantor_choose_depth (the one public chooser): the smallest
+ * depth N whose truncation changes forces and energies, relative to the smallest impact of
+ * energy W_min, by less than tol (*bound: the bound reached); and the fractal limit to double
+ * precision (the bound below 1e-15 and the tips within 1e-15 eps_y H* of the reference plane, so
+ * that the first yield, hence V*_c, has converged too). */
+int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound);
+int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound);
 
 /* CT_OK when the n speeds V are finite and > 0 (V may be NULL when n = 0). */
 int ct_check_speeds(const double *V, size_t n);

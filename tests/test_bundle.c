@@ -15,6 +15,7 @@
 
 #include "assert_rel.h"
 #include "cantact.h"
+#include "internal.h"
 
 static ct_params base(void)
 {

@@ -16,6 +16,7 @@
 
 #include "assert_rel.h"
 #include "cantact.h"
+#include "internal.h"
 
 static ct_params base(void)
 {

@@ -194,6 +194,12 @@ body_check "random_cantor x cylinder x ensemble" "$tmp/ens.csv" "$ct" run -q "$r
     --set ensemble.realisations=3 --set body.shape=cylinder --set body.radius=10 -o "$tmp/ens.csv"
 grep -q "not with \[ensemble\] realisations" "$tmp/stderr" && ok ||
     bad "an ensemble under a cylinder: not refused: $(cat "$tmp/stderr")"
+# compare puts the flat strip's laws beside e: not beside a curved body's
+body_check "cantor x cylinder x compare" "$tmp/cmp.csv" "$ct" run -q \
+    "$src/examples/scenes/cantor.ini" --set surface.representation=segments --set surface.depth=8 \
+    --set body.shape=cylinder --set body.radius=10 --set output.what=compare -o "$tmp/cmp.csv"
+grep -q "compare: the paper's laws and a fitted Cantor surface are the flat strip's" \
+    "$tmp/stderr" && ok || bad "compare under a cylinder: not refused: $(cat "$tmp/stderr")"
 # a curved body is not refused everywhere: at least a cylinder and a sphere ran somewhere
 [ $worked -ge 2 ] && ok || bad "curved bodies ran on only $worked kind(s)"
 

@@ -4,6 +4,7 @@
  * Usage: ct_stability [--quick]   (exit 1 when any case fails a check, and with --quick when
  * a surface is not computed, or refused for the reason, that quick_expected() gives) */
 #include "cantact.h"
+#include "internal.h"
 
 #include <math.h>
 #include <stdio.h>

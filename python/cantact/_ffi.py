@@ -73,7 +73,6 @@ typedef struct {
 int ct_bundle_rod(const ct_bundle *b, size_t k, ct_rod_info *info);
 int ct_bundle_set_threads(ct_bundle *b, int threads);
 int ct_default_threads(void);
-void ct_bundle_set_parallel_min(ct_bundle *b, size_t rods);
 double ct_bundle_force(const ct_bundle *b, double u);
 int ct_bundle_force_many(const ct_bundle *b, const double *u, size_t m, double *P);
 int ct_bundle_force_after(const ct_bundle *b, double u_adv, const double *u, size_t m, double *P);
@@ -161,8 +160,6 @@ int ct_cantor_bundle(ct_bundle **out, const ct_params *p, ct_representation rep,
                      double u_reach);
 long ct_cantor_depth(const ct_bundle *b);
 int ct_cantor_representation(const ct_bundle *b);
-int ct_auto_depth(const ct_params *p, double W_min, double tol, long *depth, double *bound);
-int ct_fractal_depth(const ct_params *p, double W_min, long *depth, double *bound);
 typedef struct {
     ct_params params;
     long depth;
@@ -519,7 +516,6 @@ typedef struct {
     double physical_energy_scale;
 } ct_scales;
 void ct_surface_scales(const ct_surface *s, ct_scales *out);
-double ct_speed_to_V_star(const ct_scales *sc, double m, double v);
 double ct_V_star_of(double m, double v, double l0, double E, double h0);
 double ct_time_scale(const ct_scales *sc, double m);
 typedef struct {

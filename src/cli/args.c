@@ -33,7 +33,8 @@ void ct_cli_fail_scene(const ct_scene *sc, int st, const char *msg)
      * the impact energy it names [the layer's units], with both */
     char out[1024];
     const char *at = strstr(msg, "V* = "), *energy = strstr(msg, "impact energy ");
-    const double per = ct_speed_to_V_star(&sc->scales, sc->mass, 1.0);
+    const double per = ct_V_star_of(sc->mass, 1.0, sc->scales.physical.l0, sc->scales.physical.E,
+                                    sc->scales.physical.h0);
     size_t n = 0;
     char *end;
     if (at && per > 0.0) {

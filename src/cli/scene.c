@@ -579,6 +579,12 @@ static int output_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
             return e ? bad(e, msg) : scene_error(CT_EINVAL, "%s: output.what: %s", s->name, msg);
         }
     }
+    /* the comparisons (the paper's laws, a profile's fitted Cantor surface) are the flat strip's:
+     * beside a curved body's e they would compare different bodies */
+    if ((sc->what & CT_OUT_COMPARE) && sc->body.shape != 0)
+        return bad(e, "compare: the paper's laws and a fitted Cantor surface are the flat strip's, "
+                      "not a curved body's (body.shape): compare with the flat strip in a run "
+                      "without [body]");
     return CT_OK;
 }
 
@@ -821,7 +827,8 @@ static int check_speeds(ct_scene *sc)
     const ct_scales *u = &sc->scales;
     for (size_t k = 0; k < sc->nvel; k++) {
         if (sc->speeds_are_velocities) {
-            sc->V_star[k] = ct_speed_to_V_star(u, sc->mass, sc->V_star[k]);
+            sc->V_star[k] = ct_V_star_of(sc->mass, sc->V_star[k], u->physical.l0, u->physical.E,
+                                         u->physical.h0);
             if (!isfinite(sc->V_star[k]) || !(sc->V_star[k] > 0.0)) {
                 char drop[96] = ""; /* a dropped body's speed comes from gravity too */
                 if (!strcmp(sc->speeds_key, "drop_height"))

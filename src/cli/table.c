@@ -136,7 +136,8 @@ int ct_cli_table(int argc, char **argv)
                           .check_points = (size_t)sc.table_check_points,
                           .v_per_V_star = NAN};
     if (sc.mass > 0.0) /* V* = sqrt(m / (2 l0 E h0)) v, as the scene converts speeds */
-        meta.v_per_V_star = 1.0 / ct_speed_to_V_star(&sc.scales, sc.mass, 1.0);
+        meta.v_per_V_star = 1.0 / ct_V_star_of(sc.mass, 1.0, sc.scales.physical.l0,
+                                               sc.scales.physical.E, sc.scales.physical.h0);
     ct_table_write(out.f, t, &meta);
     ct_table_info in;
     ct_table_get_info(t, &in);

@@ -167,12 +167,6 @@ double ct_V_star_of(double m, double v, double l0, double E, double h0)
     return sqrt(m / (2.0 * (l0 * E * h0))) * v;
 }
 
-double ct_speed_to_V_star(const ct_scales *sc, double m, double v)
-{
-    const ct_layer *p = &sc->physical;
-    return ct_V_star_of(m, v, p->l0, p->E, p->h0);
-}
-
 double ct_time_scale(const ct_scales *sc, double m)
 {
     const ct_layer *p = &sc->physical;
