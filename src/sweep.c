@@ -574,7 +574,7 @@ typedef struct {
     ct_dyn_work **forks;             /* dw's forks, for the other threads' speeds */
     int nforks, fork_cap;            /* made, room for */
     double crit0; /* the first curve's critical energy rod by rod, or NaN (ct_critical_by_rods) */
-    double dyn_held; /* bytes each of dw and its forks may hold from earlier blocks */
+    double dyn_held;    /* bytes each of dw and its forks may hold from earlier blocks */
     size_t done, shown; /* the block's speeds done, and the count last reported as progress */
 } sweep_ws;
 

@@ -447,13 +447,25 @@ static int copies_of(meeting *m)
         m->period_x = px;
         m->period_y = m->d->dims == 2 ? py : 0.0;
     }
-    const double R = m->body->radius / m->hx;
-    const double kx = ceil(R / m->period_x), ky = m->d->dims == 2 ? ceil(R / m->period_y) : 0.0;
+    /* the face reaches no rod farther than where its gap passes the deepest rod bottom h
+     * (nothing below it can be kept): r = sqrt(h (2R - h)), R itself when h >= R */
+    double h = 0.0;
+    for (size_t k = 0; k < ct_bundle_size(m->b); k++) {
+        ct_rod_info r;
+        ct_bundle_rod(m->b, k, &r);
+        h = fmax(h, r.top + r.length);
+    }
+    const double Rb = m->body->radius, hb = h / m->hz; /* in the body's unit */
+    const double R = (hb < Rb ? sqrt(hb * (2.0 * Rb - hb)) : Rb) / m->hx;
+    /* one period more than the reach: the apex anywhere in its period */
+    const double kx = ceil(R / m->period_x) + 1.0,
+                 ky = m->d->dims == 2 ? ceil(R / m->period_y) + 1.0 : 0.0;
     if (!(kx < 1e4 && ky < 1e4 && (2 * kx + 1) * (2 * ky + 1) * (double)ct_bundle_size(m->b) < 1e9))
         return ct_error_set(CT_EINVAL,
-                            "surface.periodic = true: a face of R = %g over a period of %g needs "
-                            "%.3g copies of the surface: too many",
-                            m->body->radius, m->period_x * m->hx, (2 * kx + 1) * (2 * ky + 1));
+                            "surface.periodic = true: a face of R = %g reaching %g over a period "
+                            "of %g needs %.3g copies of the surface: too many",
+                            m->body->radius, R * m->hx, m->period_x * m->hx,
+                            (2 * kx + 1) * (2 * ky + 1));
     m->kx = (int)kx;
     m->ky = (int)ky;
     m->px = m->e.x_lo + in_period(m->px - m->e.x_lo, m->period_x);
