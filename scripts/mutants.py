@@ -2,7 +2,8 @@
 """The mutation check: applies each deliberate mistake of tests/mutants/*.mut, one at a time, to
 a scratch copy of the tree and asks the unit suites to catch it.
 
-A rule names the suites that should kill it (`suites: rod, bundle`). Those run first, each test
+A rule names the suites that should kill it (`suites: rod, bundle`), or one test of a suite
+(`suites: cli/hostile-cli`: only that test, where the suite's faster tests cannot catch it). Those run first, each test
 stopping at its first failed check (cmocka's CMOCKA_TEST_ABORT, the shell tests' CT_FAIL_FAST),
 and the first red test kills the mutant. Only when they all pass do the remaining suites run; a
 mutant killed there is reported as "killed, but not by its suites" and fails the run, so the
@@ -116,6 +117,18 @@ def configured_build():
     return os.path.join(tmp, 'b'), tmp
 
 
+def known_names(tests):
+    """What a rule's suites: line may name: a suite, or one test of a suite as SUITE/TEST."""
+    return ({s for t in tests for s in t['suites']} |
+            {'%s/%s' % (s, t['name']) for t in tests for s in t['suites']})
+
+
+def names_test(name, t):
+    """1 when the suites: entry name (SUITE or SUITE/TEST) takes the test t."""
+    suite, _, test = name.partition('/')
+    return suite in t['suites'] and (not test or test == t['name'])
+
+
 def check_rules(rules, tree, known_suites):
     """(stale messages, unknown-suite messages) for the rules against the tree's files."""
     stale, unknown = [], []
@@ -204,7 +217,7 @@ def run_mutant(tree, rule, durations, matrix):
             return 'matrix', ' '.join('%s/%s' % (t['suites'][0], t['name']) for t in killers)
         named = []
         for s in rule['suites']:
-            named += [t for t in by_speed if s in t['suites'] and t not in named]
+            named += [t for t in by_speed if names_test(s, t) and t not in named]
         targets = sorted({f for t in named for f in t['targets']})
         if not tree.ninja(targets):
             return 'killed', 'does not build'
@@ -258,7 +271,7 @@ def main(argv):
     if mode == 'check':
         build, tmp = configured_build()
         try:
-            known = {s for t in load_tests(build) for s in t['suites']}
+            known = known_names(load_tests(build))
         finally:
             if tmp:
                 shutil.rmtree(tmp)
@@ -284,7 +297,7 @@ def run(rules, base, jobs, matrix, t0):
     trees = [Tree(base, i) for i in range(jobs)]
     trees[0].setup()
     tests = trees[0].tests
-    known = {s for t in tests for s in t['suites']}
+    known = known_names(tests)
     stale, unknown = check_rules(rules, trees[0].src, known)
     if unknown and not matrix:
         for m in unknown:

@@ -9,6 +9,7 @@
  * writes only its own realisation's slots; nothing is reduced across threads but integer
  * counts and the lowest failing realisation (a minimum: exact in any order). */
 #include "internal.h"
+#include "body/body.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -107,6 +108,18 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
         st = ct_random_cantor_bundle(&ws->b, &sp->surface, r, threads);
     if (st)
         return st;
+    /* under a curved body: its rods as the body meets them (a copy: the realisation's own rods
+     * stay to be refilled), as ct_surface_build shifts a realisation's */
+    ct_bundle *met = ws->b;
+    if (sp->body && ct_body_curved(sp->body)) {
+        if ((st = ct_bundle_clone(&met, ws->b)))
+            return st;
+        if ((st = ct_body_apply(sp->body, &sp->scales, &met, NULL))) {
+            ct_bundle_free(met);
+            return st;
+        }
+        ct_bundle_set_threads(met, threads);
+    }
     ct_sweep_spec sw = {.V_star = sp->V_star,
                         .nvel = sp->nvel,
                         .impacts = sp->impacts,
@@ -116,7 +129,9 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
                         .interrupt = sp->interrupt};
     if (sp->opts.check == CT_CHECK_AUTO && r % CT_ENSEMBLE_CHECK_STRIDE != 0)
         sw.opts.check = CT_CHECK_NONE; /* the check's stride over the realisations */
-    st = ct_sweep(ws->b, &sw, rows);
+    st = ct_sweep(met, &sw, rows);
+    if (met != ws->b)
+        ct_bundle_free(met);
     uint64_t draws;
     ct_random_cantor_clipped(ws->b, &out->fx_clipped[slot], &out->fz_clipped[slot], &draws);
     if (st)

@@ -40,27 +40,39 @@ awk -F, 'NR > 1 { if ($3 != 23 || !($7 <= $8 && $8 <= $9 && $7 > 0 && $9 <= 1)) 
     d = $6 - $5 / sqrt(23); if (d < 0) d = -d; if (d > 1e-15) exit 1
     if ($22 == "" || $22 <= 0 || $22 > 1) exit 1 }' "$tmp/ens.csv" && ok || bad "ensemble rows: $(sed -n 2,3p "$tmp/ens.csv")"
 
-# a curved body is refused with an ensemble (each realisation is built without it: its e
-# would be the flat strip's), in one line; one realisation under the body runs
+# an ensemble under a curved body: every realisation struck by it, each sample the bits of that
+# realisation's own run under the body (surface.realisation = k), from the scene or --set; the
+# identity line of its parts names the body (parts of another body are another run)
+sed '/^\[ensemble\]/,$d' "$tmp/r.ini" >"$tmp/r1.ini"
 for how in scene set; do
     if [ $how = scene ]; then
-        printf '[body]\nshape = cylinder\nradius = 10\n' | cat "$tmp/r.ini" - >"$tmp/rb.ini"
+        printf '[body]\nshape = cylinder\nradius = 10\n[surface]\nperiodic = true\n' |
+            cat "$tmp/r.ini" - | sed 's/^realisations = 23/realisations = 4/' >"$tmp/rb.ini"
         args=("$tmp/rb.ini")
     else
-        args=("$tmp/r.ini" --set body.shape=cylinder --set body.radius=10)
+        args=("$tmp/r.ini" --set ensemble.realisations=4 --set body.shape=cylinder
+            --set body.radius=10 --set surface.periodic=true)
     fi
-    rm -f "$tmp/body_ens.csv"
-    expect 2 "ensemble under a cylinder ($how)" -- "$ct" run -q "${args[@]}" -o "$tmp/body_ens.csv"
-    grep -q "body.shape = cylinder: not with \[ensemble\] realisations" "$tmp/err" && ok ||
-        bad "ensemble under a body: not refused naming body.shape: $(cat "$tmp/err")"
-    [ ! -e "$tmp/body_ens.csv" ] && ok || bad "ensemble under a body: refused, yet written"
+    expect 0 "ensemble under a cylinder ($how)" -- "$ct" run -q "${args[@]}" \
+        --set output.what=realisations -o "$tmp/body_ens.csv"
+    head -1 "$tmp/body_ens.csv" | grep -q "; under a cylinder of R = 10, its apex at the middle" &&
+        ok || bad "the parts' identity line does not name the body: $(head -1 "$tmp/body_ens.csv")"
+    for k in 0 1 2 3; do
+        "$ct" run -q "$tmp/r1.ini" --set surface.realisation=$k --set body.shape=cylinder \
+            --set body.radius=10 --set surface.periodic=true -o "$tmp/one_$k.csv" ||
+            bad "realisation $k under the cylinder exited $?"
+        # e of realisation k in the ensemble's samples (column 5) against its own run's (column 4)
+        diff <(awk -F, -v k=$k 'NR > 2 && $1 == k { print $2, $3, $5 }' "$tmp/body_ens.csv") \
+            <(awk -F, 'NR > 1 { print $1, $2, $4 }' "$tmp/one_$k.csv") >/dev/null && ok ||
+            bad "ensemble under a cylinder ($how): realisation $k differs from its own run"
+    done
 done
+# and the flat strip's samples are not the cylinder's: the body is not dropped
 expect 0 "flat body with an ensemble" -- "$ct" run -q "$tmp/r.ini" --set body.shape=flat \
-    --set ensemble.realisations=2 -o "$tmp/flat_ens.csv"
-sed '/^\[ensemble\]/,$d' "$tmp/r.ini" >"$tmp/r1.ini"
-expect 0 "one realisation under a cylinder" -- "$ct" run -q "$tmp/r1.ini" \
-    --set surface.realisation=3 --set body.shape=cylinder --set body.radius=10 \
-    --set surface.periodic=true -o "$tmp/one_body.csv"
+    --set ensemble.realisations=4 --set output.what=realisations -o "$tmp/flat_ens.csv"
+[ "$(awk -F, 'NR > 2 { print $5 }' "$tmp/flat_ens.csv")" != \
+    "$(awk -F, 'NR > 2 { print $5 }' "$tmp/body_ens.csv")" ] && ok ||
+    bad "the ensemble under a cylinder gave the flat strip's e"
 
 # the same bytes for 1 and 2 threads and either split
 OMP_NUM_THREADS=1 "$ct" run -q "$tmp/r.ini" -o "$tmp/t1.csv" || bad "1 thread"

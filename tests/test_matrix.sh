@@ -188,12 +188,6 @@ for kind in $kinds; do
             --set table.tolerance=1e-3 -o "$out"
     done
 done
-# an ensemble of realisations is the flat strip's alone: a curved body is refused, not dropped
-rc_scene=$src/examples/scenes/random_cantor.ini
-body_check "random_cantor x cylinder x ensemble" "$tmp/ens.csv" "$ct" run -q "$rc_scene" \
-    --set ensemble.realisations=3 --set body.shape=cylinder --set body.radius=10 -o "$tmp/ens.csv"
-grep -q "not with \[ensemble\] realisations" "$tmp/stderr" && ok ||
-    bad "an ensemble under a cylinder: not refused: $(cat "$tmp/stderr")"
 # compare puts the flat strip's laws beside e: not beside a curved body's
 body_check "cantor x cylinder x compare" "$tmp/cmp.csv" "$ct" run -q \
     "$src/examples/scenes/cantor.ini" --set surface.representation=segments --set surface.depth=8 \

@@ -40,6 +40,11 @@ void ct_body_defaults(ct_body *body);
  * R - sqrt(R^2 - r^2) for a curved body (computed as r^2 / (R + sqrt(R^2 - r^2))), INFINITY
  * beyond R, 0 for the flat body. */
 double ct_body_gap(const ct_body *body, double r);
+/* The rods of *b as the body meets them (docs/model.md §14): each top shifted by the face's
+ * gap at the rod's footprint, the rods it cannot reach left out; *b is replaced (and freed).
+ * scales: the units of the surface that made *b (ct_surface_scales). The flat body leaves *b
+ * as it is. ct_surface_build does this for a build request's body. */
+int ct_body_meet(const ct_body *body, const ct_scales *scales, ct_bundle **b);
 /* "under a sphere of R = 0.0025, its apex at x = 1e-4, y = 2e-4" ("" for the flat body). */
 void ct_body_describe(const ct_body *body, char *buf, size_t len);
 

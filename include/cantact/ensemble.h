@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "cantact/body.h"
 #include "cantact/random_cantor.h"
 #include "cantact/sweep.h"
 
@@ -45,6 +46,11 @@ typedef struct {
     ct_progress_fn progress; /* optional: realisations done (called by one thread at a time) */
     void *progress_ctx;
     const volatile int *interrupt; /* optional: stops with CT_EINTR once *interrupt != 0 */
+    /* what strikes every realisation (NULL: the flat strip), in the units of scales, the
+     * surface's (ct_surface_scales): each realisation's rods are shifted as ct_surface_build
+     * shifts them, so that a sample is bit for bit the realisation's own run under the body */
+    const ct_body *body;
+    ct_scales scales;
 } ct_ensemble_spec;
 
 /* The samples of an ensemble: realisation first + r, row q = speed * impacts + impact - 1

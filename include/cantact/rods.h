@@ -35,6 +35,18 @@ typedef struct {
 /* Returns CT_OK if every field is finite and in range, else CT_EINVAL with a message. */
 int ct_layer_validate(const ct_layer *layer);
 
+/* A surface's units (ct_surface_scales, after ct_surface_prepare). The model's rods live in the
+ * layer's units; a Cantor surface is computed dimensionless (l0 = h0 = sigma_y = 1, E = E/sigma_y)
+ * whatever its scale, and `physical` holds its values as given. */
+typedef struct {
+    ct_layer layer;      /* E, sigma_y, H*, l0, h0 of the rods as built [their units] */
+    ct_layer physical;   /* the same as the scene gave them (its units: SI for SI scenes) */
+    double force_unit;   /* P_Y = sigma_y l0 of the layer [force]: P / force_unit is P / P_Y */
+    double energy_unit;  /* sigma_y l0 h0 of the layer [energy] */
+    double energy_scale; /* l0 E h0 of the layer [energy]: V*^2 = W / energy_scale */
+    double physical_energy_scale; /* l0 E h0 as given: V* = sqrt(m v^2 / (2 this)) */
+} ct_scales;
+
 /* Returns the bytes of memory the kernel can give without swapping (MemAvailable): the one
  * memory check of the library and the CLI before large allocations. */
 size_t ct_available_memory(void);

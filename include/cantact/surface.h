@@ -72,17 +72,6 @@ int ct_surface_input(const ct_surface *s, size_t k, const char *dir, char *buf, 
  * the working directory), levels it, fixes its scales. Idempotent. */
 int ct_surface_prepare(ct_surface *s, const char *dir);
 
-/* A surface's units (after ct_surface_prepare). The model's rods live in the layer's units;
- * a Cantor surface is computed dimensionless (l0 = h0 = sigma_y = 1, E = E/sigma_y) whatever
- * its scale, and `physical` holds its values as given. */
-typedef struct {
-    ct_layer layer;      /* E, sigma_y, H*, l0, h0 of the rods as built [their units] */
-    ct_layer physical;   /* the same as the scene gave them (its units: SI for SI scenes) */
-    double force_unit;   /* P_Y = sigma_y l0 of the layer [force]: P / force_unit is P / P_Y */
-    double energy_unit;  /* sigma_y l0 h0 of the layer [energy] */
-    double energy_scale; /* l0 E h0 of the layer [energy]: V*^2 = W / energy_scale */
-    double physical_energy_scale; /* l0 E h0 as given: V* = sqrt(m v^2 / (2 this)) */
-} ct_scales;
 void ct_surface_scales(const ct_surface *s, ct_scales *out);
 /* V* = sqrt(m / (2 l0 E h0)) v of a body of mass m at speed v on a surface of scales l0, E,
  * h0 (consistent units): the one conversion of every front-end. */

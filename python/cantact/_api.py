@@ -12,7 +12,8 @@ from . import _check as chk
 from . import _keys
 from ._errors import check as _ok, error, invalid, memory, size_text
 from ._ffi import ffi, lib
-from ._bodies import body_of, is_default
+from . import _bodies
+from ._bodies import body_of
 from ._results import Restitution, finite_info
 from ._surfaces import Surface, cantor_params, random_cantor, surface_of
 from ._work import Work
@@ -192,10 +193,9 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
     """Realisations first .. first + realisations - 1 of a RandomCantor surface, each built,
     swept and dropped by the library (ct_ensemble: the samples do not depend on the thread
     count or the split). errors="raise" raises the lowest failing realisation's error;
-    errors="rows" keeps failed samples as NaN with their status. body: the flat strip only
-    (None or Flat()): the library's ensemble (ct_ensemble_spec) takes no body, so a curved
-    one is refused rather than left out; restitution(RandomCantor(..., realisation=k),
-    body=...) strikes one realisation with it. progress: True for a bar on stderr, or a
+    errors="rows" keeps failed samples as NaN with their status. body: what strikes every
+    realisation (None: the flat strip), each sample bit for bit that realisation's own
+    restitution(RandomCantor(..., realisation=k), body=...). progress: True for a bar on stderr, or a
     callable progress(done, total) of the realisations done. Ctrl-C stops it within a
     fraction of a second (KeyboardInterrupt)."""
     surface = surface_of("surface", surface)
@@ -204,10 +204,6 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
     ok, why = surface.supports("ensemble")
     if not ok:  # the kind's reason
         raise invalid(f"surface: a {type(surface).__name__} of type = {surface.kind}: {why}")
-    if not is_default(body):
-        raise invalid(f"body = {body!r}: the library's ensemble (ct_ensemble) builds its "
-                      "realisations for the flat strip and takes no body; strike one "
-                      "realisation with restitution(RandomCantor(..., realisation=k), body=...)")
     keys = _run_keys("ensemble()", ENSEMBLE_KEYS, impacts=impacts, quadrature=quadrature,
                      nodes=nodes, tolerance=tolerance, check=check, path=path, threads=threads,
                      split=split, errors=errors, realisations=realisations)
@@ -232,6 +228,9 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
     spec.split = keys.values.split
     spec.progress = work.callback
     spec.interrupt = work.flag
+    struck = _bodies.request(body, surface._body_keys)  # kept alive with spec
+    spec.body = struck
+    spec.scales = surface._scales[0]
     nrows = V.size * impacts
     # 3 doubles and a status per sample, in the library and again in the arrays returned
     with memory(f"ensemble: {count * nrows} samples ({count} realisations x {nrows} rows; "

@@ -249,6 +249,20 @@ typedef enum {
     CT_SPLIT_RODS = 2,
 } ct_ensemble_split;
 typedef struct {
+    ct_layer layer;
+    ct_layer physical;
+    double force_unit;
+    double energy_unit;
+    double energy_scale;
+    double physical_energy_scale;
+} ct_scales;
+typedef struct {
+    int shape;
+    double radius;
+    double position[2];
+    int periodic;
+} ct_body;
+typedef struct {
     ct_random_cantor surface;
     uint64_t first;
     uint64_t count;
@@ -263,6 +277,8 @@ typedef struct {
     ct_progress_fn progress;
     void *progress_ctx;
     const volatile int *interrupt;
+    const ct_body *body;
+    ct_scales scales;
 } ct_ensemble_spec;
 typedef struct {
     uint64_t first, count;
@@ -507,23 +523,9 @@ int ct_surface_value(const ct_surface *s, const char *section, const char *name,
 int ct_surface_is_set(const ct_surface *s, const char *section, const char *name);
 int ct_surface_check(ct_surface *s, const char *scene);
 int ct_surface_prepare(ct_surface *s, const char *dir);
-typedef struct {
-    ct_layer layer;
-    ct_layer physical;
-    double force_unit;
-    double energy_unit;
-    double energy_scale;
-    double physical_energy_scale;
-} ct_scales;
 void ct_surface_scales(const ct_surface *s, ct_scales *out);
 double ct_V_star_of(double m, double v, double l0, double E, double h0);
 double ct_time_scale(const ct_scales *sc, double m);
-typedef struct {
-    int shape;
-    double radius;
-    double position[2];
-    int periodic;
-} ct_body;
 size_t ct_body_count(void);
 const char *ct_body_name(size_t k);
 const char *ct_body_summary(size_t k);

@@ -180,6 +180,8 @@ int main(void)
     FIELD(ct_ensemble_spec, progress);
     FIELD(ct_ensemble_spec, progress_ctx);
     FIELD(ct_ensemble_spec, interrupt);
+    FIELD(ct_ensemble_spec, body);
+    FIELD(ct_ensemble_spec, scales);
     SIZE(ct_ensemble_samples);
     FIELD(ct_ensemble_samples, first);
     FIELD(ct_ensemble_samples, count);

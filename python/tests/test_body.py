@@ -342,14 +342,22 @@ def test_a_surface_that_cannot_carry_the_body_is_the_librarys_refusal(cli, sourc
 
 
 def test_what_a_body_cannot_reach_from_python():
-    """The library's ensemble takes no body: a curved one is refused (the flat strip is the
-    same as none); a Profile of arrays is made rods outside the kind's build."""
+    """An ensemble under a curved body: each realisation's samples the bits of its own
+    restitution under the body (the flat strip the same as none); a Profile of arrays is made
+    rods outside the kind's build."""
     rc = cantact.RandomCantor(fx=1.5, fz=1.3, H=10, E=500, depth=6, fx_spread=0.1, seed=2)
     a = cantact.ensemble(rc, V_star=[1e-3, 3e-3], realisations=3)
     b = cantact.ensemble(rc, V_star=[1e-3, 3e-3], realisations=3, body=cantact.Flat())
     assert a.e.tobytes() == b.e.tobytes()
-    with pytest.raises(IN, match="takes no body"):
-        cantact.ensemble(rc, V_star=[1e-3], realisations=3, body=cantact.Cylinder(5))
+    rp = cantact.RandomCantor(fx=1.5, fz=1.3, H=10, E=500, depth=6, fx_spread=0.1, seed=2,
+                              periodic=True)
+    c = cantact.ensemble(rp, V_star=[1e-3, 3e-3], realisations=3, body=cantact.Cylinder(5))
+    for k in range(3):
+        own = cantact.RandomCantor(fx=1.5, fz=1.3, H=10, E=500, depth=6, fx_spread=0.1, seed=2,
+                                   realisation=k, periodic=True)
+        r = cantact.restitution(own, V_star=[1e-3, 3e-3], body=cantact.Cylinder(5))
+        assert c.e[k].tobytes() == r.e.tobytes()
+    assert c.e.tobytes() != a.e.tobytes()  # the body is not dropped
     # one realisation struck by the cylinder instead, repeating
     one = cantact.RandomCantor(fx=1.5, fz=1.3, H=10, E=500, depth=6, fx_spread=0.1, seed=2,
                                realisation=1, periodic=True)

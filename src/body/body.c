@@ -582,3 +582,17 @@ void ct_body_describe(const ct_body *body, char *buf, size_t len)
     snprintf(buf, len, "under a %s of R = %g, its apex at %s%s", registry[body->shape]->name,
              body->radius, at, body->periodic ? ", the surface repeating" : "");
 }
+
+int ct_body_curved(const ct_body *body)
+{
+    return body && body->shape > 0 && (size_t)body->shape < NBODIES &&
+           registry[body->shape]->dims > 0;
+}
+
+int ct_body_meet(const ct_body *body, const ct_scales *scales, ct_bundle **b)
+{
+    CT_NEED(scales);
+    CT_NEED(b);
+    CT_NEED(*b);
+    return ct_body_apply(body, scales, b, NULL);
+}

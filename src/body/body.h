@@ -32,6 +32,8 @@ int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **b, ct_pl
  * after the impacts, top + plastic strain x length (in h0 and l0). CT_EINVAL when b was not
  * met by a curved body. */
 int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f);
+/* 1 when body is a curved one (it shifts the rods' tops), 0 for the flat strip or NULL. */
+int ct_body_curved(const ct_body *body);
 /* 1 when b's rods were met by a curved body (their tops shifted). */
 int ct_body_met(const ct_bundle *b);
 

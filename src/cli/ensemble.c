@@ -93,7 +93,9 @@ static int run_block(const ct_scene *sc, const ct_random_cantor *surface, uint64
                                      .threads = sc->threads,
                                      .split = sc->split,
                                      .progress = ct_mpi_rank() == 0 ? show_progress : NULL,
-                                     .progress_ctx = &prog};
+                                     .progress_ctx = &prog,
+                                     .body = &sc->body,
+                                     .scales = sc->scales};
             st = ct_ensemble(&spec, *mine);
             /* a failed impact is a sample: rank 0 reports the lowest of all ranks */
             if (st && (*mine)->failed_realisation != UINT64_MAX)

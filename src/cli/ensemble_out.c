@@ -72,8 +72,10 @@ void ct_ens_identity(const ct_scene *sc, char *buf, size_t len)
     ct_plan_info info = {.depth = rc.depth, .rods = ((size_t)2 << rc.depth) - 1};
     char line[600];
     ct_surface_table_line(sc->surface, &info, line, sizeof line);
-    snprintf(buf, len, CT_ENS_ID_HEAD "%s; impacts %ld; solver.on_error = %s", line, sc->impacts,
-             sc->skip_failed ? "skip" : "stop");
+    char body[200];
+    ct_body_describe(&sc->body, body, sizeof body); /* a part under another body is another run */
+    snprintf(buf, len, CT_ENS_ID_HEAD "%s; impacts %ld; solver.on_error = %s%s%s", line,
+             sc->impacts, sc->skip_failed ? "skip" : "stop", body[0] ? "; " : "", body);
 }
 
 static void write_realisations(FILE *f, const ct_scene *sc, const ct_ens_table *t)
@@ -158,8 +160,13 @@ static int deterministic_e(const ct_scene *sc, double *e_det)
     ct_random_cantor rc;
     ct_bundle *b;
     int st = ct_surface_random_cantor(sc->surface, &rc, NULL);
-    if (!st)
-        st = ct_cantor_bundle(&b, &rc.params, CT_REP_STAGES, rc.depth, INFINITY);
+    if (!st) { /* under a curved body one rod per piece, met by the body as the samples are */
+        const int curved = sc->body.shape != 0;
+        st = ct_cantor_bundle(&b, &rc.params, curved ? CT_REP_SEGMENTS : CT_REP_STAGES, rc.depth,
+                              INFINITY);
+        if (!st && curved && (st = ct_body_meet(&sc->body, &sc->scales, &b)))
+            ct_bundle_free(b);
+    }
     if (st)
         return st;
     ct_sweep_row *rows = malloc(nrows * sizeof *rows);

@@ -602,13 +602,6 @@ static int ensemble_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
         entry *e = find_entry(s, "surface", "realisation");
         return bad(e, "names the one realisation of a run without [ensemble]");
     }
-    /* the ensemble builds every realisation without a body (ct_ensemble_spec has none): a
-     * curved body would be ignored, its e the flat strip's */
-    entry *eb = find_entry(s, "body", "shape");
-    if (er && eb && sc->body.shape != 0)
-        return bad(eb, "not with [ensemble] realisations: an ensemble is of the flat strip (each "
-                       "realisation is built without the body); run one realisation under the "
-                       "body with surface.realisation = k instead");
     sc->split = (ct_ensemble_split)k->run.split;
     return CT_OK;
 }
