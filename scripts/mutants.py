@@ -101,6 +101,7 @@ def load_tests(build):
         if EXCLUDED_SUITES & set(suites):
             continue
         t['suites'] = suites
+        t['id'] = '%s/%s' % (suites[0], t['name'])  # names repeat across suites
         t['targets'] = [f for d in t['depends'] for f in files.get(d, [])]
         tests.append(t)
     return tests
@@ -196,7 +197,7 @@ class Tree:
 
 def test_timeout(t, durations):
     # a mutant that loops is killed by the clock: ten times the clean run, at least 30 s
-    return min(t['timeout'] or 300, max(30.0, 10 * durations.get(t['name'], 30.0)))
+    return min(t['timeout'] or 300, max(30.0, 10 * durations.get(t['id'], 30.0)))
 
 
 def run_mutant(tree, rule, durations, matrix):
@@ -209,7 +210,7 @@ def run_mutant(tree, rule, durations, matrix):
     try:
         with open(path, 'w', encoding='utf-8') as f:
             f.write(mutated)
-        by_speed = sorted(tree.tests, key=lambda t: durations.get(t['name'], 0.0))
+        by_speed = sorted(tree.tests, key=lambda t: durations.get(t['id'], 0.0))
         if matrix:
             if not tree.ninja([]):
                 return 'matrix', 'does not build'
@@ -318,8 +319,8 @@ def run(rules, base, jobs, matrix, t0):
     for t in tests:
         s = time.time()
         if not trees[0].run_test(t, t['timeout'] or 300):
-            broken.append(t['name'])
-        durations[t['name']] = time.time() - s
+            broken.append(t['id'])
+        durations[t['id']] = time.time() - s
     for s in setups:
         s.join()
     if broken:

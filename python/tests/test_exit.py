@@ -20,8 +20,29 @@ print("done")
 RUNS = 8
 
 
+# Closing the handle as Python's exit does must leave the library mapped: the deterministic
+# form of the crash above, which is a race (a process may exit before a worker next runs).
+CLOSED = """
+import os
+import cantact
+from cantact import _ffi
+real = os.path.realpath(cantact.LIBRARY_PATH)
+def mapped():
+    with open("/proc/self/maps") as f:
+        return any(os.path.realpath(line.split()[-1]) == real for line in f if "/" in line)
+assert mapped(), "the library is not mapped after import"
+_ffi.ffi.dlclose(_ffi.lib)
+print("mapped" if mapped() else "unmapped")
+"""
+
+
 def test_loaded_never_to_be_unloaded():
     assert cantact._ffi.DLOPEN_FLAGS & cantact.ffi.RTLD_NODELETE
+    env = dict(os.environ, CANTACT_LIBRARY=cantact.LIBRARY_PATH)
+    p = subprocess.run([sys.executable, "-c", CLOSED], env=env, capture_output=True, text=True,
+                       timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout == "mapped\n", "closing the handle unmapped libcantact: " + p.stdout
 
 
 def test_exit_after_threads_is_clean():
