@@ -1,4 +1,5 @@
-/* Ensembles of random Cantor realisations (docs/model.md §10): every realisation is built, swept
+/* Ensembles of samples: random Cantor realisations (docs/model.md §10) or a curved body's landings
+ * on one surface (§14): every sample's rods are built (a realisation) or met (a landing), swept
  * and dropped, its samples stored at its own index; statistics are computed afterwards from
  * the samples in realisation order. So the output depends neither on the thread count nor on
  * the split (whole realisations per thread, or one realisation's rods shared by the threads),
@@ -51,7 +52,10 @@ int ct_ensemble_samples_alloc(ct_ensemble_samples **out, uint64_t first, uint64_
     s->status = malloc(n * sizeof(int));
     s->fx_clipped = calloc((size_t)count, sizeof(uint64_t));
     s->fz_clipped = calloc((size_t)count, sizeof(uint64_t));
-    if (!s->e || !s->u_max || !s->V_star_crit || !s->status || !s->fx_clipped || !s->fz_clipped) {
+    s->x = malloc((size_t)count * sizeof(double));
+    s->y = malloc((size_t)count * sizeof(double));
+    if (!s->e || !s->u_max || !s->V_star_crit || !s->status || !s->fx_clipped || !s->fz_clipped ||
+        !s->x || !s->y) {
         ct_ensemble_samples_free(s);
         return ct_error_set(CT_ENOMEM, "ensemble samples: out of memory");
     }
@@ -59,6 +63,8 @@ int ct_ensemble_samples_alloc(ct_ensemble_samples **out, uint64_t first, uint64_
         s->e[k] = s->u_max[k] = s->V_star_crit[k] = NAN;
         s->status[k] = CT_ESKIPPED;
     }
+    for (uint64_t r = 0; r < count; r++)
+        s->x[r] = s->y[r] = NAN;
     *out = s;
     return CT_OK;
 }
@@ -73,6 +79,8 @@ void ct_ensemble_samples_free(ct_ensemble_samples *s)
     free(s->status);
     free(s->fx_clipped);
     free(s->fz_clipped);
+    free(s->x);
+    free(s->y);
     free(s);
 }
 
@@ -90,7 +98,49 @@ typedef struct {
 typedef struct {
     ct_bundle *b;
     ct_curve *curve;
+    const ct_body_site *site; /* landings: the surface prepared once for every apex */
+    double lo[2], hi[2];      /* landings: the region the apexes are drawn from */
 } workspace;
+
+/* The rods sample first + slot is swept on, into *met: a realisation built (or refilled) in
+ * ws->b and, under a curved body, met by it (a copy: the realisation's own rods stay to be
+ * refilled), as ct_surface_build shifts a realisation's; or a landing: the site met at the
+ * landing's apex (stored in out). *met is ws->b or the caller's to free. */
+static int sample_rods(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_t slot,
+                       int threads, workspace *ws, ct_bundle **met)
+{
+    const uint64_t r = out->first + slot;
+    int st;
+    *met = NULL;
+    if (sp->rods) {
+        double pos[2];
+        ct_body_landing(ws->lo, ws->hi, sp->body->seed, r, pos);
+        out->x[slot] = pos[0];
+        out->y[slot] = pos[1];
+        if ((st = ct_body_site_meet(ws->site, pos, met)))
+            return st;
+        ct_bundle_set_threads(*met, threads);
+        return CT_OK;
+    }
+    if (ws->b)
+        st = ct_random_cantor_refill(ws->b, &sp->surface, r);
+    else
+        st = ct_random_cantor_bundle(&ws->b, &sp->surface, r, threads);
+    if (st)
+        return st;
+    *met = ws->b;
+    if (sp->body && ct_body_curved(sp->body)) {
+        if ((st = ct_bundle_clone(met, ws->b)))
+            return st;
+        if ((st = ct_body_apply(sp->body, &sp->scales, met, NULL))) {
+            ct_bundle_free(*met);
+            *met = NULL;
+            return st;
+        }
+        ct_bundle_set_threads(*met, threads);
+    }
+    return CT_OK;
+}
 
 /* Builds realisation first + slot with `threads` threads, sweeps it and stores its samples.
  * Returns a status only for what ends the ensemble (memory); failed impacts are samples. */
@@ -102,24 +152,9 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
     int st;
     if (!ws->curve && (st = ct_curve_alloc(&ws->curve)))
         return st;
-    if (ws->b)
-        st = ct_random_cantor_refill(ws->b, &sp->surface, r);
-    else
-        st = ct_random_cantor_bundle(&ws->b, &sp->surface, r, threads);
-    if (st)
+    ct_bundle *met;
+    if ((st = sample_rods(sp, out, slot, threads, ws, &met)))
         return st;
-    /* under a curved body: its rods as the body meets them (a copy: the realisation's own rods
-     * stay to be refilled), as ct_surface_build shifts a realisation's */
-    ct_bundle *met = ws->b;
-    if (sp->body && ct_body_curved(sp->body)) {
-        if ((st = ct_bundle_clone(&met, ws->b)))
-            return st;
-        if ((st = ct_body_apply(sp->body, &sp->scales, &met, NULL))) {
-            ct_bundle_free(met);
-            return st;
-        }
-        ct_bundle_set_threads(met, threads);
-    }
     ct_sweep_spec sw = {.V_star = sp->V_star,
                         .nvel = sp->nvel,
                         .impacts = sp->impacts,
@@ -133,7 +168,8 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
     if (met != ws->b)
         ct_bundle_free(met);
     uint64_t draws;
-    ct_random_cantor_clipped(ws->b, &out->fx_clipped[slot], &out->fz_clipped[slot], &draws);
+    if (!sp->rods)
+        ct_random_cantor_clipped(ws->b, &out->fx_clipped[slot], &out->fz_clipped[slot], &draws);
     if (st)
         return st;
     for (size_t q = 0; q < nrows; q++) {
@@ -151,9 +187,9 @@ static int run_one(const ct_ensemble_spec *sp, ct_ensemble_samples *out, uint64_
             fail->realisation = r;
             fail->row = q;
             fail->status = row->status;
-            snprintf(fail->message, sizeof fail->message,
-                     "realisation %llu, V* = %.17g, impact %ld: %s", (unsigned long long)r,
-                     row->V_star, row->impact, row->message);
+            snprintf(fail->message, sizeof fail->message, "%s %llu, V* = %.17g, impact %ld: %s",
+                     sp->rods ? "landing" : "realisation", (unsigned long long)r, row->V_star,
+                     row->impact, row->message);
         }
     }
     return CT_OK;
@@ -179,11 +215,15 @@ static int check_spec(const ct_ensemble_spec *sp, const ct_ensemble_samples *out
     int st;
     if (!sp || !out)
         return ct_error_set(CT_EINVAL, "ensemble: NULL spec or samples");
-    if ((st = ct_random_cantor_validate(&sp->surface)))
+    if (sp->rods && !ct_body_curved(sp->body))
+        return ct_error_set(CT_EINVAL, "body.landings: the flat strip lands everywhere alike: "
+                                       "landings need a curved body (body.shape)");
+    if (!sp->rods && (st = ct_random_cantor_validate(&sp->surface)))
         return st;
     if (sp->count == 0 || sp->first > UINT64_MAX - sp->count)
-        return ct_error_set(CT_EINVAL, "ensemble: realisations %llu + %llu: need count >= 1",
-                            (unsigned long long)sp->first, (unsigned long long)sp->count);
+        return ct_error_set(CT_EINVAL, "ensemble: %s %llu + %llu: need count >= 1",
+                            sp->rods ? "landings" : "realisations", (unsigned long long)sp->first,
+                            (unsigned long long)sp->count);
     if (sp->nvel == 0 || !sp->V_star)
         return ct_error_set(CT_EINVAL, "ensemble: no speeds");
     if (sp->impacts < 1)
@@ -243,8 +283,9 @@ static void run_all(ensemble_run *e)
             if (s && !e->fatal) {
 #pragma omp atomic write
                 e->fatal = s;
-                snprintf(e->fatal_msg, sizeof e->fatal_msg, "realisation %llu: %s",
-                         (unsigned long long)r, ct_error_message());
+                snprintf(e->fatal_msg, sizeof e->fatal_msg, "%s %llu: %s",
+                         sp->rods ? "landing" : "realisation", (unsigned long long)r,
+                         ct_error_message());
             }
             if (sp->stop_on_error && e->fails[w].realisation < e->stop_at) {
 #pragma omp atomic write
@@ -282,14 +323,23 @@ int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
     if ((st = check_spec(sp, out)))
         return st;
     const size_t nrows = out->nrows;
-    const size_t rods = ((size_t)2 << sp->surface.depth) - 1;
+    /* landings: the surface prepared once (its rods read, its copies laid out), met at each
+     * apex by every worker */
+    ct_body_site *site = NULL;
+    double lo[2] = {NAN, NAN}, hi[2] = {NAN, NAN};
+    if (sp->rods && ((st = ct_body_site_new(sp->body, &sp->scales, sp->rods, &site)) ||
+                     (st = ct_body_site_region(site, lo, hi)))) {
+        ct_body_site_free(site);
+        return st;
+    }
+    const size_t rods = sp->rods ? ct_bundle_size(sp->rods) : ((size_t)2 << sp->surface.depth) - 1;
     const int team = sp->threads > 0 ? sp->threads : ct_default_threads();
     ensemble_run e = {.sp = sp, .out = out, .stop_at = UINT64_MAX};
     e.by_realisation =
         sp->split == CT_SPLIT_REALISATIONS || (sp->split == CT_SPLIT_AUTO && team > 1 &&
                                                sp->count >= 2 && rods <= CT_ENSEMBLE_SPLIT_RODS);
     e.workers = e.by_realisation ? team : 1;
-    out->draws = rods - 1;
+    out->draws = sp->rods ? 0 : rods - 1;
     out->message[0] = '\0';
     out->failed_realisation = UINT64_MAX;
     out->failed_row = 0;
@@ -302,10 +352,15 @@ int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
         free(e.fails);
         free(e.rows);
         free(e.ws);
+        ct_body_site_free(site);
         return ct_error_set(CT_ENOMEM, "ensemble: out of memory");
     }
-    for (int w = 0; w < e.workers; w++)
+    for (int w = 0; w < e.workers; w++) {
         e.fails[w].realisation = UINT64_MAX;
+        e.ws[w].site = site;
+        memcpy(e.ws[w].lo, lo, sizeof lo);
+        memcpy(e.ws[w].hi, hi, sizeof hi);
+    }
     run_all(&e);
     free(e.rows);
     for (int k = 0; k < e.workers; k++) {
@@ -313,6 +368,7 @@ int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
         ct_curve_free(e.ws[k].curve);
     }
     free(e.ws);
+    ct_body_site_free(site);
     st = ct_interrupted(sp->interrupt) ? ct_error_interrupted()
          : e.fatal                     ? ct_error_set(e.fatal, "%s", e.fatal_msg)
                                        : lowest_failure(&e);

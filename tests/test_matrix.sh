@@ -88,6 +88,14 @@ for kind in $kinds; do
             check "$kind" "$output" "$out" -- "$ct" run -q "$scene" $quick \
                 --set ensemble.realisations=3 --set "output.what=$output" -o "$out"
             ;;
+        landings)
+            # a curved body's landings: walked with the bodies below where the kind gives them
+            # (a kind's example may have no footprints to land on); refused here where not
+            [ "$(given "$kind" landings)" = 1 ] ||
+                check "$kind" "$output" "$out" -- "$ct" run -q "$scene" $quick \
+                    --set body.shape=cylinder --set body.radius=10 --set body.landings=3 \
+                    --set output.what=landings -o "$out"
+            ;;
         table)
             check "$kind" "$output" "$out" -- "$ct" table -q "$scene" $quick \
                 --set table.tolerance=1e-3 -o "$out"
@@ -151,6 +159,7 @@ body_check() {
     fi
 }
 worked=0
+landed=0
 for kind in $kinds; do
     scene=$src/examples/scenes/$kind.ini
     [ -f "$scene" ] || continue
@@ -183,6 +192,12 @@ for kind in $kinds; do
             body_check "$kind x $body x ensemble" "$out" "$ct" run -q "$scene" "${args[@]}" \
                 --set ensemble.realisations=3 --set output.what=ensemble -o "$out"
         fi
+        if [ "$(given "$kind" landings)" = 1 ] && [ "$body" != flat ]; then
+            out=$tmp/$kind.$body.landings.csv
+            body_check "$kind x $body x landings" "$out" "$ct" run -q "$scene" "${args[@]}" \
+                --set body.landings=3 --set output.what=e,landings -o "$out"
+            [ -s "${out%.csv}_landings.csv" ] && landed=$((landed + 1))
+        fi
         out=$tmp/$kind.$body.table.csv
         body_check "$kind x $body x table" "$out" "$ct" table -q "$scene" "${args[@]}" \
             --set table.tolerance=1e-3 -o "$out"
@@ -196,5 +211,6 @@ grep -q "compare: the paper's laws and a fitted Cantor surface are the flat stri
     "$tmp/stderr" && ok || bad "compare under a cylinder: not refused: $(cat "$tmp/stderr")"
 # a curved body is not refused everywhere: at least a cylinder and a sphere ran somewhere
 [ $worked -ge 2 ] && ok || bad "curved bodies ran on only $worked kind(s)"
+[ $landed -ge 2 ] && ok || bad "landings ran on only $landed kind x body pair(s)"
 
 finish matrix

@@ -27,6 +27,8 @@ typedef struct {
                            unit, l0's unit for Cantor surfaces], > 0 for a curved body */
     double position[2]; /* the apex: x, or x and y [length]; NaN: the middle of the surface */
     int periodic;       /* 1: the surface repeats as far as the face reaches (surface.periodic) */
+    uint64_t landings;  /* [body] landings: apex positions drawn per run (0: position alone) */
+    uint64_t seed;      /* [body] seed: landing k is ct_body_landing(..., seed, k, ...) */
 } ct_body;
 size_t ct_body_count(void);
 const char *ct_body_name(size_t k);    /* "flat", "cylinder", "sphere" */
@@ -45,6 +47,20 @@ double ct_body_gap(const ct_body *body, double r);
  * scales: the units of the surface that made *b (ct_surface_scales). The flat body leaves *b
  * as it is. ct_surface_build does this for a build request's body. */
 int ct_body_meet(const ct_body *body, const ct_scales *scales, ct_bundle **b);
+/* Where a curved body may land on a surface (its rods as built, not met by a body; scales its
+ * units): the apex positions lo[0] .. hi[0] in x and lo[1] .. hi[1] in y (NaN on a line) [the
+ * surface's length unit] from which the face, however deep it goes before the layer crushes,
+ * stays on the surface: the surface's extent less the reach sqrt(h (2R - h)) of a face down
+ * to the deepest rod bottom h (R when h >= R) on every side; one period of a surface that
+ * repeats. The region is the body's and the surface's alone (not the speeds'), so a landing is
+ * the same point in every run. CT_EINVAL when no apex is left, or for the flat strip. */
+int ct_body_landing_region(const ct_body *body, const ct_scales *scales, const ct_bundle *rods,
+                           double lo[2], double hi[2]);
+/* Landing k of seed in the region lo .. hi: lo + u (hi - lo) with u uniform in [0, 1), one
+ * Philox4x64-10 block per landing (key: seed and a constant, counter: k); a pure function of
+ * (seed, k), pos[1] NaN where lo[1] is. */
+void ct_body_landing(const double lo[2], const double hi[2], uint64_t seed, uint64_t k,
+                     double pos[2]);
 /* "under a sphere of R = 0.0025, its apex at x = 1e-4, y = 2e-4" ("" for the flat body). */
 void ct_body_describe(const ct_body *body, char *buf, size_t len);
 

@@ -18,7 +18,11 @@ extern "C" {
 #pragma GCC visibility push(default)
 #endif
 
-/* ---- ensembles of realisations (src/ensemble.c) ---------------------------------- */
+/* ---- ensembles of samples (src/ensemble.c) ---------------------------------------- */
+/* A sample is a realisation of a random Cantor surface (the surface), or a landing of a curved
+ * body on one deterministic surface (rods: that surface's rods as built; body->landings and
+ * body->seed draw the apexes, ct_body_landing): either kind runs through one path, with the
+ * same guarantees (samples at their own index, the same bits for any thread count or split). */
 
 /* How an ensemble uses its threads: whole realisations per thread (each bundle summed by
  * one thread; memory: one realisation per thread), or one realisation at a time with its
@@ -51,20 +55,27 @@ typedef struct {
      * shifts them, so that a sample is bit for bit the realisation's own run under the body */
     const ct_body *body;
     ct_scales scales;
+    /* landings: the deterministic surface's rods as built, not met by a body (NULL: the
+     * samples are realisations of surface); first and count then number the landings, and
+     * the body must be curved */
+    const ct_bundle *rods;
 } ct_ensemble_spec;
 
-/* The samples of an ensemble: realisation first + r, row q = speed * impacts + impact - 1
- * at index r * nrows + q. Values in library units (u_max [length]); NaN where status != 0. */
+/* The samples of an ensemble: realisation (or landing) first + r, row q = speed * impacts +
+ * impact - 1 at index r * nrows + q. Values in library units (u_max [length]); NaN where
+ * status != 0. */
 typedef struct {
     uint64_t first, count;
     size_t nrows;
     double *e, *u_max, *V_star_crit;
     int *status;                       /* CT_OK, or why the impact failed / was not run */
-    uint64_t *fx_clipped, *fz_clipped; /* per realisation */
-    uint64_t draws;                    /* ratios drawn of each kind per realisation */
-    double quad_error_max;             /* largest |e - e_closed| of all samples (NaN: no
-                                          closed-form check) */
-    uint64_t failed_realisation;       /* the first failure in (realisation, row) order */
+    uint64_t *fx_clipped, *fz_clipped; /* per realisation (0 for landings) */
+    double *x, *y;  /* per sample: a landing's apex [the surface's length unit; y NaN on a line];
+                       NaN for realisations */
+    uint64_t draws; /* ratios drawn of each kind per realisation */
+    double quad_error_max;       /* largest |e - e_closed| of all samples (NaN: no
+                                    closed-form check) */
+    uint64_t failed_realisation; /* the first failure in (realisation, row) order */
     size_t failed_row;
     char message[240]; /* its message ("" when none failed) */
 } ct_ensemble_samples;

@@ -94,6 +94,11 @@ typedef struct {
  * leaves out what no impact reaches; a random one builds its realisation). */
 int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
                      ct_plan_info *info);
+/* The same rods before the request's body meets them (built as for that body: a Cantor
+ * surface keeps every piece a curved body may reach): what landings meet at each apex
+ * (ct_ensemble_spec.rods). */
+int ct_surface_build_unmet(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                           ct_plan_info *info);
 /* Prepares what an output needs before any impact (a profile's fit for compare, bearing,
  * fit): CT_OK, or CT_EINVAL with the kind's reason when the kind does not give the output. */
 int ct_surface_ready(ct_surface *s, const char *output);

@@ -24,13 +24,13 @@ from ._bodies import Body, Cylinder, Flat, Sphere
 from ._results import COLUMNS, ROW_FIELDS, Restitution
 from ._surfaces import Cantor, Profile, RandomCantor, Rods, Surface
 from ._api import (DAMPING_LAWS, Ensemble, LoadCurve, Table, asym_load, asym_unload, e_of_zeta,
-                   ensemble, law_restitution, load_curve, read_table, restitution, series_load,
+                   ensemble, landings, law_restitution, load_curve, read_table, restitution, series_load,
                    series_unload, table, zeta_of_e)
 
 __all__ = [
     "Surface", "Cantor", "RandomCantor", "Rods", "Profile", "KINDS", "RUN_ROWS",
     "Body", "Flat", "Cylinder", "Sphere", "BODIES", "BODY_ROWS",
-    "restitution", "Restitution", "ensemble", "Ensemble",
+    "restitution", "Restitution", "ensemble", "Ensemble", "landings",
     "load_curve", "LoadCurve", "series_load", "series_unload", "asym_load", "asym_unload",
     "law_restitution", "table", "Table", "read_table", "Error", "InvalidInput", "OutOfMemory",
     "OutsideModel", "NoConvergence", "IOFailure", "NotRun", "strerror", "ROW_FIELDS", "COLUMNS",

@@ -124,7 +124,9 @@ def restitution(surface, V_star=None, *, mass=None, speed=None, body=None, impac
 class Ensemble:
     """The samples of an ensemble of random realisations: e, u_max_over_h0, V_star_crit and
     status have shape (realisations, len(V_star), impacts); fx_clipped, fz_clipped count the
-    clipped draws of each realisation (of `draws` each). stats(quantity) summarises them."""
+    clipped draws of each realisation (of `draws` each). stats(quantity) summarises them.
+    Landings (landings()) are samples alike: `realisations` then numbers the landings, x and y
+    hold each one's apex (the surface's length unit; y NaN on a line; NaN for realisations)."""
 
     def __init__(self, V_star, impacts, s, h0):
         R, n = int(s.count), int(s.nrows)
@@ -149,6 +151,8 @@ class Ensemble:
                 f"{k[2] + 1}: {name}"))
         self.fx_clipped = take(s.fx_clipped, np.uint64, R)
         self.fz_clipped = take(s.fz_clipped, np.uint64, R)
+        self.x = take(s.x, np.float64, R)
+        self.y = take(s.y, np.float64, R)
         self.draws = int(s.draws)
         # NaN: no closed-form check ran
         self.quadrature_error_max = chk.finite_result("quadrature_error_max",
@@ -208,13 +212,20 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
                      nodes=nodes, tolerance=tolerance, check=check, path=path, threads=threads,
                      split=split, errors=errors, realisations=realisations)
     V = _speeds(surface, V_star, mass, speed, keys)
-    solver = keys.solver()
-    impacts = int(keys.values.impacts)
     count = int(keys.values.realisations)
     first = chk.integer("first", first, 0, 2**64 - 1 - count)
     rc, _ = random_cantor(surface)
+    return _samples(surface, body, rc[0], None, V, keys, first, count, work, "realisations")
+
+
+def _samples(surface, body, rc, rods, V, keys, first, count, work, what, seed=0):
+    """The samples (ct_ensemble) first .. first + count - 1: realisations of rc (a
+    ct_random_cantor), or landings on rods (not None: a built, unmet bundle) of the body."""
+    solver = keys.solver()
+    impacts = int(keys.values.impacts)
     spec = ffi.new("ct_ensemble_spec *")
-    spec.surface = rc[0]
+    if rc is not None:
+        spec.surface = rc
     spec.first = first
     spec.count = count
     speeds = ffi.from_buffer("double[]", V)
@@ -229,11 +240,15 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
     spec.progress = work.callback
     spec.interrupt = work.flag
     struck = _bodies.request(body, surface._body_keys)  # kept alive with spec
+    if rods is not None:
+        struck.landings = count
+        struck.seed = seed
+        spec.rods = rods
     spec.body = struck
     spec.scales = surface._scales[0]
     nrows = V.size * impacts
     # 3 doubles and a status per sample, in the library and again in the arrays returned
-    with memory(f"ensemble: {count * nrows} samples ({count} realisations x {nrows} rows; "
+    with memory(f"{what[:-1]}s: {count * nrows} samples ({count} {what} x {nrows} rows; "
                 f"{size_text(count * nrows, 3 * 8 + ffi.sizeof('int'))} each in the library "
                 "and in the arrays returned)"):
         out = ffi.new("ct_ensemble_samples **")
@@ -241,6 +256,37 @@ def ensemble(surface, V_star=None, *, mass=None, speed=None, body=None, realisat
         s = ffi.gc(out[0], lib.ct_ensemble_samples_free)
         work.run(lambda: lib.ct_ensemble(spec, s))
         return Ensemble(V, impacts, s, surface._units()["u"])
+
+
+def landings(surface, V_star=None, *, mass=None, speed=None, body, landings, seed=0, first=0,
+             impacts=1, quadrature="breakpoints", nodes=64, tolerance=1e-14, check=True,
+             path="auto", threads=0, split="auto", errors="raise", progress=None):
+    """Landings first .. first + landings - 1 of a curved body (Sphere, Cylinder) on a surface:
+    apex positions drawn uniformly where the face stays on the surface (anywhere in a period
+    of a periodic one; ct_body_landing_region), landing k a function of (seed, k) alone, each
+    struck at every speed (ct_ensemble with the surface's rods: the samples do not depend on
+    the thread count or the split). Each landing is bit for bit restitution(surface, body=the
+    same body at its apex). The result is an Ensemble whose x and y are the apexes. The
+    CLI's [body] landings and seed."""
+    surface = surface_of("surface", surface)
+    body = body_of("body", body)
+    if _bodies.is_default(body):
+        raise invalid("body: the flat strip lands everywhere alike: landings need a curved "
+                      "body (Sphere or Cylinder)")
+    ok, why = surface.supports("landings")
+    if not ok:  # the kind's reason
+        raise invalid(f"surface: a {type(surface).__name__} of type = {surface.kind}: {why}")
+    work = Work(progress, "landings", "landings")
+    keys = _run_keys("landings()", ENSEMBLE_KEYS, impacts=impacts, quadrature=quadrature,
+                     nodes=nodes, tolerance=tolerance, check=check, path=path, threads=threads,
+                     split=split, errors=errors)
+    count = chk.integer("landings", landings, 1, 2**64 - 1)
+    seed = chk.integer("seed", seed, 0, 2**64 - 1)
+    first = chk.integer("first", first, 0, 2**64 - 1 - count)
+    V = _speeds(surface, V_star, mass, speed, keys)
+    rods, _ = surface._build(V, int(keys.values.impacts), keys.solver().opts, body=body,
+                             unmet=True)
+    return _samples(surface, body, None, rods, V, keys, first, count, work, "landings", seed)
 
 
 # ---- the load curve ----------------------------------------------------------------------

@@ -261,6 +261,8 @@ typedef struct {
     double radius;
     double position[2];
     int periodic;
+    uint64_t landings;
+    uint64_t seed;
 } ct_body;
 typedef struct {
     ct_random_cantor surface;
@@ -279,6 +281,7 @@ typedef struct {
     const volatile int *interrupt;
     const ct_body *body;
     ct_scales scales;
+    const ct_bundle *rods;
 } ct_ensemble_spec;
 typedef struct {
     uint64_t first, count;
@@ -286,6 +289,7 @@ typedef struct {
     double *e, *u_max, *V_star_crit;
     int *status;
     uint64_t *fx_clipped, *fz_clipped;
+    double *x, *y;
     uint64_t draws;
     double quad_error_max;
     uint64_t failed_realisation;
@@ -543,6 +547,12 @@ typedef struct {
     double depth_tolerance;
     const ct_body *body;
 } ct_build_request;
+int ct_surface_build_unmet(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                           ct_plan_info *info);
+int ct_body_landing_region(const ct_body *body, const ct_scales *scales, const ct_bundle *rods,
+                           double lo[2], double hi[2]);
+void ct_body_landing(const double lo[2], const double hi[2], uint64_t seed, uint64_t k,
+                     double pos[2]);
 int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
                      ct_plan_info *info);
 int ct_surface_set_rods(ct_surface *s, size_t n, const double *top, const double *area,

@@ -241,15 +241,17 @@ class Surface:
         req.body = struck
         return req, (speeds, struck)
 
-    def _build(self, V_star, impacts, opts, keep_all=False, body=None):
+    def _build(self, V_star, impacts, opts, keep_all=False, body=None, unmet=False):
         """The rods for speeds V_star (impacts each, options opts: a ct_impact_opts) as the
-        body (a Body; None: the flat strip) meets them, and what the build found (depth,
-        bound, rods, omitted)."""
+        body (a Body; None: the flat strip) meets them (unmet: as built for it, before it
+        meets them: what landings meet at each apex), and what the build found (depth, bound,
+        rods, omitted)."""
         V = np.ascontiguousarray(V_star, dtype=np.float64)
         req, kept = self._request(V, impacts, opts, keep_all, body)
         out = ffi.new("ct_bundle **")
         info = ffi.new("ct_plan_info *")
-        check(lib.ct_surface_build(self._surface, req, out, info))
+        build = lib.ct_surface_build_unmet if unmet else lib.ct_surface_build
+        check(build(self._surface, req, out, info))
         return ffi.gc(out[0], lib.ct_bundle_free), _plan_info(info)
 
     def __repr__(self):

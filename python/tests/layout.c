@@ -182,6 +182,7 @@ int main(void)
     FIELD(ct_ensemble_spec, interrupt);
     FIELD(ct_ensemble_spec, body);
     FIELD(ct_ensemble_spec, scales);
+    FIELD(ct_ensemble_spec, rods);
     SIZE(ct_ensemble_samples);
     FIELD(ct_ensemble_samples, first);
     FIELD(ct_ensemble_samples, count);
@@ -192,6 +193,8 @@ int main(void)
     FIELD(ct_ensemble_samples, status);
     FIELD(ct_ensemble_samples, fx_clipped);
     FIELD(ct_ensemble_samples, fz_clipped);
+    FIELD(ct_ensemble_samples, x);
+    FIELD(ct_ensemble_samples, y);
     FIELD(ct_ensemble_samples, draws);
     FIELD(ct_ensemble_samples, quad_error_max);
     FIELD(ct_ensemble_samples, failed_realisation);
@@ -306,5 +309,7 @@ int main(void)
     FIELD(ct_body, radius);
     FIELD(ct_body, position);
     FIELD(ct_body, periodic);
+    FIELD(ct_body, landings);
+    FIELD(ct_body, seed);
     return 0;
 }

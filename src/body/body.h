@@ -32,6 +32,19 @@ int ct_body_apply(const ct_body *body, const ct_scales *sc, ct_bundle **b, ct_pl
  * after the impacts, top + plastic strain x length (in h0 and l0). CT_EINVAL when b was not
  * met by a curved body. */
 int ct_body_write_rods(const ct_bundle *b, const ct_scales *sc, FILE *f);
+/* A surface prepared for many apexes of one curved body (landings): the checks, the extent,
+ * the copies of a periodic surface and the rods read once; b must outlive it and not change.
+ * Meeting it at an apex reads b only: threads may meet one site at once. */
+typedef struct ct_body_site ct_body_site;
+int ct_body_site_new(const ct_body *body, const ct_scales *sc, const ct_bundle *b,
+                     ct_body_site **out);
+void ct_body_site_free(ct_body_site *s);
+/* ct_body_landing_region of the site's surface. */
+int ct_body_site_region(const ct_body_site *s, double lo[2], double hi[2]);
+/* The rods as the body meets them with its apex at pos [the body's length unit; pos[1] unused
+ * on a line] into *out, as ct_body_apply with that position would make them. */
+int ct_body_site_meet(const ct_body_site *s, const double pos[2], ct_bundle **out);
+
 /* 1 when body is a curved one (it shifts the rods' tops), 0 for the flat strip or NULL. */
 int ct_body_curved(const ct_body *body);
 /* 1 when b's rods were met by a curved body (their tops shifted). */

@@ -325,7 +325,9 @@ int ct_cli_load_scene(const ct_args *a, const char *cmd, ct_scene *sc)
     snprintf(list, sizeof list, " %s ", ct_surface_outputs());
     char word[64];
     snprintf(word, sizeof word, " %s ", cmd);
-    if (strstr(list, word) &&
+    /* landings are merged as an ensemble's realisations are, on any surface that has them */
+    const int landings_merge = !strcmp(cmd, "merge") && sc->body.landings;
+    if (strstr(list, word) && !landings_merge &&
         !ct_surface_kind_supports(ct_surface_kind_index(sc->surface), cmd, &why)) {
         ct_cli_fail("%s: %s", cmd, why);
         ct_scene_free(sc);

@@ -1,7 +1,7 @@
-/* cantact run of a scene with [ensemble]: the samples of its realisations (all of [ensemble]
- * realisations, or the range --realisations a:b), on one process or shared among MPI ranks and
- * gathered on rank 0, then written by ensemble_out.c after they are converted to the output's
- * units. */
+/* cantact run of a scene with samples: the realisations of [ensemble] (all of them, or the range
+ * --realisations a:b) or a curved body's landings (body.landings, or --landings a:b), on one
+ * process or shared among MPI ranks and gathered on rank 0, then written by ensemble_out.c after
+ * they are converted to the output's units. */
 #include "ensemble.h"
 #include "args.h"
 #include "ensemble_out.h"
@@ -14,9 +14,10 @@
 #include <string.h>
 
 /* The library's samples in output units: u_max / h0; a failed row's text is its status's. */
-static int table_from_samples(ct_ens_table *t, const ct_ensemble_samples *s, double h0)
+static int table_from_samples(ct_ens_table *t, const ct_ensemble_samples *s, double h0,
+                              int landings)
 {
-    if (ct_ens_table_alloc(t, s->first, s->count, s->nrows))
+    if (ct_ens_table_alloc(t, s->first, s->count, s->nrows, landings))
         return -1;
     for (size_t k = 0; k < (size_t)s->count * s->nrows; k++) {
         t->e[k] = s->e[k];
@@ -26,11 +27,13 @@ static int table_from_samples(ct_ens_table *t, const ct_ensemble_samples *s, dou
     }
     memcpy(t->cx, s->fx_clipped, (size_t)s->count * sizeof(uint64_t));
     memcpy(t->cz, s->fz_clipped, (size_t)s->count * sizeof(uint64_t));
+    memcpy(t->x, s->x, (size_t)s->count * sizeof(double));
+    memcpy(t->y, s->y, (size_t)s->count * sizeof(double));
     return 0;
 }
 
-static int parse_range(const char *text, uint64_t R, uint64_t *a, uint64_t *b, char *err,
-                       size_t errlen)
+static int parse_range(const char *text, const char *opt, const char *key, uint64_t R, uint64_t *a,
+                       uint64_t *b, char *err, size_t errlen)
 {
     const char *colon = strchr(text, ':');
     char *end;
@@ -45,8 +48,7 @@ static int parse_range(const char *text, uint64_t R, uint64_t *a, uint64_t *b, c
     if (*end || errno)
         goto bad;
     if (!(x < y && y <= R)) {
-        snprintf(err, errlen,
-                 "--realisations %s: must satisfy 0 <= a < b <= ensemble.realisations = %llu", text,
+        snprintf(err, errlen, "%s %s: must satisfy 0 <= a < b <= %s = %llu", opt, text, key,
                  (unsigned long long)R);
         return -1;
     }
@@ -54,7 +56,7 @@ static int parse_range(const char *text, uint64_t R, uint64_t *a, uint64_t *b, c
     *b = y;
     return 0;
 bad:
-    snprintf(err, errlen, "--realisations %s: expected a:b (realisations a .. b - 1)", text);
+    snprintf(err, errlen, "%s %s: expected a:b (%s a .. b - 1)", opt, text, opt + 2);
     return -1;
 }
 
@@ -70,9 +72,11 @@ static void show_progress(size_t done, size_t total, void *ctx)
         ct_progress_step(prog);
 }
 
-/* This rank's realisations my_a .. my_b - 1 into *mine (NULL when none); msg gets the error. */
-static int run_block(const ct_scene *sc, const ct_random_cantor *surface, uint64_t my_a,
-                     uint64_t my_b, ct_ensemble_samples **mine, char *msg, size_t msglen)
+/* This rank's samples my_a .. my_b - 1 into *mine (NULL when none): realisations of surface,
+ * or landings on rods (not NULL); msg gets the error. */
+static int run_block(const ct_scene *sc, const ct_random_cantor *surface, const ct_bundle *rods,
+                     uint64_t my_a, uint64_t my_b, ct_ensemble_samples **mine, char *msg,
+                     size_t msglen)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
     ct_progress prog;
@@ -95,7 +99,8 @@ static int run_block(const ct_scene *sc, const ct_random_cantor *surface, uint64
                                      .progress = ct_mpi_rank() == 0 ? show_progress : NULL,
                                      .progress_ctx = &prog,
                                      .body = &sc->body,
-                                     .scales = sc->scales};
+                                     .scales = sc->scales,
+                                     .rods = rods};
             st = ct_ensemble(&spec, *mine);
             /* a failed impact is a sample: rank 0 reports the lowest of all ranks */
             if (st && (*mine)->failed_realisation != UINT64_MAX)
@@ -109,8 +114,8 @@ static int run_block(const ct_scene *sc, const ct_random_cantor *surface, uint64
 }
 
 /* Rank 0: the samples of every rank (or their failure) into the outputs. */
-static int report(ct_ens_outputs *o, const ct_scene *sc, const ct_ensemble_samples *all, int st,
-                  const char *err, int quiet)
+static int report(ct_ens_outputs *o, const ct_scene *sc, const ct_ensemble_samples *all,
+                  const ct_plan_info *info, int st, const char *err, int quiet)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
     ct_ens_table t;
@@ -124,46 +129,82 @@ static int report(ct_ens_outputs *o, const ct_scene *sc, const ct_ensemble_sampl
         ct_cli_fail_scene(sc, all->status[k], all->message);
         return ct_cli_status_exit(all->status[k]);
     }
-    if (table_from_samples(&t, all, sc->scales.layer.h0)) {
+    if (table_from_samples(&t, all, sc->scales.layer.h0, sc->body.landings != 0)) {
         ct_cli_fail("ensemble: out of memory");
         return EXIT_FAILED;
     }
+    t.info = *info;
     int rc = ct_ens_write_outputs(o, sc, &t, quiet);
     const uint64_t n = ct_ensemble_checked(&sc->opts, all->first, all->count);
+    const char *of = sc->body.landings ? "landings" : "realisations";
     if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max) && n == all->count)
-        fprintf(stderr,
-                "cantact: closed-form check of every realisation: max |e - e_closed_form| = %.3g\n",
-                all->quad_error_max);
+        fprintf(
+            stderr,
+            "cantact: closed-form check of every one of the %s: max |e - e_closed_form| = %.3g\n",
+            of, all->quad_error_max);
     else if (!quiet && rc == EXIT_DONE && isfinite(all->quad_error_max))
         fprintf(stderr,
-                "cantact: closed-form check of %llu of %llu realisations (those whose index is a "
+                "cantact: closed-form check of %llu of %llu %s (those whose index is a "
                 "multiple of %d; solver.check = all checks every one): max |e - e_closed_form| = "
                 "%.3g\n",
-                (unsigned long long)n, (unsigned long long)all->count, CT_ENSEMBLE_CHECK_STRIDE,
+                (unsigned long long)n, (unsigned long long)all->count, of, CT_ENSEMBLE_CHECK_STRIDE,
                 all->quad_error_max);
     else if (!quiet && rc == EXIT_DONE && sc->opts.check == CT_CHECK_AUTO && n == 0)
         fprintf(stderr,
-                "cantact: closed-form check of none of realisations %llu .. %llu (it covers those "
+                "cantact: closed-form check of none of %s %llu .. %llu (it covers those "
                 "whose index is a multiple of %d; solver.check = all checks every one)\n",
-                (unsigned long long)all->first, (unsigned long long)(all->first + all->count - 1),
-                CT_ENSEMBLE_CHECK_STRIDE);
+                of, (unsigned long long)all->first,
+                (unsigned long long)(all->first + all->count - 1), CT_ENSEMBLE_CHECK_STRIDE);
     ct_ens_table_free(&t);
     return rc;
+}
+
+/* Landings: the surface's rods as built for the body, not met by it (each landing meets them at
+ * its apex), and the line that says what runs. */
+static int landing_rods(const ct_scene *sc, ct_bundle **rods, ct_plan_info *info, char *err,
+                        size_t errlen)
+{
+    ct_build_request req;
+    ct_scene_request(sc, 0, &req);
+    int st = ct_surface_build_unmet(sc->surface, &req, rods, info);
+    double lo[2], hi[2];
+    if (!st && (st = ct_body_landing_region(&sc->body, &sc->scales, *rods, lo, hi))) {
+        ct_bundle_free(*rods);
+        *rods = NULL;
+    }
+    if (st) {
+        snprintf(err, errlen, "%s", ct_error_message());
+        return st;
+    }
+    char line[400], body[200];
+    ct_surface_describe(sc->surface, info, line, sizeof line);
+    ct_body_describe(&sc->body, body, sizeof body);
+    if (!isnan(lo[1]))
+        snprintf(err, errlen, "%s %s; landings drawn over x %.6g .. %.6g, y %.6g .. %.6g", line,
+                 body, lo[0], hi[0], lo[1], hi[1]);
+    else
+        snprintf(err, errlen, "%s %s; landings drawn over x %.6g .. %.6g", line, body, lo[0],
+                 hi[0]);
+    return CT_OK;
 }
 
 int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
 {
     const int rank = ct_mpi_rank(), size = ct_mpi_size();
-    char err[512] = "", msg[300] = "";
-    uint64_t a = 0, b = sc->realisations;
+    const int landings = sc->body.landings != 0;
+    const uint64_t N = landings ? sc->body.landings : sc->realisations;
+    char err[1024] = "", msg[300] = "";
+    uint64_t a = 0, b = N;
     int rc = EXIT_DONE;
-    if (range && parse_range(range, sc->realisations, &a, &b, err, sizeof err)) {
+    if (range && parse_range(range, landings ? "--landings" : "--realisations",
+                             landings ? "body.landings" : "ensemble.realisations", N, &a, &b, err,
+                             sizeof err)) {
         if (rank == 0)
             ct_cli_fail("%s", err);
         return EXIT_USAGE;
     }
     /* a range writes its samples, for cantact merge */
-    const unsigned what = range ? CT_OUT_REALISATIONS : sc->what;
+    const unsigned what = range ? (landings ? CT_OUT_LANDINGS : CT_OUT_REALISATIONS) : sc->what;
     ct_ens_outputs o;
     memset(&o, 0, sizeof o);
     int ok = 1;
@@ -172,37 +213,55 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
         ct_cli_fail("%s", err);
     if (opened)
         ok = 0;
+    ct_bundle *rods = NULL;
+    ct_plan_info info = {0};
+    if (ok && landings &&
+        landing_rods(sc, &rods, &info, err, sizeof err)) { /* the same on every rank */
+        if (rank == 0)
+            ct_cli_fail_scene(sc, CT_EINVAL, err);
+        ok = 0;
+    }
     if (!ct_mpi_bcast_int(ok)) {
         ct_ens_close_outputs(&o);
+        ct_bundle_free(rods);
         return EXIT_USAGE;
     }
     ct_random_cantor surface;
-    ct_surface_random_cantor(sc->surface, &surface, NULL);
-    /* this rank's block of realisations */
+    memset(&surface, 0, sizeof surface);
+    if (!landings)
+        ct_surface_random_cantor(sc->surface, &surface, NULL);
+    /* this rank's block of samples */
     const uint64_t n = b - a;
     const uint64_t my_a = a + n * (uint64_t)rank / (uint64_t)size;
     const uint64_t my_b = a + n * (uint64_t)(rank + 1) / (uint64_t)size;
-    if (rank == 0 && !quiet)
+    const int threads = sc->threads > 0 ? sc->threads : ct_default_threads();
+    if (rank == 0 && !quiet && landings)
+        fprintf(stderr,
+                "cantact: %s; landings %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
+                err, (unsigned long long)a, (unsigned long long)(b - 1), (unsigned long long)N,
+                size, threads);
+    else if (rank == 0 && !quiet)
         fprintf(stderr,
                 "cantact: random cantor surface, depth %ld (%zu rods per realisation), "
                 "realisations %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
                 surface.depth, ((size_t)2 << surface.depth) - 1, (unsigned long long)a,
-                (unsigned long long)(b - 1), (unsigned long long)sc->realisations, size,
-                sc->threads > 0 ? sc->threads : ct_default_threads());
+                (unsigned long long)(b - 1), (unsigned long long)N, size, threads);
+    err[0] = '\0';
     ct_ensemble_samples *mine = NULL, *all = NULL;
-    int st = run_block(sc, &surface, my_a, my_b, &mine, msg, sizeof msg);
+    int st = run_block(sc, &surface, rods, my_a, my_b, &mine, msg, sizeof msg);
+    ct_bundle_free(rods);
     if (size > 1) {
         st = ct_mpi_gather(mine, st, msg, a, n, sc->nvel * (size_t)sc->impacts, &all, err,
                            sizeof err);
         if (rank == 0 && all)
-            all->draws = ((uint64_t)2 << surface.depth) - 2;
+            all->draws = landings ? 0 : ((uint64_t)2 << surface.depth) - 2;
     } else {
         all = mine;
         mine = NULL;
         snprintf(err, sizeof err, "%s", msg);
     }
     if (rank == 0)
-        rc = report(&o, sc, all, st, err, quiet);
+        rc = report(&o, sc, all, &info, st, err, quiet);
     ct_ens_close_outputs(&o);
     ct_ensemble_samples_free(mine);
     ct_ensemble_samples_free(all);

@@ -25,12 +25,15 @@ void ct_ens_table_free(ct_ens_table *t)
     free(t->err);
     free(t->cx);
     free(t->cz);
+    free(t->x);
+    free(t->y);
     memset(t, 0, sizeof *t);
 }
 
-int ct_ens_table_alloc(ct_ens_table *t, uint64_t first, uint64_t count, size_t nrows)
+int ct_ens_table_alloc(ct_ens_table *t, uint64_t first, uint64_t count, size_t nrows, int landings)
 {
     memset(t, 0, sizeof *t);
+    t->landings = landings;
     t->first = first;
     t->count = count;
     t->nrows = nrows;
@@ -41,10 +44,14 @@ int ct_ens_table_alloc(ct_ens_table *t, uint64_t first, uint64_t count, size_t n
     t->err = calloc(n, sizeof(char *));
     t->cx = calloc((size_t)count, sizeof(uint64_t));
     t->cz = calloc((size_t)count, sizeof(uint64_t));
-    if (!t->e || !t->u || !t->vc || !t->err || !t->cx || !t->cz) {
+    t->x = malloc((size_t)count * sizeof(double));
+    t->y = malloc((size_t)count * sizeof(double));
+    if (!t->e || !t->u || !t->vc || !t->err || !t->cx || !t->cz || !t->x || !t->y) {
         ct_ens_table_free(t);
         return -1;
     }
+    for (uint64_t r = 0; r < count; r++)
+        t->x[r] = t->y[r] = NAN;
     return 0;
 }
 
@@ -57,39 +64,69 @@ static void put_field(FILE *f, double x)
         ct_put_double(f, x);
 }
 
-const char *ct_ens_realisations_header(int skip)
+int ct_ens_landings_plane(const ct_scene *sc)
 {
-    return skip ? "realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,fz_clipped,"
-                  "error"
-                : "realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,fz_clipped";
+    return sc->body.landings && !strcmp(ct_body_name((size_t)sc->body.shape), "sphere");
 }
 
-/* The surface (kind, ratios, layer, depth, seed, spreads) and the error mode. */
-void ct_ens_identity(const ct_scene *sc, char *buf, size_t len)
+const char *ct_ens_samples_header(const ct_scene *sc)
 {
-    ct_random_cantor rc;
-    ct_surface_random_cantor(sc->surface, &rc, NULL);
-    ct_plan_info info = {.depth = rc.depth, .rods = ((size_t)2 << rc.depth) - 1};
-    char line[600];
-    ct_surface_table_line(sc->surface, &info, line, sizeof line);
-    char body[200];
+    static const char *const headers[3][2] = {
+        {"realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,fz_clipped",
+         "realisation,impact,V_star,u_max_over_h0,e,V_star_crit,fx_clipped,fz_clipped,error"},
+        {"landing,x,impact,V_star,u_max_over_h0,e,V_star_crit",
+         "landing,x,impact,V_star,u_max_over_h0,e,V_star_crit,error"},
+        {"landing,x,y,impact,V_star,u_max_over_h0,e,V_star_crit",
+         "landing,x,y,impact,V_star,u_max_over_h0,e,V_star_crit,error"}};
+    const int kind = !sc->body.landings ? 0 : ct_ens_landings_plane(sc) ? 2 : 1;
+    return headers[kind][sc->skip_failed != 0];
+}
+
+/* The surface (kind, ratios, layer, depth, seed, spreads; a deterministic surface's own line
+ * for landings, with the landings' seed), the error mode and the body. */
+void ct_ens_identity(const ct_scene *sc, const ct_plan_info *built, char *buf, size_t len)
+{
+    char line[600], body[200];
+    if (sc->body.landings) {
+        ct_surface_table_line(sc->surface, built, line, sizeof line);
+    } else {
+        ct_random_cantor rc;
+        ct_surface_random_cantor(sc->surface, &rc, NULL);
+        ct_plan_info info = {.depth = rc.depth, .rods = ((size_t)2 << rc.depth) - 1};
+        ct_surface_table_line(sc->surface, &info, line, sizeof line);
+    }
     ct_body_describe(&sc->body, body, sizeof body); /* a part under another body is another run */
-    snprintf(buf, len, CT_ENS_ID_HEAD "%s; impacts %ld; solver.on_error = %s%s%s", line,
-             sc->impacts, sc->skip_failed ? "skip" : "stop", body[0] ? "; " : "", body);
+    if (sc->body.landings)
+        snprintf(buf, len,
+                 CT_ENS_LANDINGS_HEAD "%s; impacts %ld; solver.on_error = %s; %s; seed %llu", line,
+                 sc->impacts, sc->skip_failed ? "skip" : "stop", body,
+                 (unsigned long long)sc->body.seed);
+    else
+        snprintf(buf, len, CT_ENS_ID_HEAD "%s; impacts %ld; solver.on_error = %s%s%s", line,
+                 sc->impacts, sc->skip_failed ? "skip" : "stop", body[0] ? "; " : "", body);
 }
 
 static void write_realisations(FILE *f, const ct_scene *sc, const ct_ens_table *t)
 {
     const size_t impacts = (size_t)sc->impacts;
+    const int plane = ct_ens_landings_plane(sc);
     for (uint64_t r = 0; r < t->count; r++)
         for (size_t q = 0; q < t->nrows; q++) {
             const size_t k = (size_t)r * t->nrows + q;
-            fprintf(f, "%llu,%zu,", (unsigned long long)(t->first + r), q % impacts + 1);
+            fprintf(f, "%llu", (unsigned long long)(t->first + r));
+            if (t->landings) {
+                put_field(f, t->x[r]);
+                if (plane)
+                    put_field(f, t->y[r]);
+            }
+            fprintf(f, ",%zu,", q % impacts + 1);
             ct_put_double(f, sc->V_star[q / impacts]);
             put_field(f, t->u[k]);
             put_field(f, t->e[k]);
             put_field(f, t->vc[k]);
-            fprintf(f, ",%llu,%llu", (unsigned long long)t->cx[r], (unsigned long long)t->cz[r]);
+            if (!t->landings)
+                fprintf(f, ",%llu,%llu", (unsigned long long)t->cx[r],
+                        (unsigned long long)t->cz[r]);
             if (sc->skip_failed) {
                 fputc(',', f);
                 if (t->err[k]) {
@@ -105,14 +142,15 @@ static void write_realisations(FILE *f, const ct_scene *sc, const ct_ens_table *
 
 static const char *const stat_names[] = {"mean", "sd", "sem", "q05", "q50", "q95"};
 
-static void write_ensemble_header(FILE *f)
+static void write_ensemble_header(FILE *f, int landings)
 {
     static const char *const quantities[] = {"e", "u_max_over_h0", "V_star_crit"};
-    fputs("impact,V_star,realisations", f);
+    fputs(landings ? "impact,V_star,landings" : "impact,V_star,realisations", f);
     for (int q = 0; q < 3; q++)
         for (int s = 0; s < 6; s++)
             fprintf(f, ",%s_%s", quantities[q], stat_names[s]);
-    fputs(",e_deterministic\n", f);
+    /* beside landings: e with the apex where body.position puts it (the middle by default) */
+    fputs(landings ? ",e_at_position\n" : ",e_deterministic\n", f);
 }
 
 /* One row per speed and impact: the statistics over the realisations in realisation order,
@@ -153,14 +191,21 @@ static int write_ensemble(FILE *f, const ct_scene *sc, const ct_ens_table *t, co
 }
 
 /* e of the deterministic surface at the same centres and depth (stage rods: the same rods
- * as spread 0, merged), for every speed and impact; NaN where an impact fails. */
+ * as spread 0, merged), for every speed and impact; NaN where an impact fails. Beside landings,
+ * e of the one run with the apex at body.position (the middle of the surface by default). */
 static int deterministic_e(const ct_scene *sc, double *e_det)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
     ct_random_cantor rc;
     ct_bundle *b;
-    int st = ct_surface_random_cantor(sc->surface, &rc, NULL);
-    if (!st) { /* under a curved body one rod per piece, met by the body as the samples are */
+    int st = CT_OK;
+    if (sc->body.landings) {
+        ct_build_request req;
+        ct_scene_request(sc, 0, &req);
+        st = ct_surface_build(sc->surface, &req, &b, NULL);
+    } else if (!(st = ct_surface_random_cantor(sc->surface, &rc,
+                                               NULL))) { /* under a curved body one rod per piece,
+                                                            met by the body as the samples are */
         const int curved = sc->body.shape != 0;
         st = ct_cantor_bundle(&b, &rc.params, curved ? CT_REP_SEGMENTS : CT_REP_STAGES, rc.depth,
                               INFINITY);
@@ -192,14 +237,17 @@ int ct_ens_open_outputs(ct_ens_outputs *o, const ct_scene *sc, unsigned what,
                         const char *const *parts, size_t nparts, char *err, size_t errlen)
 {
     memset(o, 0, sizeof *o);
-    const int both = (what & CT_OUT_ENSEMBLE) && (what & CT_OUT_REALISATIONS);
+    /* the samples: realisations, or landings */
+    const unsigned samples = what & (CT_OUT_REALISATIONS | CT_OUT_LANDINGS);
+    const int both = (what & CT_OUT_ENSEMBLE) && samples;
     if (both && !strcmp(sc->output, "-")) {
         snprintf(err, errlen,
                  "output.what names several outputs: set output.file (or -o FILE) to a path");
         return -1;
     }
-    if (what & CT_OUT_REALISATIONS) {
-        o->real_path = both ? ct_cli_derived_path(sc->output, "realisations") : strdup(sc->output);
+    if (samples) {
+        const char *suffix = samples & CT_OUT_LANDINGS ? "landings" : "realisations";
+        o->real_path = both ? ct_cli_derived_path(sc->output, suffix) : strdup(sc->output);
         if (!o->real_path) {
             snprintf(err, errlen, "out of memory");
             return -1;
@@ -213,7 +261,7 @@ int ct_ens_open_outputs(ct_ens_outputs *o, const ct_scene *sc, unsigned what,
             return -1;
         o->opened_ens = 1;
     }
-    if (what & CT_OUT_REALISATIONS) {
+    if (samples) {
         if (ct_out_open(&o->real, o->real_path, err, errlen))
             return -1;
         o->opened_real = 1;
@@ -246,7 +294,7 @@ static int write_statistics(FILE *f, const ct_scene *sc, const ct_ens_table *t, 
     }
     for (size_t q = 0; e_det && q < t->nrows; q++)
         *det_empty += isnan(e_det[q]);
-    write_ensemble_header(f);
+    write_ensemble_header(f, t->landings);
     st = e_det ? write_ensemble(f, sc, t, e_det, sem_max, at) : CT_ENOMEM;
     free(e_det);
     return st;
@@ -265,32 +313,37 @@ static void summary(const ct_scene *sc, const ct_ens_table *t, double sem_max, s
     }
     for (size_t k = 0; k < (size_t)t->count * t->nrows; k++)
         failed += t->err[k] != NULL;
-    ct_random_cantor rc;
-    ct_surface_random_cantor(sc->surface, &rc, NULL);
-    const double draws = (double)t->count * (double)(((uint64_t)2 << rc.depth) - 2);
-    fprintf(stderr,
-            "cantact: ratios clipped into the valid ranges: fx %llu of %.0f draws (%.3g %%), "
-            "fz %llu (%.3g %%)\n",
-            (unsigned long long)cx, draws, draws > 0 ? 100.0 * (double)cx / draws : 0.0,
-            (unsigned long long)cz, draws > 0 ? 100.0 * (double)cz / draws : 0.0);
+    const char *of = t->landings ? "landings" : "realisations";
+    if (!t->landings) {
+        ct_random_cantor rc;
+        ct_surface_random_cantor(sc->surface, &rc, NULL);
+        const double draws = (double)t->count * (double)(((uint64_t)2 << rc.depth) - 2);
+        fprintf(stderr,
+                "cantact: ratios clipped into the valid ranges: fx %llu of %.0f draws (%.3g %%), "
+                "fz %llu (%.3g %%)\n",
+                (unsigned long long)cx, draws, draws > 0 ? 100.0 * (double)cx / draws : 0.0,
+                (unsigned long long)cz, draws > 0 ? 100.0 * (double)cz / draws : 0.0);
+    }
     if (isfinite(sem_max))
         fprintf(stderr,
-                "cantact: standard error of mean e over %llu realisations: at most %.3g "
-                "(V* = %g, impact %zu); it falls as 1/sqrt(realisations)\n",
-                (unsigned long long)t->count, sem_max, sc->V_star[at / (size_t)sc->impacts],
-                at % (size_t)sc->impacts + 1);
+                "cantact: standard error of mean e over %llu %s: at most %.3g "
+                "(V* = %g, impact %zu); it falls as 1/sqrt(%s)\n",
+                (unsigned long long)t->count, of, sem_max, sc->V_star[at / (size_t)sc->impacts],
+                at % (size_t)sc->impacts + 1, of);
     if (failed)
         fprintf(stderr,
                 "cantact: %zu of %zu impacts failed or not run (left out of the "
                 "statistics)\n",
                 failed, (size_t)t->count * t->nrows);
+    const char *det = t->landings ? "e_at_position" : "e_deterministic";
     if (det_why[0])
-        fprintf(stderr, "cantact: ensemble: e_deterministic left empty: %s\n", det_why);
+        fprintf(stderr, "cantact: ensemble: %s left empty: %s\n", det, det_why);
     else if (det_empty)
         fprintf(stderr,
-                "cantact: ensemble: e_deterministic empty in %zu of %zu rows (the "
-                "deterministic surface's impact failed or was not run)\n",
-                det_empty, t->nrows);
+                "cantact: ensemble: %s empty in %zu of %zu rows (the %s impact failed or was not "
+                "run)\n",
+                det, det_empty, t->nrows,
+                t->landings ? "apex at body.position's" : "deterministic surface's");
 }
 
 int ct_ens_write_outputs(ct_ens_outputs *o, const ct_scene *sc, const ct_ens_table *t, int quiet)
@@ -298,8 +351,8 @@ int ct_ens_write_outputs(ct_ens_outputs *o, const ct_scene *sc, const ct_ens_tab
     char err[512];
     if (o->opened_real) {
         char id[800];
-        ct_ens_identity(sc, id, sizeof id);
-        fprintf(o->real.f, "%s\n%s\n", id, ct_ens_realisations_header(sc->skip_failed));
+        ct_ens_identity(sc, &t->info, id, sizeof id);
+        fprintf(o->real.f, "%s\n%s\n", id, ct_ens_samples_header(sc));
         write_realisations(o->real.f, sc, t);
     }
     double sem_max = NAN;

@@ -1,7 +1,7 @@
-/* cantact merge: the realisations CSVs of runs with --realisations a:b (the parts, e.g. the
- * tasks of a job array) read back, checked to be this scene's and to hold every realisation
- * once, and written as one run over all realisations would have written them. The parts print
- * every sample round-trip exact, so the merged outputs are the same bytes. */
+/* cantact merge: the realisations (or landings) CSVs of runs with --realisations a:b (--landings
+ * a:b) (the parts, e.g. the tasks of a job array) read back, checked to be this scene's and to
+ * hold every sample once, and written as one run over all realisations would have written them. The
+ * parts print every sample round-trip exact, so the merged outputs are the same bytes. */
 #include "merge.h"
 #include "args.h"
 #include "ensemble_out.h"
@@ -20,7 +20,8 @@ const char *const ct_cli_merge_help =
     "the tasks of a job array) into what the scene's [output] what asks for (ensemble and/or\n"
     "realisations): the same bytes as one run over all realisations. Every realisation\n"
     "0 .. ensemble.realisations - 1 must be in exactly one part; the parts' speeds and impacts\n"
-    "must be the scene's.\n"
+    "must be the scene's. The same for the landings CSVs of runs with --landings a:b (a scene\n"
+    "with body.landings; each landing's apex is checked against the one the scene draws).\n"
     "\n"
     "Options:\n"
     "  --set section.key=value   override a scene key (repeatable; as for the runs)\n"
@@ -135,14 +136,25 @@ static void mismatch(char *err, size_t errlen, const char *where, const char *wh
              at + 1, got, exp);
 }
 
+/* What the parts hold: realisations of a random surface, or landings of a curved body (their
+ * apexes checked against the ones drawn: the parts must come from runs of this scene). */
+typedef struct {
+    int landings, plane; /* landings; on a plane (x and y) */
+    uint64_t N;          /* ensemble.realisations or body.landings */
+    const char *word;    /* "realisation" or "landing" */
+    ct_plan_info info;   /* landings: the surface's rods as built (the identity line) */
+    double lo[2], hi[2]; /* landings: the region they are drawn from */
+} merge_kind;
+
 /* Reads and checks a part's first two lines (into line): this scene's identity, after a
  * UTF-8 byte order mark if one comes first (an editor's), then the header. 0, or -1 with
  * the message in err. */
-static int part_head(FILE *f, const char *path, const ct_scene *sc, char *line, char *err,
-                     size_t errlen)
+static int part_head(FILE *f, const char *path, const ct_scene *sc, const merge_kind *mk,
+                     char *line, char *err, size_t errlen)
 {
     char id[800], where[300];
-    ct_ens_identity(sc, id, sizeof id);
+    const char *head = mk->landings ? CT_ENS_LANDINGS_HEAD : CT_ENS_ID_HEAD;
+    ct_ens_identity(sc, &mk->info, id, sizeof id);
     for (long lineno = 1; lineno <= 2; lineno++) {
         const int got = part_line(f, line);
         snprintf(where, sizeof where, "%s:%ld", path, lineno);
@@ -167,18 +179,18 @@ static int part_head(FILE *f, const char *path, const ct_scene *sc, char *line, 
             text += 3;
         if (lineno == 1 && !strcmp(text, id))
             continue;
-        if (lineno == 2 && !strcmp(text, ct_ens_realisations_header(sc->skip_failed)))
+        if (lineno == 2 && !strcmp(text, ct_ens_samples_header(sc)))
             return 0;
-        if (lineno == 1 && strncmp(text, CT_ENS_ID_HEAD, strlen(CT_ENS_ID_HEAD)))
+        if (lineno == 1 && strncmp(text, head, strlen(head)))
             snprintf(err, errlen,
-                     "%s: not a part of an ensemble run (its first line is not '" CT_ENS_ID_HEAD
-                     "...', which cantact run --realisations a:b writes first)",
-                     path);
+                     "%s: not a part of an ensemble run (its first line is not '%s...', which "
+                     "cantact run --%ss a:b writes first)",
+                     path, head, mk->word);
         else if (lineno == 1)
             mismatch(err, errlen, where, "not a part of this scene", text, id);
         else
             mismatch(err, errlen, where, "not a realisations CSV of this scene", text,
-                     ct_ens_realisations_header(sc->skip_failed));
+                     ct_ens_samples_header(sc));
         return -1;
     }
     return 0;
@@ -188,14 +200,16 @@ static int part_head(FILE *f, const char *path, const ct_scene *sc, char *line, 
  * finite and >= 0, u_max below H*, clip counts at most the draws; empty only for a failed impact (a
  * row with its error), and failed impacts only in a scene with solver.on_error = skip. NULL or why
  * not. */
-static const char *row_values(const ct_scene *sc, double u, double e, double vc, uint64_t cx,
-                              uint64_t cz, const char *error)
+static const char *row_values(const ct_scene *sc, const merge_kind *mk, double u, double e,
+                              double vc, uint64_t cx, uint64_t cz, const char *error)
 {
-    ct_random_cantor rc;
-    ct_surface_random_cantor(sc->surface, &rc, NULL);
-    const uint64_t draws = ((uint64_t)2 << rc.depth) - 2;
-    if (cx > draws || cz > draws)
-        return "more clipped ratios than draws";
+    if (!mk->landings) {
+        ct_random_cantor rc;
+        ct_surface_random_cantor(sc->surface, &rc, NULL);
+        const uint64_t draws = ((uint64_t)2 << rc.depth) - 2;
+        if (cx > draws || cz > draws)
+            return "more clipped ratios than draws";
+    }
     if (error && *error)
         return isnan(e) && isnan(u) && isnan(vc) ? NULL : "a failed impact with numbers";
     if (isnan(e) || isnan(u) || isnan(vc))
@@ -215,7 +229,8 @@ static const char *row_values(const ct_scene *sc, double u, double e, double vc,
 /* The data rows of a part (its lines after the identity and the header), its head checked:
  * -1 with the message in err when it is no part of this scene, cannot be read or has a line
  * that no part has (too long, a NUL byte). */
-static long long part_rows(const char *path, const ct_scene *sc, char *err, size_t errlen)
+static long long part_rows(const char *path, const ct_scene *sc, const merge_kind *mk, char *err,
+                           size_t errlen)
 {
     FILE *f = fopen(path, "r");
     if (!f) {
@@ -228,7 +243,7 @@ static long long part_rows(const char *path, const ct_scene *sc, char *err, size
     int got = 0;
     if (!line)
         snprintf(err, errlen, "out of memory");
-    else if (!part_head(f, path, sc, line, err, errlen)) {
+    else if (!part_head(f, path, sc, mk, line, err, errlen)) {
         n = 0;
         while ((got = part_line(f, line)) > 0 && !(line[0] && blank))
             line[0] ? n++ : blank++;
@@ -253,20 +268,32 @@ static long long part_rows(const char *path, const ct_scene *sc, char *err, size
 
 /* One data row of a part, as read. */
 typedef struct {
-    char *fields[9]; /* into the line; fields[8]: the error (solver.on_error = skip) */
+    char *fields[10]; /* into the line; the last: the error (solver.on_error = skip) */
     uint64_t r, impact, cx, cz;
-    double V, u, e, vc;
+    double x, y, V, u, e, vc;
+    const char *V_text, *impact_text;
 } part_row;
 
-/* Splits a data row into its nf fields and reads their numbers: 0, or -1 when malformed. */
-static int parse_row(char *line, int nf, part_row *row)
+/* Splits a data row into its nf fields and reads their numbers: 0, or -1 when malformed. A
+ * realisation's row: realisation, impact, V*, u, e, V*_c, fx and fz clipped; a landing's:
+ * landing, x (and y on a plane), impact, V*, u, e, V*_c. */
+static int parse_row(char *line, int nf, const merge_kind *mk, part_row *row)
 {
-    char **fields = row->fields;
-    if (split_fields(line, fields, nf) != nf || read_u64(fields[0], &row->r) ||
-        read_u64(fields[1], &row->impact) || read_double(fields[2], &row->V) ||
-        read_double(fields[3], &row->u) || read_double(fields[4], &row->e) ||
-        read_double(fields[5], &row->vc) || read_u64(fields[6], &row->cx) ||
-        read_u64(fields[7], &row->cz))
+    char **f = row->fields;
+    if (split_fields(line, f, nf) != nf || read_u64(f[0], &row->r))
+        return -1;
+    row->x = row->y = NAN;
+    row->cx = row->cz = 0;
+    const int a = mk->landings ? 1 + mk->plane : 0; /* the position's fields */
+    if (mk->landings && (read_double(f[1], &row->x) || (mk->plane && read_double(f[2], &row->y))))
+        return -1;
+    row->impact_text = f[a + 1];
+    row->V_text = f[a + 2];
+    if (read_u64(f[a + 1], &row->impact) || read_double(f[a + 2], &row->V) ||
+        read_double(f[a + 3], &row->u) || read_double(f[a + 4], &row->e) ||
+        read_double(f[a + 5], &row->vc))
+        return -1;
+    if (!mk->landings && (read_u64(f[6], &row->cx) || read_u64(f[7], &row->cz)))
         return -1;
     return 0;
 }
@@ -277,6 +304,7 @@ typedef struct {
     const char *path;
     long lineno;
     const ct_scene *sc;
+    const merge_kind *mk;
     ct_ens_table *t;
     unsigned char *seen; /* seen[r]: realisation r was read, in this part or an earlier one */
     uint64_t r_cur;      /* the realisation being read (UINT64_MAX: none yet) */
@@ -291,21 +319,23 @@ static int place_row(part_reader *p, const part_row *row, size_t *k)
 {
     const size_t impacts = (size_t)p->sc->impacts, nrows = p->t->nrows;
     const uint64_t r = row->r;
+    const char *w = p->mk->word;
     if (r >= p->t->count) {
-        snprintf(p->err, p->errlen,
-                 "%s:%ld: realisation %llu: the scene has ensemble.realisations = %llu", p->path,
-                 p->lineno, (unsigned long long)r, (unsigned long long)p->t->count);
+        snprintf(p->err, p->errlen, "%s:%ld: %s %llu: the scene has %s = %llu", p->path, p->lineno,
+                 w, (unsigned long long)r,
+                 p->mk->landings ? "body.landings" : "ensemble.realisations",
+                 (unsigned long long)p->t->count);
         return -1;
     }
     if (r != p->r_cur) {
         if (p->r_cur != UINT64_MAX && p->q_next != nrows) {
-            snprintf(p->err, p->errlen, "%s:%ld: realisation %llu has %zu rows, the scene %zu",
-                     p->path, p->lineno, (unsigned long long)p->r_cur, p->q_next, nrows);
+            snprintf(p->err, p->errlen, "%s:%ld: %s %llu has %zu rows, the scene %zu", p->path,
+                     p->lineno, w, (unsigned long long)p->r_cur, p->q_next, nrows);
             return -1;
         }
         if (p->seen[r]) {
-            snprintf(p->err, p->errlen, "%s:%ld: realisation %llu appears twice", p->path,
-                     p->lineno, (unsigned long long)r);
+            snprintf(p->err, p->errlen, "%s:%ld: %s %llu appears twice", p->path, p->lineno, w,
+                     (unsigned long long)r);
             return -1;
         }
         p->seen[r] = 1;
@@ -315,10 +345,23 @@ static int place_row(part_reader *p, const part_row *row, size_t *k)
     const size_t q = p->q_next++;
     if (q >= nrows || row->impact != q % impacts + 1 || row->V != p->sc->V_star[q / impacts]) {
         snprintf(p->err, p->errlen,
-                 "%s:%ld: V* = %s, impact %s: not the scene's row %zu of realisation %llu "
+                 "%s:%ld: V* = %s, impact %s: not the scene's row %zu of %s %llu "
                  "(the parts must come from runs of this scene)",
-                 p->path, p->lineno, row->fields[2], row->fields[1], q + 1, (unsigned long long)r);
+                 p->path, p->lineno, row->V_text, row->impact_text, q + 1, w,
+                 (unsigned long long)r);
         return -1;
+    }
+    if (p->mk->landings) { /* the apex drawn for this landing, to the bit */
+        double pos[2];
+        ct_body_landing(p->mk->lo, p->mk->hi, p->sc->body.seed, r, pos);
+        if (!(row->x == pos[0] && (!p->mk->plane || row->y == pos[1]))) {
+            snprintf(p->err, p->errlen,
+                     "%s:%ld: landing %llu at x = %.17g: this scene draws it at x = %.17g%s (the "
+                     "parts must come from runs of this scene)",
+                     p->path, p->lineno, (unsigned long long)r, row->x, pos[0],
+                     p->mk->plane ? " (and y as drawn)" : "");
+            return -1;
+        }
     }
     *k = (size_t)r * nrows + q;
     return 0;
@@ -329,15 +372,15 @@ static int place_row(part_reader *p, const part_row *row, size_t *k)
 static int read_row(part_reader *p, char *line)
 {
     const ct_scene *sc = p->sc;
-    const int nf = sc->skip_failed ? 9 : 8;
+    const int nf = (p->mk->landings ? 7 + p->mk->plane : 8) + (sc->skip_failed != 0);
     part_row row;
-    if (parse_row(line, nf, &row)) {
+    if (parse_row(line, nf, p->mk, &row)) {
         snprintf(p->err, p->errlen, "%s:%ld: malformed row (expected %s)", p->path, p->lineno,
-                 ct_ens_realisations_header(sc->skip_failed));
+                 ct_ens_samples_header(sc));
         return -1;
     }
-    const char *error = nf == 9 ? row.fields[8] : NULL;
-    const char *why = row_values(sc, row.u, row.e, row.vc, row.cx, row.cz, error);
+    const char *error = sc->skip_failed ? row.fields[nf - 1] : NULL;
+    const char *why = row_values(sc, p->mk, row.u, row.e, row.vc, row.cx, row.cz, error);
     if (why) {
         snprintf(p->err, p->errlen, "%s:%ld: %s: not what a run writes", p->path, p->lineno, why);
         return -1;
@@ -351,6 +394,8 @@ static int read_row(part_reader *p, char *line)
     t->vc[k] = row.vc;
     t->cx[row.r] = row.cx;
     t->cz[row.r] = row.cz;
+    t->x[row.r] = row.x;
+    t->y[row.r] = row.y;
     if (error && error[0] && !(t->err[k] = strdup(error))) {
         snprintf(p->err, p->errlen, "out of memory");
         return -1;
@@ -359,8 +404,8 @@ static int read_row(part_reader *p, char *line)
 }
 
 /* Reads one part into t; seen[r] marks the realisations read. Returns 0 or -1 (err set). */
-static int read_part(const char *path, const ct_scene *sc, ct_ens_table *t, unsigned char *seen,
-                     char *err, size_t errlen)
+static int read_part(const char *path, const ct_scene *sc, const merge_kind *mk, ct_ens_table *t,
+                     unsigned char *seen, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
     if (!f) {
@@ -370,6 +415,7 @@ static int read_part(const char *path, const ct_scene *sc, ct_ens_table *t, unsi
     part_reader p = {.path = path,
                      .lineno = 2,
                      .sc = sc,
+                     .mk = mk,
                      .t = t,
                      .seen = seen,
                      .r_cur = UINT64_MAX,
@@ -381,7 +427,7 @@ static int read_part(const char *path, const ct_scene *sc, ct_ens_table *t, unsi
         snprintf(err, errlen, "out of memory");
         goto done;
     }
-    if (part_head(f, path, sc, line, err, errlen))
+    if (part_head(f, path, sc, mk, line, err, errlen))
         goto done;
     while ((got = part_line(f, line)) != 0) {
         p.lineno++;
@@ -399,7 +445,7 @@ static int read_part(const char *path, const ct_scene *sc, ct_ens_table *t, unsi
             goto done;
     }
     if (p.r_cur != UINT64_MAX && p.q_next != t->nrows) {
-        snprintf(err, errlen, "%s: realisation %llu has %zu rows, the scene %zu", path,
+        snprintf(err, errlen, "%s: %s %llu has %zu rows, the scene %zu", path, mk->word,
                  (unsigned long long)p.r_cur, p.q_next, t->nrows);
         goto done;
     }
@@ -416,31 +462,31 @@ done:
 
 /* The parts' data rows (their heads checked) against the scene: they must hold every
  * realisation once, R x nrows rows in all. 0, or -1 with the message in err. */
-static int count_rows(const char *const *parts, size_t nparts, const ct_scene *sc, char *err,
-                      size_t errlen)
+static int count_rows(const char *const *parts, size_t nparts, const ct_scene *sc,
+                      const merge_kind *mk, char *err, size_t errlen)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
+    const char *w = mk->word, *key = mk->landings ? "body.landings" : "ensemble.realisations";
     long long rows = 0;
     for (size_t p = 0; p < nparts; p++) {
-        long long n = part_rows(parts[p], sc, err, errlen);
+        long long n = part_rows(parts[p], sc, mk, err, errlen);
         if (n < 0)
             return -1;
         rows += n;
     }
-    if ((unsigned long long)rows != (unsigned long long)sc->realisations * nrows) {
+    if ((unsigned long long)rows != (unsigned long long)mk->N * nrows) {
         if (rows % (long long)nrows == 0)
             snprintf(err, errlen,
-                     "merge: the parts hold %lld rows, %lld realisations of %zu rows; the scene "
-                     "has ensemble.realisations = %llu (every realisation must be in exactly one "
-                     "part)",
-                     rows, rows / (long long)nrows, nrows, (unsigned long long)sc->realisations);
+                     "merge: the parts hold %lld rows, %lld %ss of %zu rows; the scene has %s = "
+                     "%llu (every %s must be in exactly one part)",
+                     rows, rows / (long long)nrows, w, nrows, key, (unsigned long long)mk->N, w);
         else
             snprintf(err, errlen,
-                     "merge: the parts hold %lld rows, not whole realisations of %zu rows (the "
-                     "scene's %zu speeds x %ld impacts); ensemble.realisations = %llu needs %llu "
-                     "(every realisation must be in exactly one part)",
-                     rows, nrows, sc->nvel, sc->impacts, (unsigned long long)sc->realisations,
-                     (unsigned long long)sc->realisations * nrows);
+                     "merge: the parts hold %lld rows, not whole %ss of %zu rows (the scene's "
+                     "%zu speeds x %ld impacts); %s = %llu needs %llu (every %s must be in "
+                     "exactly one part)",
+                     rows, w, nrows, sc->nvel, sc->impacts, key, (unsigned long long)mk->N,
+                     (unsigned long long)mk->N * nrows, w);
         return -1;
     }
     return 0;
@@ -448,19 +494,42 @@ static int count_rows(const char *const *parts, size_t nparts, const ct_scene *s
 
 /* Every realisation's samples are held: refuse up front what would not fit, as run does. 0, or
  * -1 with the message in err. */
-static int check_memory(const ct_scene *sc, char *err, size_t errlen)
+static int check_memory(const ct_scene *sc, const merge_kind *mk, char *err, size_t errlen)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
-    const double bytes = (double)sc->realisations * ((double)nrows * 4.0 + 3.0) * sizeof(double);
+    const double bytes = (double)mk->N * ((double)nrows * 4.0 + 5.0) * sizeof(double);
     if (bytes > 0.5 * (double)ct_available_memory()) {
         snprintf(err, errlen,
-                 "merge: %llu realisations x %zu rows need %.3g GiB, more than half the %.3g GiB "
+                 "merge: %llu %ss x %zu rows need %.3g GiB, more than half the %.3g GiB "
                  "of memory available",
-                 (unsigned long long)sc->realisations, nrows, bytes / 1073741824.0,
+                 (unsigned long long)mk->N, mk->word, nrows, bytes / 1073741824.0,
                  (double)ct_available_memory() / 1073741824.0);
         return -1;
     }
     return 0;
+}
+
+/* What the scene's parts hold; for landings the surface built (as the runs build it) for the
+ * identity line and the region the apexes are drawn from. 0, or -1 with the message in err. */
+static int kind_of(const ct_scene *sc, merge_kind *mk, char *err, size_t errlen)
+{
+    memset(mk, 0, sizeof *mk);
+    mk->landings = sc->body.landings != 0;
+    mk->N = mk->landings ? sc->body.landings : sc->realisations;
+    mk->word = mk->landings ? "landing" : "realisation";
+    if (!mk->landings)
+        return 0;
+    mk->plane = ct_ens_landings_plane(sc);
+    ct_build_request req;
+    ct_bundle *b = NULL;
+    ct_scene_request(sc, 0, &req);
+    int st = ct_surface_build_unmet(sc->surface, &req, &b, &mk->info);
+    if (!st)
+        st = ct_body_landing_region(&sc->body, &sc->scales, b, mk->lo, mk->hi);
+    ct_bundle_free(b);
+    if (st)
+        snprintf(err, errlen, "%s", ct_error_message());
+    return st ? -1 : 0;
 }
 
 /* The parts (nparts of them) of the scene sc (read from the file scene) into its outputs.
@@ -475,25 +544,32 @@ static int merge_parts(const ct_scene *sc, const char *scene, const char *const 
     unsigned char *seen = NULL;
     ct_ens_outputs o;
     memset(&o, 0, sizeof o);
-    if (!sc->realisations) {
-        snprintf(err, sizeof err, "merge: %s has no [ensemble] realisations", scene);
+    merge_kind mk;
+    if (!sc->realisations && !sc->body.landings) {
+        snprintf(err, sizeof err, "merge: %s has no [ensemble] realisations or body.landings",
+                 scene);
         ct_cli_fail("%s", err);
         goto done;
     }
-    /* the table is sized by what the parts hold: they must hold every realisation once */
-    if (count_rows(parts, nparts, sc, err, sizeof err) || check_memory(sc, err, sizeof err)) {
+    if (kind_of(sc, &mk, err, sizeof err)) {
+        ct_cli_fail_scene(sc, CT_EINVAL, err);
+        goto done;
+    }
+    /* the table is sized by what the parts hold: they must hold every sample once */
+    if (count_rows(parts, nparts, sc, &mk, err, sizeof err) ||
+        check_memory(sc, &mk, err, sizeof err)) {
         ct_cli_fail("%s", err);
         goto done;
     }
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
-    if (ct_ens_table_alloc(&t, 0, sc->realisations, nrows) ||
-        !(seen = calloc((size_t)sc->realisations, 1))) {
+    if (ct_ens_table_alloc(&t, 0, mk.N, nrows, mk.landings) || !(seen = calloc((size_t)mk.N, 1))) {
         ct_cli_fail("merge: out of memory");
         rc = EXIT_FAILED;
         goto done;
     }
     t.owns_err = 1;
-    for (size_t k = 0; k < (size_t)sc->realisations * nrows; k++)
+    t.info = mk.info;
+    for (size_t k = 0; k < (size_t)mk.N * nrows; k++)
         t.e[k] = t.u[k] = t.vc[k] = NAN;
     /* open the outputs first: an unwritable path fails before any reading */
     int opened = ct_ens_open_outputs(&o, sc, sc->what, parts, nparts, err, sizeof err);
@@ -503,7 +579,7 @@ static int merge_parts(const ct_scene *sc, const char *scene, const char *const 
         goto done;
     }
     for (size_t p = 0; p < nparts; p++)
-        if (read_part(parts[p], sc, &t, seen, err, sizeof err)) {
+        if (read_part(parts[p], sc, &mk, &t, seen, err, sizeof err)) {
             ct_cli_fail("%s", err);
             goto done;
         }

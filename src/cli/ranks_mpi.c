@@ -146,6 +146,10 @@ static void gather_samples(const ct_ensemble_samples *mine, ct_ensemble_samples 
                  MPI_UINT64_T, rank);
     gather_array(mine ? mine->fz_clipped : NULL, my_r, A ? A->fz_clipped : NULL, counts_r, displs_r,
                  MPI_UINT64_T, rank);
+    gather_array(mine ? mine->x : NULL, my_r, A ? A->x : NULL, counts_r, displs_r, MPI_DOUBLE,
+                 rank);
+    gather_array(mine ? mine->y : NULL, my_r, A ? A->y : NULL, counts_r, displs_r, MPI_DOUBLE,
+                 rank);
 }
 
 /* Rank 0: the lowest failure of all (ranks hold increasing realisations, so the first rank

@@ -614,7 +614,7 @@ static int run_sweep(ct_scene *sc, int quiet);
 
 int ct_cli_run(int argc, char **argv, const char *help)
 {
-    static const ct_opt opts[] = {{"--realisations", NULL}, {NULL, NULL}};
+    static const ct_opt opts[] = {{"--realisations", NULL}, {"--landings", NULL}, {NULL, NULL}};
     ct_args a;
     ct_scene sc;
     int rc = ct_args_parse(&a, argc, argv, "run", opts, 1);
@@ -628,13 +628,18 @@ int ct_cli_run(int argc, char **argv, const char *help)
         ct_args_free(&a);
         return rc;
     }
-    const char *range = ct_args_extra(&a, "--realisations");
-    if (sc.realisations) { /* an ensemble of random realisations (src/cli/ensemble.c) */
-        rc = ct_cli_ensemble_run(&sc, a.quiet, range);
-    } else if (range || ct_mpi_size() > 1) {
+    const char *range = ct_args_extra(&a, "--realisations"),
+               *lrange = ct_args_extra(&a, "--landings");
+    if ((range && !sc.realisations) || (lrange && !sc.body.landings)) {
         ct_cli_fail(range ? "--realisations: the scene has no [ensemble] realisations"
-                          : "under MPI only ensembles ([ensemble] realisations) are shared "
-                            "among processes");
+                          : "--landings: the scene has no body.landings");
+        rc = EXIT_USAGE;
+    } else if (sc.realisations || sc.body.landings) {
+        /* samples: realisations of a random surface, or landings (src/cli/ensemble.c) */
+        rc = ct_cli_ensemble_run(&sc, a.quiet, range ? range : lrange);
+    } else if (ct_mpi_size() > 1) {
+        ct_cli_fail("under MPI only samples ([ensemble] realisations, body.landings) are shared "
+                    "among processes");
         rc = EXIT_USAGE;
     } else if (sc.bounce) { /* a bounce sequence: its own table */
         rc = run_bounce(&sc, a.quiet);

@@ -53,8 +53,8 @@ static const ct_key cli_keys[] = {
     {"output", "file", CT_KEY_TEXT, 0, 0, 0, NULL, "must be a path or -", "-",
      "where the e table goes (-: standard output); other outputs beside it", AT(file)},
     {"output", "what", CT_KEY_WORDS, 0, 0, 0, CT_OUTPUT_WORDS,
-     "each item must be e, time, curve, history, profile, compare, bearing, bounce, ensemble or "
-     "realisations",
+     "each item must be e, time, curve, history, profile, compare, bearing, bounce, ensemble, "
+     "realisations or landings",
      "e", "the outputs (cantact kinds: which each kind of surface gives)", AT(what)},
     {"output", "history_points", CT_KEY_INTEGER, 0, 100000000, 0, NULL,
      "must satisfy 0 <= history_points <= 1e8", "200",
@@ -534,6 +534,33 @@ static int solver_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
     return CT_OK;
 }
 
+/* [output] what under body.landings: e (the statistics over the landings, as an ensemble's,
+ * also named ensemble) and landings (one row per landing, speed and impact). */
+static int landings_what(parse_state *s, ct_scene *sc, entry *e)
+{
+    entry *el = find_entry(s, "body", "landings");
+    const char *why;
+    if (sc->bounce)
+        return bad(el, "impact.sequence = bounce follows one body through its bounces: landings "
+                       "sample separate impacts (impact.sequence = repeat)");
+    if (sc->body.shape == 0)
+        return bad(el, "the flat strip lands everywhere alike: landings need a curved body "
+                       "(body.shape = cylinder or sphere)");
+    if (sc->realisations)
+        return bad(el, "a sample is a landing or a realisation, not both: drop [ensemble] "
+                       "realisations (or body.landings)");
+    if (!ct_surface_kind_supports(ct_surface_kind_index(sc->surface), "landings", &why))
+        return bad(el, why);
+    const unsigned allowed = CT_OUT_E | CT_OUT_ENSEMBLE | CT_OUT_LANDINGS;
+    if (e && (sc->what & ~allowed))
+        return bad(e, "with body.landings each item must be e (the statistics over the landings), "
+                      "ensemble (the same) or landings (every landing's rows)");
+    const unsigned what = e ? sc->what : CT_OUT_E;
+    sc->what =
+        (what & (CT_OUT_E | CT_OUT_ENSEMBLE) ? CT_OUT_ENSEMBLE : 0) | (what & CT_OUT_LANDINGS);
+    return CT_OK;
+}
+
 /* [output] what: compare and time alone mean e with them; a bounce sequence and an ensemble
  * write their own tables. */
 static int output_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
@@ -557,6 +584,10 @@ static int output_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
     }
     sc->history_points = (size_t)k->history_points;
     const unsigned ens = CT_OUT_ENSEMBLE | CT_OUT_REALISATIONS;
+    if (sc->body.landings) /* e is the statistics over the landings, as an ensemble's */
+        return landings_what(s, sc, e);
+    if (sc->what & CT_OUT_LANDINGS)
+        return bad(e, "landings needs body.landings (the number of apex positions to draw)");
     if (sc->realisations && !e)
         sc->what = CT_OUT_ENSEMBLE;
     else if (sc->realisations && (sc->what & ~ens))
@@ -564,7 +595,7 @@ static int output_values(parse_state *s, ct_scene *sc, ct_scene_keys *k)
     else if (!sc->realisations && (sc->what & ens))
         return bad(e, "ensemble and realisations need [ensemble] realisations");
     /* what the kind of surface does not give: its reason */
-    for (unsigned bit = 0; bit < 10; bit++) {
+    for (unsigned bit = 0; bit < CT_OUTPUT_NWORDS; bit++) {
         if (!(sc->what & (1u << bit)))
             continue;
         char word[32];
@@ -592,12 +623,13 @@ static int ensemble_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
 {
     entry *er = find_entry(s, "ensemble", "realisations"), *es = find_entry(s, "ensemble", "split");
     const char *why;
-    if ((er || es) &&
+    const int landings = sc->body.landings != 0; /* samples too: split shares them alike */
+    if ((er || (es && !landings)) &&
         !ct_surface_kind_supports(ct_surface_kind_index(sc->surface), "ensemble", &why))
         return bad(er ? er : es, why);
     sc->realisations = er ? (uint64_t)k->run.realisations : 0;
-    if (es && !er)
-        return bad(es, "needs ensemble.realisations");
+    if (es && !er && !landings)
+        return bad(es, "needs ensemble.realisations or body.landings");
     if (er && ct_surface_is_set(sc->surface, "surface", "realisation")) {
         entry *e = find_entry(s, "surface", "realisation");
         return bad(e, "names the one realisation of a run without [ensemble]");
@@ -862,7 +894,7 @@ int ct_scene_prepare(ct_scene *sc)
             sc->table_V_max = fmax(sc->table_V_max, sc->V_star[k]);
         }
     }
-    for (unsigned bit = 0; bit < 10; bit++) {
+    for (unsigned bit = 0; bit < CT_OUTPUT_NWORDS; bit++) {
         if (!(sc->what & (1u << bit)))
             continue;
         char word[32];
@@ -870,6 +902,8 @@ int ct_scene_prepare(ct_scene *sc)
         for (unsigned j = 0; j < bit; j++)
             w = strchr(w, '|') + 1;
         snprintf(word, sizeof word, "%.*s", (int)strcspn(w, "|"), w);
+        if (sc->body.landings && (1u << bit) == CT_OUT_ENSEMBLE)
+            snprintf(word, sizeof word, "landings"); /* their statistics */
         if ((st = ct_surface_ready(sc->surface, word)))
             return scene_error(st, "%s", ct_error_message());
     }

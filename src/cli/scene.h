@@ -7,11 +7,13 @@
 #include "cantact.h"
 
 /* [output] what: bit k is word k of CT_OUTPUT_WORDS */
-#define CT_OUTPUT_WORDS "e|curve|profile|compare|ensemble|realisations|time|history|bounce|bearing"
+#define CT_OUTPUT_WORDS                                                                            \
+    "e|curve|profile|compare|ensemble|realisations|time|history|bounce|bearing|landings"
+#define CT_OUTPUT_NWORDS 11
 enum { CT_OUT_E = 1, CT_OUT_CURVE = 2, CT_OUT_PROFILE = 4, CT_OUT_COMPARE = 8 };
 enum { CT_OUT_ENSEMBLE = 16, CT_OUT_REALISATIONS = 32 };
 enum { CT_OUT_TIME = 64, CT_OUT_HISTORY = 128, CT_OUT_BOUNCE = 256 };
-enum { CT_OUT_BEARING = 512 };
+enum { CT_OUT_BEARING = 512, CT_OUT_LANDINGS = 1024 };
 
 /* The values of the scene's keys that are not the surface's: the library's run keys
  * (ct_run_keys_table) first, so that their rows' offsets point here too, then the CLI's own. */

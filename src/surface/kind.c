@@ -44,6 +44,11 @@ static int has_realisations(const ct_kind *k)
     return k->realisations;
 }
 
+static int one_surface(const ct_kind *k)
+{
+    return !k->realisations;
+}
+
 static const struct {
     const char *output;
     int (*given)(const ct_kind *k);
@@ -61,6 +66,9 @@ static const struct {
      "cantact fit fits a Cantor surface to a measured profile (or to a profile file given as "
      "it is)"},
     {"merge", has_realisations, "merge combines the parts of an ensemble of a random surface"},
+    {"landings", one_surface,
+     "landings (body.landings) are apex positions on one surface, not on random realisations: "
+     "give one realisation of it (surface.realisation), or its ensemble without landings"},
 };
 #define NOUTPUTS (sizeof kind_outputs / sizeof kind_outputs[0])
 
@@ -434,8 +442,8 @@ void ct_surface_scales(const ct_surface *s, ct_scales *out)
     *out = s->scales;
 }
 
-int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
-                     ct_plan_info *info)
+int ct_surface_build_unmet(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                           ct_plan_info *info)
 {
     CT_NEED(s);
     CT_NEED(req);
@@ -445,9 +453,20 @@ int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle
     if ((st = need_prepared(s)))
         return st;
     ct_plan_info dummy;
+    if ((st = s->kind->build(s, req, out, info ? info : &dummy)))
+        return st;
+    ct_bundle_set_threads(*out, req->threads);
+    return CT_OK;
+}
+
+int ct_surface_build(const ct_surface *s, const ct_build_request *req, ct_bundle **out,
+                     ct_plan_info *info)
+{
+    ct_plan_info dummy;
     if (!info)
         info = &dummy;
-    if ((st = s->kind->build(s, req, out, info)))
+    int st = ct_surface_build_unmet(s, req, out, info);
+    if (st)
         return st;
     if ((st = ct_body_apply(req->body, &s->scales, out, info))) {
         ct_bundle_free(*out);
