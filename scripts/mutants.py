@@ -16,6 +16,9 @@ faster than one tree on two cores, see docs/benchmarks.md).
 Usage: scripts/mutants [--jobs N] [RULE.mut ...]     run the rules (default: all)
        scripts/mutants --check [RULE.mut ...]         every rule applies and names known suites
        scripts/mutants --matrix [RULE.mut ...]        which tests kill each rule (every test run)
+Options of a run: --no-baseline: the unmutated tree's tests are not run first (CI: scripts/test
+has just run them on the same code); --within SUITE,...: only those suites' tests exist for the
+run (the check's self-test, whose survivor would otherwise walk every test).
 Exit status: 0 every rule killed by its suites, 1 otherwise, 2 a malformed rule or bad usage.
 """
 import json
@@ -166,11 +169,12 @@ class Tree:
             os.makedirs(os.path.dirname(dst), exist_ok=True)
             shutil.copy2(src, dst, follow_symlinks=False)
 
-    def setup(self):
+    def setup(self, within=None):
         subprocess.run(['meson', 'setup', self.build, self.src, '-Dtests=true'], check=True,
                        stdout=subprocess.DEVNULL)
         self.ninja([])
-        self.tests = load_tests(self.build)  # their commands point into this tree
+        self.tests = [t for t in load_tests(self.build)  # their commands point into this tree
+                      if not within or set(t['suites']) & within]
 
     def ninja(self, targets):
         """True when the targets (all when empty) build."""
@@ -239,10 +243,18 @@ def run_mutant(tree, rule, durations, matrix):
 
 def main(argv):
     mode, jobs, paths = 'run', 2, []
+    baseline, within = True, None
     args = list(argv)
     while args:
         a = args.pop(0)
-        if a == '--check':
+        if a == '--no-baseline':
+            baseline = False
+        elif a == '--within':
+            if not args or not args[0].strip(','):
+                print('mutants: --within needs SUITE,...', file=sys.stderr)
+                return 2
+            within = {x.strip() for x in args.pop(0).split(',') if x.strip()}
+        elif a == '--check':
             mode = 'check'
         elif a == '--matrix':
             mode = 'matrix'
@@ -288,15 +300,15 @@ def main(argv):
 
     base = tempfile.mkdtemp(prefix='cantact-mutants-')
     try:
-        return run(rules, base, jobs, mode == 'matrix', t0)
+        return run(rules, base, jobs, mode == 'matrix', t0, baseline, within)
     finally:
         shutil.rmtree(base, ignore_errors=True)
 
 
-def run(rules, base, jobs, matrix, t0):
+def run(rules, base, jobs, matrix, t0, baseline=True, within=None):
     jobs = max(1, min(jobs, len(rules)))
     trees = [Tree(base, i) for i in range(jobs)]
-    trees[0].setup()
+    trees[0].setup(within)
     tests = trees[0].tests
     known = known_names(tests)
     stale, unknown = check_rules(rules, trees[0].src, known)
@@ -311,12 +323,12 @@ def run(rules, base, jobs, matrix, t0):
 
     # The other trees build while the first runs every test on the unmutated code: a red test
     # there would kill every mutant, so it stops the run; its times order the tests.
-    setups = [threading.Thread(target=t.setup) for t in trees[1:]]
+    setups = [threading.Thread(target=t.setup, args=(within,)) for t in trees[1:]]
     for s in setups:
         s.start()
     durations = {}
     broken = []
-    for t in tests:
+    for t in tests if baseline else []:
         s = time.time()
         if not trees[0].run_test(t, t['timeout'] or 300):
             broken.append(t['id'])
@@ -327,9 +339,13 @@ def run(rules, base, jobs, matrix, t0):
         print('mutants: the unmutated tree fails %s: fix that first' % ', '.join(broken),
               file=sys.stderr)
         return 1
-    print('baseline: %d tests pass on the unmutated tree (%.1f s); %d rules on %d tree%s' % (
-        len(tests), sum(durations.values()), len(todo), jobs, 's' if jobs > 1 else ''),
-        flush=True)
+    if baseline:
+        print('baseline: %d tests pass on the unmutated tree (%.1f s); %d rules on %d tree%s' % (
+            len(tests), sum(durations.values()), len(todo), jobs, 's' if jobs > 1 else ''),
+            flush=True)
+    else:
+        print('baseline not run (--no-baseline); %d tests; %d rules on %d tree%s' % (
+            len(tests), len(todo), jobs, 's' if jobs > 1 else ''), flush=True)
 
     work = queue.Queue()
     for r in todo:

@@ -25,8 +25,10 @@ rc=$?
     bad "--check of a stale rule: exit $rc: $(cat "$tmp/out")"
 
 # the three cases in one run: it must fail, and say why for each
-/usr/bin/python3 "$root/scripts/mutants.py" --jobs 2 "$dir/mislabelled.mut" "$dir/survivor.mut" \
-    "$dir/stale.mut" >"$tmp/out" 2>&1
+# (within the suites the rules name and the one that kills the mislabelled rule: the survivor
+# walks every test there is, which need not be all of them to show the verdict)
+/usr/bin/python3 "$root/scripts/mutants.py" --jobs 2 --within rod,cantor,laws "$dir/mislabelled.mut" \
+    "$dir/survivor.mut" "$dir/stale.mut" >"$tmp/out" 2>&1
 rc=$?
 cat "$tmp/out"
 [ $rc -eq 1 ] || bad "the run exited $rc, expected 1"

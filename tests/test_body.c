@@ -13,6 +13,7 @@
 #include <cmocka.h>
 
 #include "cantact.h"
+#include "body/body.h"
 
 #include <gsl/gsl_integration.h>
 #include <math.h>
@@ -635,6 +636,131 @@ static void profile_residual_top_on_the_surface(void **state)
     unlink(path);
 }
 
+/* Landings meet a site prepared once (its rods read and sorted into cells, a cell the face
+ * cannot reach below H passed over whole): for every apex the rods kept, their order, tops,
+ * lengths, areas, footprints and the crushed limit are those of ct_body_apply with the apex
+ * there, which reads every rod. Rods at random places on a plane (a sphere) and on a line (a
+ * cylinder), points and, periodic, a map's pixels; apexes anywhere, near the borders too. */
+static void compare_bundles(const ct_bundle *a, const ct_bundle *b)
+{
+    assert_int_equal(ct_bundle_size(a), ct_bundle_size(b));
+    assert_true(ct_bundle_layer(a)->Hstar == ct_bundle_layer(b)->Hstar);
+    assert_int_equal(ct_bundle_omitted(a), ct_bundle_omitted(b));
+    for (size_t k = 0; k < ct_bundle_size(a); k++) {
+        ct_rod_info ra, rb;
+        ct_bundle_rod(a, k, &ra);
+        ct_bundle_rod(b, k, &rb);
+        assert_true(ra.top == rb.top && ra.length == rb.length && ra.area == rb.area);
+        assert_true(ra.footprint.x_lo == rb.footprint.x_lo &&
+                    ra.footprint.x_hi == rb.footprint.x_hi);
+        assert_true(ra.footprint.y_lo == rb.footprint.y_lo ||
+                    (isnan(ra.footprint.y_lo) && isnan(rb.footprint.y_lo)));
+    }
+}
+
+static void site_as_every_rod_read(ct_surface *s, ct_body body, int dims, uint64_t seed)
+{
+    const double V = 1e-3;
+    ct_build_request req = {.V_star = &V, .nvel = 1, .impacts = 1, .body = &body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *rods;
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    assert_int_equal(ct_surface_build_unmet(s, &req, &rods, NULL), CT_OK);
+    ct_body_site *site;
+    assert_int_equal(ct_body_site_new(&body, &sc, rods, &site), CT_OK);
+    double lo[2], hi[2];
+    assert_int_equal(ct_body_site_region(site, lo, hi), CT_OK);
+    /* over the region and beyond it (an apex at the border: the cells near the edges) */
+    for (uint64_t k = 0; k < 24; k++) {
+        double pos[2], wide_lo[2], wide_hi[2];
+        for (int i = 0; i < 2; i++) {
+            const double w = hi[i] - lo[i];
+            wide_lo[i] = k % 2 ? lo[i] - 0.3 * w : lo[i];
+            wide_hi[i] = k % 2 ? hi[i] + 0.3 * w : hi[i];
+        }
+        ct_body_landing(wide_lo, wide_hi, seed, k, pos);
+        ct_body at = body;
+        at.position[0] = pos[0];
+        at.position[1] = dims == 2 ? pos[1] : NAN;
+        ct_bundle *by_site = NULL, *by_rods = NULL;
+        const int st = ct_body_site_meet(site, pos, &by_site);
+        ct_bundle *copy;
+        assert_int_equal(ct_bundle_clone(&copy, rods), CT_OK);
+        by_rods = copy;
+        const int st2 = ct_body_apply(&at, &sc, &by_rods, NULL);
+        assert_int_equal(st, st2);
+        if (st == CT_OK)
+            compare_bundles(by_site, by_rods);
+        else
+            ct_bundle_free(copy);
+        ct_bundle_free(by_site);
+        if (st2 == CT_OK)
+            ct_bundle_free(by_rods);
+    }
+    ct_body_site_free(site);
+    ct_bundle_free(rods);
+}
+
+static void landings_meet_as_every_rod_read(void **state)
+{
+    (void)state;
+    enum { N = 3000 };
+    double *top = malloc(N * sizeof *top), *area = malloc(N * sizeof *area),
+           *x = malloc(N * sizeof *x), *y = malloc(N * sizeof *y);
+    uint64_t r = 88172645463325252ULL; /* xorshift64: places and tops */
+    for (size_t k = 0; k < N; k++) {
+        double u[3];
+        for (int i = 0; i < 3; i++) {
+            r ^= r << 13;
+            r ^= r >> 7;
+            r ^= r << 17;
+            u[i] = (double)(r >> 11) * 0x1p-53;
+        }
+        x[k] = 100.0 * u[0];
+        y[k] = 100.0 * u[1];
+        top[k] = u[2];
+        area[k] = 1.0;
+    }
+    ct_surface *plane = rod_set(N, top, area, x, y, 2.0, 500.0, 1.0),
+               *line = rod_set(N, top, area, x, NULL, 2.0, 500.0, 1.0);
+    site_as_every_rod_read(plane, body_of(2, 20.0, NAN, NAN), 2, 1);
+    site_as_every_rod_read(plane, body_of(2, 400.0, NAN, NAN), 2, 2);
+    site_as_every_rod_read(line, body_of(1, 30.0, NAN, NAN), 1, 3);
+    ct_surface_free(plane);
+    ct_surface_free(line);
+    /* a periodic map of pixels: copies of the surface met too */
+    char path[64];
+    snprintf(path, sizeof path, "/tmp/ct_site_%d.csv", (int)getpid());
+    ct_surface *tiled = tiled_profile(path, 1, 1);
+    ct_body cyl = body_of(1, 5e-3, NAN, NAN);
+    cyl.periodic = 1;
+    site_as_every_rod_read(tiled, cyl, 1, 4);
+    ct_surface_free(tiled);
+    unlink(path);
+    /* the shipped map's pixels (rectangles on a plane) under a ball, the map repeating */
+    ct_surface *map;
+    assert_int_equal(ct_surface_new(&map, "profile"), CT_OK);
+    assert_int_equal(
+        ct_surface_set(map, "surface", "file", CT_SOURCE_DIR "/examples/data/map128.x3p", ""),
+        CT_OK);
+    assert_int_equal(ct_surface_set(map, "surface", "H", "10", ""), CT_OK);
+    assert_int_equal(ct_surface_set(map, "material", "E", "2e11", ""), CT_OK);
+    assert_int_equal(ct_surface_set(map, "material", "sigma_y", "4e8", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(map, NULL), CT_OK);
+    ct_body ball = body_of(2, 2.5e-3, NAN, NAN);
+    ball.periodic = 1;
+    site_as_every_rod_read(map, ball, 2, 5);
+    ct_body small = body_of(2, 2e-5, NAN, NAN); /* a face narrower than the period */
+    small.periodic = 1;
+    site_as_every_rod_read(map, small, 2, 6);
+    ct_surface_free(map);
+    free(top);
+    free(area);
+    free(x);
+    free(y);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -646,6 +772,7 @@ int main(void)
         cmocka_unit_test(the_border_holds_on_every_path),
         cmocka_unit_test(profile_residual_top_on_the_surface),
         cmocka_unit_test(flat_body_changes_nothing),
+        cmocka_unit_test(landings_meet_as_every_rod_read),
         cmocka_unit_test(shapes_a_surface_cannot_carry),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
