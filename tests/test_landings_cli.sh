@@ -133,6 +133,16 @@ diff <(awk -F, 'NR > 2 && $1 == 4 { print $5 "," $6 "," $7 }' "$tmp/s.csv") \
     <(awk -F, 'NR > 1 { print $2 "," $3 "," $4 }' "$tmp/s4.csv") >/dev/null && ok ||
     bad "sphere landing 4 differs from the run with body.position = $xy"
 
+# a force on a plane is in N (l0 an area), on a line in N per metre of depth
+expect 0 "the ball's time columns" -- "$ct" run -q "$tmp/s.ini" --set body.landings=0 --set output.what=e,time -o "$tmp/st.csv"
+head -1 "$tmp/st.csv" | tr ',' '\n' | grep -qx P_peak_N && ok || bad "a ball's peak force not in N: $(head -1 "$tmp/st.csv")"
+expect 0 "the ball's bounces" -- "$ct" run -q "$tmp/s.ini" --set body.landings=0 --set impact.sequence=bounce \
+    --set impact.velocity=0.1 --set impact.impacts=2 -o "$tmp/sb.csv"
+head -1 "$tmp/sb.csv" | tr ',' '\n' | grep -qx P_peak_N && ok || bad "a ball's bounces: peak force not in N: $(head -1 "$tmp/sb.csv")"
+expect 0 "a strip's time columns" -- "$ct" run -q "$src/examples/scenes/cantor.ini" --set impact.V_star= \
+    --set impact.mass=1 --set impact.velocity=0.01 --set output.what=e,time -o "$tmp/ct.csv"
+head -1 "$tmp/ct.csv" | tr ',' '\n' | grep -qx P_peak_N_per_m && ok || bad "a strip's peak force not in N/m: $(head -1 "$tmp/ct.csv")"
+
 # refusals, one line each, nothing written
 expect 2 "landings of the flat strip" -- "$ct" run -q "$tmp/c.ini" --set body.shape=flat -o "$tmp/no.csv"
 has err "landings need a curved body" "flat strip"

@@ -33,6 +33,21 @@ static int is_time(const ct_column *c)
     return !strcmp(c->group, "time");
 }
 
+int ct_cli_bundle_areal(const ct_bundle *b)
+{
+    if (!ct_bundle_size(b))
+        return 0;
+    ct_rod_info r;
+    ct_bundle_rod(b, 0, &r);
+    return r.footprint.shape == CT_FOOTPRINT_RECTANGLE ||
+           (r.footprint.shape == CT_FOOTPRINT_POINT && !isnan(r.footprint.y_lo));
+}
+
+const char *ct_cli_physical_name(const ct_column *c, const ct_scene *sc)
+{
+    return sc->areal && !strcmp(c->physical, "P_peak_N_per_m") ? "P_peak_N" : c->physical;
+}
+
 void ct_cli_time_header(FILE *f, const ct_scene *sc)
 {
     const ct_column *cols;
@@ -42,7 +57,7 @@ void ct_cli_time_header(FILE *f, const ct_scene *sc)
             fprintf(f, ",%s", cols[k].name);
     for (size_t k = 0; k < n && sc->mass > 0.0; k++)
         if (is_time(&cols[k]) && cols[k].physical)
-            fprintf(f, ",%s", cols[k].physical);
+            fprintf(f, ",%s", ct_cli_physical_name(&cols[k], sc));
 }
 
 int ct_cli_columns_of(ct_cli_columns *c, const char *group)
@@ -91,7 +106,7 @@ void ct_cli_history_header(FILE *f, const ct_scene *sc)
 {
     fputs("V_star,impact,t_over_tau,u_over_h0,udot_over_h0_per_tau,P_over_PY,branch,event", f);
     if (sc->mass > 0.0)
-        fputs(",t_s,u_m,udot_m_per_s,P_N_per_m", f);
+        fputs(sc->areal ? ",t_s,u_m,udot_m_per_s,P_N" : ",t_s,u_m,udot_m_per_s,P_N_per_m", f);
     fputc('\n', f);
 }
 
@@ -149,10 +164,10 @@ int ct_cli_bounce(FILE *f, const ct_scene *sc, const ct_bundle *b, char *err, si
         free(dyn);
         return st;
     }
-    fputs("bounce,V_star,v_in_m_per_s,e,v_out_m_per_s,u_max_over_h0,elastic,t_contact_s,"
-          "P_peak_N_per_m,flight_s,height_m,time_s,v_out_constant_e_m_per_s,"
-          "height_constant_e_m\n",
-          f);
+    fprintf(f,
+            "bounce,V_star,v_in_m_per_s,e,v_out_m_per_s,u_max_over_h0,elastic,t_contact_s,"
+            "%s,flight_s,height_m,time_s,v_out_constant_e_m_per_s,height_constant_e_m\n",
+            ct_cli_bundle_areal(b) ? "P_peak_N" : "P_peak_N_per_m");
     const double g = sc->gravity, e1 = dyn[0].e_kinematic;
     double t = 0.0, v_const = v1 * speed;
     for (size_t k = 0; k < n; k++) {

@@ -11,6 +11,11 @@
 /* The e table's time columns (what = time, from the column table's group "time"): their
  * names, after the others; with a mass also their twins in the scene's units. */
 void ct_cli_time_header(FILE *f, const ct_scene *sc);
+/* 1 when b's rods stand on a plane (an areal map, rods placed by x and y): l0 is an area and a
+ * force is in N; on a line (l0 a length) in N per metre of depth. */
+int ct_cli_bundle_areal(const ct_bundle *b);
+/* Column c's name in the scene's units: the peak force in N on a plane (sc->areal). */
+const char *ct_cli_physical_name(const ct_column *c, const ct_scene *sc);
 /* Room for the sweep's columns (src/columns.c): places in ct_sweep_columns, chosen once per
  * block of rows rather than by name on every row. */
 #define CT_CLI_COLUMNS 64

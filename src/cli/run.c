@@ -715,6 +715,7 @@ static int run_sweep(ct_scene *sc, int quiet)
         fprintf(stderr, "cantact: %s%s%s, %d thread(s)\n", what, body[0] ? ", " : "", body,
                 ct_bundle_set_threads(b, sc->threads));
     }
+    sc->areal = ct_cli_bundle_areal(b);
     if (fe)
         write_e_header(fe, sc);
     rc =

@@ -39,6 +39,7 @@ typedef struct {
     char *output;              /* CSV path, "-" for stdout */
     unsigned what;             /* CT_OUT_* bits */
     int what_given;            /* output.what was set */
+    int areal;                 /* the rods built stand on a plane (a force is in N, not N/m) */
     double mass;               /* [impact] mass per unit depth (0: the scene gave V*) */
     int speeds_are_velocities; /* V_star holds velocities until ct_scene_prepare */
     char *scene_dir;           /* the scene file's directory with its '/' (NULL: stdin, cwd) */
