@@ -23,6 +23,15 @@
  *   - outside [V*_0, V*_(n-1)] and above V*_c: the nearest end's e (the table does not know
  *     it there: ct_tab_covers() says so).
  *
+ * A table of samples (`cantact table` of a scene with landings or an ensemble of realisations)
+ * has e as the mean over the samples and, per node, e at nq probabilities p_j (its header:
+ * `# quantiles = nq`; its columns e_p<p>,de_p<p>_dlnV_star after de_dlnV_star): each column is
+ * interpolated in V* as e is, and e at (V*, p) is linear in p between the two nearest p_j (the
+ * nearest end's column outside [p_0, p_(nq-1)]), the columns kept non-decreasing in p (a
+ * running maximum: each column is within the table's tolerance, so it moves a value by at most
+ * twice that): ct_tab_eval_quantile. Drawing p uniform in [0, 1] per contact gives e with the
+ * samples' distribution at that speed, to the resolution of the p_j.
+ *
  * Numbers are read in the "C" format (a point before the decimals) whatever the locale.
  *
  * e <-> damping (ct_tab_zeta_of_e, ct_tab_e_of_zeta): a DEM code that turns e into the damping
@@ -109,7 +118,16 @@ typedef struct {
     double worst_error;  /* the largest |e_table - e_model| found when checked (NaN: none) */
     double v_per_V_star; /* impact speed per unit V* in the scene's units (NaN: no mass given) */
     double worst_V_star; /* where worst_error was found (NaN: not given, or none) */
+    size_t nq;           /* quantile columns (0: a table of one surface) */
+    double *p;           /* their probabilities, strictly increasing in [0, 1] */
+    double *e_q;         /* column j at node i: e_q[j * n + i] (only after loading: rows are
+                            read into it with stride cap) */
+    double *slope_q;     /* de/d(ln V*) of column j at node i, the same layout */
 } ct_tab;
+
+/* At most this many quantile columns (a row of 3 + 2 CT_TAB_MAX_QUANTILES numbers stays within
+ * the reader's line). */
+enum { CT_TAB_MAX_QUANTILES = 64 };
 
 /* The interval i with ln_V[i] <= x < ln_V[i + 1] (0 <= i <= n - 2), for ln_V[0] <= x <
  * ln_V[n - 1]: binary search. */
@@ -171,6 +189,44 @@ static inline double ct_tab_eval(const ct_tab *t, double V_star)
     return ct_tab_interp(t->n, t->ln_V_star, t->e, t->slope, t->rule, t->V_star_crit, V_star);
 }
 
+/* e at V_star and probability prob in [0, 1] from nq quantile columns (e_q, slope_q: column j
+ * at node i at [j * n + i], probabilities p strictly increasing): each column interpolated as e
+ * is, kept non-decreasing in p (a running maximum), then linear in prob between the two
+ * columns about it (the nearest end's outside [p_0, p_(nq-1)]). NaN for prob outside [0, 1],
+ * for nq = 0, and for a V_star that is NaN or not > 0. */
+static inline double ct_tab_quantile_interp(size_t n, const double *ln_V, size_t nq,
+                                            const double *p, const double *e_q,
+                                            const double *slope_q, int rule, double V_star_crit,
+                                            double V_star, double prob)
+{
+    if (!nq || !(prob >= 0.0 && prob <= 1.0))
+        return NAN;
+    size_t j = 0;
+    while (j + 1 < nq && p[j + 1] <= prob)
+        j++;
+    double a = -INFINITY;
+    for (size_t k = 0; k <= j; k++) { /* the running maximum up to column j */
+        const double v =
+            ct_tab_interp(n, ln_V, e_q + k * n, slope_q + k * n, rule, V_star_crit, V_star);
+        a = v > a ? v : a;
+    }
+    if (isnan(a) || prob <= p[0] || j + 1 >= nq)
+        return a;
+    double b =
+        ct_tab_interp(n, ln_V, e_q + (j + 1) * n, slope_q + (j + 1) * n, rule, V_star_crit, V_star);
+    b = b > a ? b : a;
+    const double w = (prob - p[j]) / (p[j + 1] - p[j]);
+    return ct_tab_clamp(a + w * (b - a), a, b);
+}
+
+/* e at V_star (dimensionless) and probability prob from a loaded table of samples (its quantile
+ * columns): NaN for a table without them or prob outside [0, 1]. */
+static inline double ct_tab_eval_quantile(const ct_tab *t, double V_star, double prob)
+{
+    return ct_tab_quantile_interp(t->n, t->ln_V_star, t->nq, t->p, t->e_q, t->slope_q, t->rule,
+                                  t->V_star_crit, V_star, prob);
+}
+
 /* e at an impact speed v in the scene's units (the table's v_per_V_star: from the scene's
  * [impact] mass); NaN when the table has no v_per_V_star. */
 static inline double ct_tab_e_of_speed(const ct_tab *t, double v)
@@ -193,8 +249,11 @@ static inline void ct_tab_free(ct_tab *t)
     free(t->ln_V_star);
     free(t->e);
     free(t->slope);
-    t->V_star = t->ln_V_star = t->e = t->slope = NULL;
-    t->n = 0;
+    free(t->p);
+    free(t->e_q);
+    free(t->slope_q);
+    t->V_star = t->ln_V_star = t->e = t->slope = t->p = t->e_q = t->slope_q = NULL;
+    t->n = t->nq = 0;
 }
 
 /* strtod in the "C" format whatever the locale: the text's '.' becomes the locale's decimal
@@ -234,9 +293,9 @@ static inline int ct_tab_number(const char *text, double *out)
 }
 
 /* The keys the loader reads, in the order of the bits of its record of which it has seen. */
-static const char *const ct_tab_keys[] = {"interpolation",        "V_star_crit",  "tolerance",
-                                          "worst_error",          "v_per_V_star", "nodes",
-                                          "worst_error_at_V_star"};
+static const char *const ct_tab_keys[] = {"interpolation",         "V_star_crit",  "tolerance",
+                                          "worst_error",           "v_per_V_star", "nodes",
+                                          "worst_error_at_V_star", "quantiles"};
 enum { CT_TAB_NKEYS = sizeof ct_tab_keys / sizeof ct_tab_keys[0] };
 
 /* The index in ct_tab_keys of the key of a "# key = value" line (the text between '#' and the
@@ -282,10 +341,11 @@ static inline int ct_tab_count(const char *text, size_t *out)
  * interval above V*_c (below it e = 1 by the rule) whose nodes have equal e both slopes 0,
  * else both of the secant's sign and at most three secants (Fritsch-Carlson), so that e stays
  * between the interval's nodes. -1 and the interval's index (from 0) when one fails. */
-static inline int ct_tab_check_slopes(const ct_tab *t, size_t *bad)
+static inline int ct_tab_check_column(const ct_tab *t, const double *e, const double *slope,
+                                      size_t *bad)
 {
     for (size_t i = 0; i < t->n; i++)
-        if (!isfinite(t->slope[i])) {
+        if (!isfinite(slope[i])) {
             *bad = i;
             return -1;
         }
@@ -294,8 +354,8 @@ static inline int ct_tab_check_slopes(const ct_tab *t, size_t *bad)
     for (size_t i = 0; i + 1 < t->n; i++) {
         if (t->V_star[i + 1] <= t->V_star_crit)
             continue; /* e = 1 there by the rule: this interval is never interpolated */
-        const double secant = (t->e[i + 1] - t->e[i]) / (t->ln_V_star[i + 1] - t->ln_V_star[i]);
-        const double a = t->slope[i], b = t->slope[i + 1];
+        const double secant = (e[i + 1] - e[i]) / (t->ln_V_star[i + 1] - t->ln_V_star[i]);
+        const double a = slope[i], b = slope[i + 1];
         int ok;
         if (secant == 0.0)
             ok = a == 0.0 && b == 0.0;
@@ -307,6 +367,27 @@ static inline int ct_tab_check_slopes(const ct_tab *t, size_t *bad)
             *bad = i;
             return -1;
         }
+    }
+    return 0;
+}
+
+/* ct_tab_check_column on e. */
+static inline int ct_tab_check_slopes(const ct_tab *t, size_t *bad)
+{
+    return ct_tab_check_column(t, t->e, t->slope, bad);
+}
+
+/* ct_tab_check_column on e and on every quantile column (*column: 0 for e, j + 1 for column
+ * j). */
+static inline int ct_tab_check_all_slopes(const ct_tab *t, size_t *bad, size_t *column)
+{
+    *column = 0;
+    if (ct_tab_check_slopes(t, bad))
+        return -1;
+    for (size_t j = 0; j < t->nq; j++) {
+        *column = j + 1;
+        if (ct_tab_check_column(t, t->e_q + j * t->n, t->slope_q + j * t->n, bad))
+            return -1;
     }
     return 0;
 }
@@ -339,6 +420,7 @@ typedef struct {
     size_t nodes;    /* # nodes (0: not given yet) */
     unsigned seen;   /* bit k: ct_tab_keys[k] given */
     int have_header; /* the column header was read */
+    size_t nq;       /* # quantiles (0: none) */
 } ct_tab_reading;
 
 /* How a line that fgets read into line (size bytes, len of them) ends: 0 with its line break
@@ -378,11 +460,12 @@ static inline int ct_tab_line_end(FILE *f, const char *line, size_t len, size_t 
 
 /* The value v of a header key (key: its index in ct_tab_keys) into t, the count of rows into
  * *nodes. 0, or CT_TAB_BAD_FILE with what set. */
-static inline int ct_tab_key_value(ct_tab *t, int key, const char *v, size_t *nodes, char *what)
+static inline int ct_tab_key_value(ct_tab *t, int key, const char *v, size_t *nodes, size_t *nq,
+                                   char *what)
 {
     /* a number is the whole word: strtod's ',' ends a row's field, not a value */
     double x = NAN;
-    const int number = key != 0 && key != 5 && !strchr(v, ',') && ct_tab_number(v, &x);
+    const int number = key != 0 && key != 5 && key != 7 && !strchr(v, ',') && ct_tab_number(v, &x);
     switch (key) {
     case 0:
         if (!strcmp(v, "monotone_cubic"))
@@ -416,6 +499,11 @@ static inline int ct_tab_key_value(ct_tab *t, int key, const char *v, size_t *no
         if (!ct_tab_count(v, nodes) || *nodes < 2)
             return ct_tab_fail(what, "nodes = %s: not a count >= 2 (the number of rows)", v);
         break;
+    case 7:
+        if (!ct_tab_count(v, nq) || *nq < 1 || *nq > CT_TAB_MAX_QUANTILES)
+            return ct_tab_fail(what, "quantiles = %s: not a count from 1 to %d", v,
+                               CT_TAB_MAX_QUANTILES);
+        break;
     default: /* where worst_error was found, or none when no point was checked */
         if (strcmp(v, "none") && (!number || !(x > 0.0)))
             return ct_tab_fail(what, "worst_error_at_V_star = %s: not a number > 0 or none", v);
@@ -447,7 +535,7 @@ static inline int ct_tab_key_line(ct_tab *t, ct_tab_reading *r, const char *line
                                (int)sizeof v - 1);
     memcpy(v, w, vl);
     v[vl] = '\0';
-    return ct_tab_key_value(t, key, v, &r->nodes, what);
+    return ct_tab_key_value(t, key, v, &r->nodes, &r->nq, what);
 }
 
 /* Room for a row more: the arrays doubled (256 rows at first) into *cap. 0, or -1 out of
@@ -466,17 +554,63 @@ static inline int ct_tab_grow(ct_tab *t, size_t *cap)
         t->slope = c;
     if (!c)
         return -1;
+    if (t->nq) { /* while reading, row i of column j at [i * nq + j] (rows appended) */
+        double *q = (double *)realloc(t->e_q, ncap * t->nq * sizeof(double));
+        if (q)
+            t->e_q = q;
+        double *dq = q ? (double *)realloc(t->slope_q, ncap * t->nq * sizeof(double)) : NULL;
+        if (dq)
+            t->slope_q = dq;
+        if (!dq)
+            return -1;
+    }
     *cap = ncap;
     return 0;
 }
 
 /* A row V_star,e,de_dlnV_star appended to t (room made for it). 0, or CT_TAB_BAD_FILE with
  * what set. */
+/* The quantile columns of a row (after its first three fields, from *rest), into row i of the
+ * reading layout; each e in [0, 1] and not below the previous column's. */
+static inline int ct_tab_row_quantiles(ct_tab *t, const char *rest, char *what)
+{
+    const size_t i = t->n;
+    for (size_t j = 0; j < t->nq; j++) {
+        double e, d;
+        const char *c = rest ? strchr(rest, ',') : NULL;
+        if (!rest || !c || !ct_tab_number(rest, &e) || !ct_tab_number(c + 1, &d))
+            return ct_tab_fail(what,
+                               "expected %lu numbers: V_star,e,de_dlnV_star and two per "
+                               "quantile",
+                               (unsigned long)(3 + 2 * t->nq));
+        rest = strchr(c + 1, ',');
+        if (rest)
+            rest++;
+        if (!(e >= 0.0 && e <= 1.0))
+            return ct_tab_fail(what, "e at p = %.6g: %.17g must be in [0, 1]", t->p[j], e);
+        if (j && e < t->e_q[i * t->nq + j - 1])
+            return ct_tab_fail(what, "e at p = %.6g below e at p = %.6g: quantiles decrease",
+                               t->p[j], t->p[j - 1]);
+        t->e_q[i * t->nq + j] = e;
+        t->slope_q[i * t->nq + j] = d;
+    }
+    if (rest)
+        return ct_tab_fail(what, "more than %lu numbers in a row", (unsigned long)(3 + 2 * t->nq));
+    return 0;
+}
+
 static inline int ct_tab_row(ct_tab *t, const char *line, char *what)
 {
     const char *c1 = strchr(line, ','), *c2 = c1 ? strchr(c1 + 1, ',') : NULL;
+    const char *c3 = c2 ? strchr(c2 + 1, ',') : NULL;
     double V, e, d;
-    if (!c2 || strchr(c2 + 1, ',') || !ct_tab_number(line, &V) || !ct_tab_number(c1 + 1, &e) ||
+    if (t->nq && (!c3 || ct_tab_row_quantiles(t, c3 + 1, what)))
+        return c3 ? CT_TAB_BAD_FILE
+                  : ct_tab_fail(what,
+                                "expected %lu numbers: V_star,e,de_dlnV_star and two per "
+                                "quantile",
+                                (unsigned long)(3 + 2 * t->nq));
+    if (!c2 || (!t->nq && c3) || !ct_tab_number(line, &V) || !ct_tab_number(c1 + 1, &e) ||
         !ct_tab_number(c2 + 1, &d))
         return ct_tab_fail(what, "expected three numbers V_star,e,de_dlnV_star");
     if (!(V > 0.0) || (t->n && !(V > t->V_star[t->n - 1])))
@@ -487,6 +621,42 @@ static inline int ct_tab_row(ct_tab *t, const char *line, char *what)
     t->e[t->n] = e;
     t->slope[t->n] = d;
     t->n++;
+    return 0;
+}
+
+/* The quantile columns' names after V_star,e,de_dlnV_star (text): ",e_p<p>,de_p<p>_dlnV_star"
+ * for each of # quantiles, p strictly increasing in [0, 1], into t->p. 0, or CT_TAB_BAD_FILE or
+ * CT_TAB_NO_MEMORY with what set. */
+static inline int ct_tab_quantile_header(ct_tab *t, const ct_tab_reading *r, const char *text,
+                                         char *what)
+{
+    if (!(t->p = (double *)malloc(r->nq * sizeof(double)))) {
+        ct_tab_fail(what, "out of memory");
+        return CT_TAB_NO_MEMORY;
+    }
+    t->nq = r->nq;
+    for (size_t j = 0; j < r->nq; j++) {
+        char name[40], slope[64];
+        const char *end;
+        if (strncmp(text, ",e_p", 4) || !(end = strchr(text + 4, ',')) || end - text - 4 >= 32)
+            return ct_tab_fail(what,
+                               "expected %lu quantile columns e_p<p>,de_p<p>_dlnV_star "
+                               "after V_star,e,de_dlnV_star (# quantiles)",
+                               (unsigned long)r->nq);
+        memcpy(name, text + 4, (size_t)(end - text - 4));
+        name[end - text - 4] = '\0';
+        double p;
+        if (!ct_tab_number(name, &p) || !(p >= 0.0 && p <= 1.0) || (j && !(p > t->p[j - 1])))
+            return ct_tab_fail(what, "quantile column e_p%s: p must be in [0, 1] and increasing",
+                               name);
+        snprintf(slope, sizeof slope, ",de_p%s_dlnV_star", name);
+        if (strncmp(end, slope, strlen(slope)))
+            return ct_tab_fail(what, "e_p%s: expected %s after it", name, slope + 1);
+        t->p[j] = p;
+        text = end + strlen(slope);
+    }
+    if (*text != '\n' && !(text[0] == '\r' && text[1] == '\n'))
+        return ct_tab_fail(what, "more columns than # quantiles = %lu says", (unsigned long)r->nq);
     return 0;
 }
 
@@ -502,7 +672,7 @@ static inline int ct_tab_line(ct_tab *t, ct_tab_reading *r, const char *line, ch
         if (strncmp(line, "V_star,e,de_dlnV_star", 21))
             return ct_tab_fail(what, "expected the header V_star,e,de_dlnV_star");
         r->have_header = 1;
-        return 0;
+        return r->nq ? ct_tab_quantile_header(t, r, line + 21, what) : 0;
     }
     if (line[0] == '\n' || (line[0] == '\r' && line[1] == '\n'))
         return 0;
@@ -539,6 +709,27 @@ static inline int ct_tab_whole(ct_tab *t, const ct_tab_reading *r, char *what)
             return ct_tab_fail(what, "nodes %lu and %lu: ln V_star not increasing",
                                (unsigned long)i, (unsigned long)i + 1);
     }
+    if (r->nq && !r->have_header)
+        return ct_tab_fail(what, "no column header");
+    if (t->nq) { /* rows were read as [i * nq + j]: columns [j * n + i] */
+        double *q = (double *)malloc(t->n * t->nq * sizeof(double)),
+               *dq = (double *)malloc(t->n * t->nq * sizeof(double));
+        if (!q || !dq) {
+            free(q);
+            free(dq);
+            ct_tab_fail(what, "out of memory");
+            return CT_TAB_NO_MEMORY;
+        }
+        for (size_t i = 0; i < t->n; i++)
+            for (size_t j = 0; j < t->nq; j++) {
+                q[j * t->n + i] = t->e_q[i * t->nq + j];
+                dq[j * t->n + i] = t->slope_q[i * t->nq + j];
+            }
+        free(t->e_q);
+        free(t->slope_q);
+        t->e_q = q;
+        t->slope_q = dq;
+    }
     return 0;
 }
 
@@ -553,9 +744,9 @@ static inline int ct_tab_whole(ct_tab *t, const ct_tab_reading *r, char *what)
 static inline int ct_tab_read(ct_tab *t, const char *path, char *err, size_t errlen)
 {
     FILE *f = fopen(path, "r");
-    char line[1024], what[CT_TAB_WHAT];
+    char line[4096], what[CT_TAB_WHAT];
     size_t lineno = 0;
-    ct_tab_reading r = {0, 0, 0, 0};
+    ct_tab_reading r = {0, 0, 0, 0, 0};
     int why;
     memset(t, 0, sizeof *t);
     t->tolerance = t->worst_error = t->v_per_V_star = t->worst_V_star = NAN;
@@ -580,14 +771,18 @@ static inline int ct_tab_read(ct_tab *t, const char *path, char *err, size_t err
     }
     if ((why = ct_tab_whole(t, &r, what)))
         goto fail_at_line;
-    size_t bad;
-    if (ct_tab_check_slopes(t, &bad)) {
+    size_t bad, column;
+    if (ct_tab_check_all_slopes(t, &bad, &column)) {
+        const double *e = column ? t->e_q + (column - 1) * t->n : t->e,
+                     *d = column ? t->slope_q + (column - 1) * t->n : t->slope;
+        char of[48] = "";
+        if (column)
+            snprintf(of, sizeof of, " of e at p = %.6g", t->p[column - 1]);
         snprintf(err, errlen,
-                 "%s: nodes %lu and %lu: slopes %.6g and %.6g are not those of a monotone cubic "
-                 "between e = %.6g and %.6g (a corrupted or foreign table)",
-                 path, (unsigned long)bad + 1, (unsigned long)bad + 2, t->slope[bad],
-                 bad + 1 < t->n ? t->slope[bad + 1] : NAN, t->e[bad],
-                 bad + 1 < t->n ? t->e[bad + 1] : NAN);
+                 "%s: nodes %lu and %lu: slopes%s %.6g and %.6g are not those of a monotone "
+                 "cubic between e = %.6g and %.6g (a corrupted or foreign table)",
+                 path, (unsigned long)bad + 1, (unsigned long)bad + 2, of, d[bad],
+                 bad + 1 < t->n ? d[bad + 1] : NAN, e[bad], bad + 1 < t->n ? e[bad + 1] : NAN);
         why = CT_TAB_BAD_FILE;
         goto fail;
     }

@@ -378,12 +378,6 @@ int ct_ensemble(const ct_ensemble_spec *sp, ct_ensemble_samples *out)
 
 /* ---- statistics ---- */
 
-static int cmp_double(const void *a, const void *b)
-{
-    const double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 double ct_quantile_sorted(const double *sorted, size_t n, double p)
 {
     const double h = (double)(n - 1) * p;
@@ -413,7 +407,7 @@ int ct_sample_stats(const double *x, size_t n, size_t stride, double *work, ct_s
     out->mean = mean;
     out->sd = m > 1 ? sqrt((s + c) / (double)(m - 1)) : NAN;
     out->sem = m > 1 ? out->sd / sqrt((double)m) : NAN;
-    qsort(work, m, sizeof(double), cmp_double);
+    qsort(work, m, sizeof(double), ct_cmp_double);
     out->q05 = ct_quantile_sorted(work, m, 0.05);
     out->q50 = ct_quantile_sorted(work, m, 0.5);
     out->q95 = ct_quantile_sorted(work, m, 0.95);

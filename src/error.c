@@ -54,7 +54,7 @@ const char *ct_strerror(int status)
     }
 }
 
-static int cmp_double(const void *a, const void *b)
+int ct_cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
@@ -101,7 +101,7 @@ size_t ct_sort_unique(double *v, size_t n)
         start = end;
     }
     if (start < n || (runs > 1 && !(tmp = malloc(n * sizeof(double))))) {
-        qsort(v, n, sizeof(double), cmp_double);
+        qsort(v, n, sizeof(double), ct_cmp_double);
     } else {
         for (size_t r = 1; r < runs; r++)
             merge_runs(v, ends[r - 1], ends[r], tmp);

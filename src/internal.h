@@ -54,6 +54,8 @@ int ct_error_interrupted(void);
 
 /* Sorts v ascending and drops repeated values; returns the new count. */
 size_t ct_sort_unique(double *v, size_t n);
+/* qsort's comparison of doubles, ascending (src/error.c). */
+int ct_cmp_double(const void *a, const void *b);
 
 /* The library's compensated sum (Neumaier's variant of Kahan's): s + c carries a sum whose
  * terms may cancel or differ widely in size. Both candidates for the rounding error are

@@ -28,6 +28,10 @@ struct ct_table {
     double *V, *x, *e, *d; /* nodes, ln V*, e, de/dx */
     ct_interp rule;
     ct_table_info info;
+    size_t nq;       /* quantile columns of a table of samples (0: of one surface) */
+    double *p;       /* their probabilities */
+    double *eq, *dq; /* column j at node i: [j * n + i], and its slopes */
+    uint64_t samples;
 };
 
 const char *ct_interp_name(ct_interp rule)
@@ -140,6 +144,9 @@ void ct_table_free(ct_table *t)
     free(t->x);
     free(t->e);
     free(t->d);
+    free(t->p);
+    free(t->eq);
+    free(t->dq);
     free(t);
 }
 
@@ -223,6 +230,47 @@ int ct_table_from_nodes(ct_table **out, size_t n, const double *V_star, const do
                             bad + 1, bad + 2, slope[bad], slope[bad + 1], e[bad], e[bad + 1]);
     }
     *out = t;
+    return CT_OK;
+}
+
+/* ---- quantile columns (tables of samples) ---- */
+
+size_t ct_table_quantile_count(const ct_table *t)
+{
+    return t->nq;
+}
+const double *ct_table_p(const ct_table *t)
+{
+    return t->p;
+}
+const double *ct_table_e_quantile(const ct_table *t, size_t j)
+{
+    return j < t->nq ? t->eq + j * t->n : NULL;
+}
+const double *ct_table_slope_quantile(const ct_table *t, size_t j)
+{
+    return j < t->nq ? t->dq + j * t->n : NULL;
+}
+uint64_t ct_table_samples(const ct_table *t)
+{
+    return t->samples;
+}
+
+double ct_table_eval_quantile(const ct_table *t, double V_star, double p)
+{
+    return ct_tab_quantile_interp(t->n, t->x, t->nq, t->p, t->eq, t->dq, (int)t->rule,
+                                  t->info.V_star_crit, V_star, p);
+}
+
+/* Room for nq quantile columns in t (its n nodes). */
+static int quantiles_alloc(ct_table *t, size_t nq)
+{
+    t->p = malloc(nq * sizeof(double));
+    t->eq = malloc(nq * t->n * sizeof(double));
+    t->dq = malloc(nq * t->n * sizeof(double));
+    if (!t->p || !t->eq || !t->dq)
+        return ct_error_set(CT_ENOMEM, "table: out of memory for %zu quantile columns", nq);
+    t->nq = nq;
     return CT_OK;
 }
 
@@ -730,6 +778,267 @@ done:
     return st;
 }
 
+/* ---- tables of samples: the mean and quantiles of e over realisations or landings ---- */
+
+/* The samples' statistics on a grid of speeds: column 0 the mean, column 1 + j e at p[j]. */
+typedef struct {
+    size_t M;      /* grid points (V*_c inserted when inside the range) */
+    double *V, *x; /* the grid, ln of it */
+    double *y;     /* column c at grid point g: y[c * M + g] */
+    size_t C;      /* 1 + quantiles */
+    double Vc;     /* the least V*_c of the samples: every e is 1 at and below it */
+} sample_grid;
+
+static void sample_grid_free(sample_grid *G)
+{
+    free(G->V);
+    free(G->x);
+    free(G->y);
+}
+
+static int check_quantiles(const ct_table_quantiles *q)
+{
+    if (q->np < 1 || q->np > CT_TABLE_MAX_QUANTILES || !q->p)
+        return ct_error_set(CT_EINVAL, "table: %zu quantiles: need 1 .. %d", q->np,
+                            CT_TABLE_MAX_QUANTILES);
+    for (size_t j = 0; j < q->np; j++) {
+        char text[32];
+        snprintf(text, sizeof text, "%.6g", q->p[j]);
+        if (!(q->p[j] >= 0.0 && q->p[j] <= 1.0) || (j && !(q->p[j] > q->p[j - 1])))
+            return ct_error_set(
+                CT_EINVAL, "table: quantile %g: each p must be in [0, 1], increasing", q->p[j]);
+        if (strtod(text, NULL) != q->p[j]) /* the file names a column by p in 6 digits */
+            return ct_error_set(CT_EINVAL, "table: quantile %.17g: at most 6 significant digits",
+                                q->p[j]);
+    }
+    if (q->grid < 2 || q->grid > 1000000)
+        return ct_error_set(CT_EINVAL, "table: grid = %zu: must satisfy 2 <= grid <= 1e6", q->grid);
+    return CT_OK;
+}
+
+/* Every sample at every grid speed (one ensemble: each sample's rods built or met once), then
+ * the statistics per speed: the mean in sample order (compensated), the quantiles by type 7
+ * of the sorted samples (ct_quantile_sorted). */
+static int sample_columns(const ct_ensemble_spec *samples, const ct_table_spec *spec,
+                          const ct_table_quantiles *q, sample_grid *G)
+{
+    const size_t M = q->grid;
+    double *speeds = malloc(M * sizeof(double));
+    ct_ensemble_samples *S = NULL;
+    if (!speeds)
+        return ct_error_set(CT_ENOMEM, "table: out of memory");
+    const double x0 = log(spec->V_min), h = log(spec->V_max) - x0;
+    for (size_t g = 0; g < M; g++)
+        speeds[g] = g == 0       ? spec->V_min
+                    : g == M - 1 ? spec->V_max
+                                 : exp(x0 + h * (double)g / (double)(M - 1));
+    ct_ensemble_spec es = *samples;
+    es.V_star = speeds;
+    es.nvel = M;
+    es.impacts = 1;
+    es.opts = spec->opts;
+    es.path = spec->path;
+    es.stop_on_error = 1;
+    es.interrupt = spec->interrupt;
+    es.progress = spec->progress;
+    es.progress_ctx = spec->progress_ctx;
+    int st = ct_ensemble_samples_alloc(&S, es.first, es.count, M);
+    if (!st)
+        st = ct_ensemble(&es, S);
+    const size_t R = (size_t)es.count;
+    double Vc = INFINITY;
+    for (size_t k = 0; !st && k < R * M; k++)
+        Vc = fmin(Vc, S->V_star_crit[k]);
+    /* the grid with V*_c inserted when inside it: every sample's e is 1 there */
+    const int with_c = !st && Vc > speeds[0] && Vc < speeds[M - 1];
+    G->M = M + (size_t)with_c;
+    G->C = 1 + q->np;
+    G->Vc = Vc;
+    double *work = NULL;
+    if (!st &&
+        (!(G->V = malloc(G->M * sizeof(double))) || !(G->x = malloc(G->M * sizeof(double))) ||
+         !(G->y = malloc(G->C * G->M * sizeof(double))) || !(work = malloc(R * sizeof(double)))))
+        st = ct_error_set(CT_ENOMEM, "table: out of memory for %zu x %zu statistics", G->C, G->M);
+    for (size_t g = 0, m = 0; !st && g < M; g++, m++) {
+        if (with_c && speeds[g] > Vc && (g == 0 || speeds[g - 1] < Vc)) {
+            G->V[m] = Vc;
+            for (size_t c = 0; c < G->C; c++)
+                G->y[c * G->M + m] = 1.0;
+            m++;
+        }
+        G->V[m] = speeds[g];
+        double sum = 0.0, comp = 0.0;
+        for (size_t r = 0; r < R; r++) {
+            work[r] = S->e[r * M + g];
+            ct_add_comp(&sum, &comp, work[r]);
+        }
+        G->y[m] = (sum + comp) / (double)R;
+        qsort(work, R, sizeof(double), ct_cmp_double);
+        for (size_t j = 0; j < q->np; j++)
+            G->y[(1 + j) * G->M + m] = ct_quantile_sorted(work, R, q->p[j]);
+    }
+    for (size_t m = 0; !st && m < G->M; m++)
+        G->x[m] = log(G->V[m]);
+    free(work);
+    free(speeds);
+    ct_ensemble_samples_free(S);
+    return st;
+}
+
+/* The table of the nodes (grid indices idx, n of them) with each column's slopes (above V*_c,
+ * as table_slopes). */
+static int grid_table(const sample_grid *G, const size_t *idx, size_t n, ct_interp rule,
+                      const ct_table_quantiles *q, ct_table **out)
+{
+    ct_table *t;
+    int st = table_alloc(&t, n);
+    if (!st && (st = quantiles_alloc(t, q->np))) {
+        ct_table_free(t);
+        return st;
+    }
+    if (st)
+        return st;
+    memcpy(t->p, q->p, q->np * sizeof(double));
+    t->rule = rule;
+    t->info.V_star_crit = G->Vc;
+    for (size_t i = 0; i < n; i++) {
+        t->V[i] = G->V[idx[i]];
+        t->x[i] = G->x[idx[i]];
+        t->e[i] = G->y[idx[i]];
+        for (size_t j = 0; j < q->np; j++)
+            t->eq[j * n + i] = G->y[(1 + j) * G->M + idx[i]];
+    }
+    table_slopes(t);
+    size_t c0 = 0;
+    while (c0 < n && t->V[c0] < G->Vc)
+        c0++;
+    for (size_t j = 0; j < q->np; j++) {
+        double *d = t->dq + j * n;
+        for (size_t i = 0; i < n; i++)
+            d[i] = 0.0;
+        if (rule == CT_INTERP_MONOTONE_CUBIC && n - c0 >= 2)
+            ct_pchip_slopes(n - c0, t->x + c0, t->eq + j * n + c0, d + c0);
+    }
+    *out = t;
+    return CT_OK;
+}
+
+/* Every grid point between the nodes against the table: the worst error into t's info and, per
+ * interval, whether it fails (split[i] for interval i). Returns how many fail. */
+static size_t grid_check(const sample_grid *G, const size_t *idx, size_t n, ct_table *t, double tol,
+                         unsigned char *split)
+{
+    size_t fails = 0;
+    t->info.worst_error = 0.0;
+    t->info.worst_V_star = NAN;
+    t->info.checked = 0;
+    for (size_t i = 0; i + 1 < n; i++) {
+        split[i] = 0;
+        for (size_t g = idx[i] + 1; g < idx[i + 1]; g++) {
+            if (!(G->V[g] > G->Vc))
+                continue; /* e = 1 by the rule */
+            t->info.checked++;
+            for (size_t c = 0; c < G->C; c++) {
+                const double v =
+                    c ? ct_tab_interp(n, t->x, t->eq + (c - 1) * n, t->dq + (c - 1) * n,
+                                      (int)t->rule, t->info.V_star_crit, G->V[g])
+                      : ct_table_eval(t, G->V[g]);
+                const double err = fabs(v - G->y[c * G->M + g]);
+                if (err > t->info.worst_error || isnan(err)) {
+                    t->info.worst_error = err;
+                    t->info.worst_V_star = G->V[g];
+                }
+                if (!(err <= tol))
+                    split[i] = 1;
+            }
+        }
+        fails += split[i];
+    }
+    return fails;
+}
+
+/* The first nodes: the ends, V*_c, and the grid points nearest two per decade. */
+static size_t grid_first_nodes(const sample_grid *G, size_t *idx)
+{
+    size_t n = 0;
+    const double step = 0.5 * log(10.0);
+    for (size_t g = 0; g < G->M; g++) {
+        const int end = g == 0 || g + 1 == G->M, critical = G->V[g] == G->Vc;
+        const double k = floor((G->x[g] - G->x[0]) / step),
+                     prev = g ? floor((G->x[g - 1] - G->x[0]) / step) : k;
+        if (end || critical || k != prev)
+            idx[n++] = g;
+    }
+    return n;
+}
+
+int ct_table_build_samples(ct_table **out, const ct_ensemble_spec *samples,
+                           const ct_table_spec *spec, const ct_table_quantiles *q)
+{
+    CT_NEED(out);
+    *out = NULL;
+    CT_NEED(samples);
+    CT_NEED(spec);
+    CT_NEED(q);
+    int st;
+    if ((st = check_spec(spec)) || (st = check_quantiles(q)))
+        return st;
+    sample_grid G = {0};
+    size_t *idx = NULL, *next = NULL, n;
+    unsigned char *split = NULL;
+    ct_table *t = NULL;
+    if ((st = sample_columns(samples, spec, q, &G)))
+        goto done;
+    idx = malloc(G.M * sizeof *idx);
+    next = malloc(G.M * sizeof *next);
+    split = malloc(G.M);
+    if (!idx || !next || !split) {
+        st = ct_error_set(CT_ENOMEM, "table: out of memory");
+        goto done;
+    }
+    n = grid_first_nodes(&G, idx);
+    for (size_t round = 1;; round++) {
+        ct_table_free(t);
+        t = NULL;
+        if ((st = grid_table(&G, idx, n, spec->interpolation, q, &t)))
+            goto done;
+        const size_t fails = grid_check(&G, idx, n, t, spec->tolerance, split);
+        t->info.rounds = round;
+        if (!fails)
+            break;
+        if (n + fails > spec->max_nodes) {
+            st = ct_error_set(CT_ENOCONV,
+                              "table: tolerance %.3g not met with max_nodes = %zu (%zu intervals "
+                              "still fail; worst error %.3g at V* = %.6g): raise max_nodes or "
+                              "the tolerance",
+                              spec->tolerance, spec->max_nodes, fails, t->info.worst_error,
+                              t->info.worst_V_star);
+            goto done;
+        }
+        /* a failing interval holds a grid point (its nodes' neighbours are exact): split it
+         * at the one in its middle */
+        size_t m = 0;
+        for (size_t i = 0; i < n; i++) {
+            next[m++] = idx[i];
+            if (i + 1 < n && split[i])
+                next[m++] = idx[i] + (idx[i + 1] - idx[i]) / 2;
+        }
+        memcpy(idx, next, m * sizeof *idx);
+        n = m;
+    }
+    t->samples = samples->count;
+    t->info.evaluations = (size_t)samples->count * (size_t)q->grid;
+    *out = t;
+    t = NULL;
+done:
+    ct_table_free(t);
+    free(idx);
+    free(next);
+    free(split);
+    sample_grid_free(&G);
+    return st;
+}
+
 /* ---- the table file: written here, read by include/cantact_table.h ---- */
 
 static void put_value(FILE *f, const char *key, double v)
@@ -746,8 +1055,9 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
     CT_NEED(meta);
     ct_table_info in;
     ct_table_get_info(t, &in);
-    fprintf(f, "# cantact %s table: e of the first impact on the virgin surface against V*\n",
-            meta->version ? meta->version : "");
+    fprintf(f, "# cantact %s table: e of the first impact on the virgin surface against V*%s\n",
+            meta->version ? meta->version : "",
+            t->nq ? ", the mean and quantiles over samples" : "");
     if (meta->scene)
         fprintf(f, "# scene = %s\n", meta->scene);
     if (meta->surface)
@@ -777,21 +1087,45 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
         put_value(f, "worst_error_at_V_star", in.worst_V_star);
     else
         fputs("# worst_error_at_V_star = none (no point above V_star_crit in the range)\n", f);
-    fprintf(f,
-            "# checked = %zu points against the exact model (%zu equally spaced in ln V_star "
-            "inside every interval above V_star_crit; the nodes are exact)\n",
-            in.checked, meta->check_points);
+    if (t->nq)
+        fprintf(f,
+                "# checked = %zu points, every column (the mean and each quantile) against the "
+                "samples' own statistics there (a grid of %zu speeds equally spaced in ln V_star "
+                "at which every sample was computed; the nodes are grid points)\n",
+                in.checked, meta->grid);
+    else
+        fprintf(f,
+                "# checked = %zu points against the exact model (%zu equally spaced in ln V_star "
+                "inside every interval above V_star_crit; the nodes are exact)\n",
+                in.checked, meta->check_points);
     /* the number of rows: the reader refuses a file with another number (a cut one) */
-    fprintf(f,
-            "# nodes = %zu (%zu at kinks of e, where u_max reaches a rod's contact or yield "
-            "point)\n",
-            ct_table_size(t), in.kinks);
+    if (t->nq)
+        fprintf(f, "# nodes = %zu (grid points)\n", ct_table_size(t));
+    else
+        fprintf(f,
+                "# nodes = %zu (%zu at kinks of e, where u_max reaches a rod's contact or yield "
+                "point)\n",
+                ct_table_size(t), in.kinks);
     if (isfinite(meta->v_per_V_star))
         fprintf(f,
                 "# v_per_V_star = %.17g (impact speed = V_star * v_per_V_star, in the units of "
                 "the scene's mass, l0, E and h0)\n",
                 meta->v_per_V_star);
-    fputs("V_star,e,de_dlnV_star\n", f);
+    if (t->nq) {
+        fprintf(f,
+                "# quantiles = %zu (e at each p over the %llu samples%s%s: the columns e_p<p>)\n",
+                t->nq, (unsigned long long)t->samples, meta->samples ? ", " : "",
+                meta->samples ? meta->samples : "");
+        fputs("# rule: e at (V_star, p): each column e_p<p> at V_star by the rule above, kept "
+              "non-decreasing in p (a running maximum), then linear in p between the two "
+              "columns about p (outside the first and last p, the nearest column); e is the "
+              "mean over the samples\n",
+              f);
+    }
+    fputs("V_star,e,de_dlnV_star", f);
+    for (size_t j = 0; j < t->nq; j++)
+        fprintf(f, ",e_p%.6g,de_p%.6g_dlnV_star", t->p[j], t->p[j]);
+    fputc('\n', f);
     const double *V = ct_table_V_star(t), *e = ct_table_e(t), *d = ct_table_slope(t);
     for (size_t i = 0; i < ct_table_size(t); i++) {
         ct_put_double(f, V[i]);
@@ -799,6 +1133,12 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
         ct_put_double(f, e[i]);
         fputc(',', f);
         ct_put_double(f, d[i]);
+        for (size_t j = 0; j < t->nq; j++) {
+            fputc(',', f);
+            ct_put_double(f, t->eq[j * t->n + i]);
+            fputc(',', f);
+            ct_put_double(f, t->dq[j * t->n + i]);
+        }
         fputc('\n', f);
     }
     return ferror(f) ? ct_error_set(CT_EIO, "table: write error") : CT_OK;
@@ -818,9 +1158,18 @@ int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file)
                                                       : CT_EINVAL,
                             "%s", err);
     /* the reader has checked what ct_table_from_nodes checks (and more) */
-    const int st = ct_table_from_nodes(
+    int st = ct_table_from_nodes(
         out, tab.n, tab.V_star, tab.e, tab.slope,
         tab.rule == CT_TAB_LINEAR ? CT_INTERP_LINEAR : CT_INTERP_MONOTONE_CUBIC, tab.V_star_crit);
+    if (!st && tab.nq && (st = quantiles_alloc(*out, tab.nq))) {
+        ct_table_free(*out);
+        *out = NULL;
+    }
+    if (!st && tab.nq) { /* checked by the reader as the nodes are */
+        memcpy((*out)->p, tab.p, tab.nq * sizeof(double));
+        memcpy((*out)->eq, tab.e_q, tab.nq * tab.n * sizeof(double));
+        memcpy((*out)->dq, tab.slope_q, tab.nq * tab.n * sizeof(double));
+    }
     if (!st && file) {
         file->tolerance = tab.tolerance;
         file->worst_error = tab.worst_error;

@@ -133,6 +133,27 @@ diff <(awk -F, 'NR > 2 && $1 == 4 { print $5 "," $6 "," $7 }' "$tmp/s.csv") \
     <(awk -F, 'NR > 1 { print $2 "," $3 "," $4 }' "$tmp/s4.csv") >/dev/null && ok ||
     bad "sphere landing 4 differs from the run with body.position = $xy"
 
+# a table of the landings' statistics: the mean and e at each p per node; at a node (a grid
+# speed) they are the landings' own mean and type-7 quantiles, recomputed here from the rows of
+# a run at that speed; the C reader evaluates it between the columns, non-decreasing in p
+expect 0 "a table of landings" -- "$ct" table "$tmp/c.ini" --set impact.impacts=1 \
+    --set impact.V_star=1e-3,1e-2 --set table.tolerance=1e-4 --set body.landings=100 -o "$tmp/lt.csv"
+has err "table of the mean and 21 quantiles of e over body.landings = 100" "the table's summary"
+grep -q "^# quantiles = 21 " "$tmp/lt.csv" && ok || bad "no # quantiles line"
+for node in 40 300; do
+    row=$(awk -F, '/^V_star,/ { h = 1; next } h && ++k == n' n=$node "$tmp/lt.csv")
+    V=${row%%,*}
+    expect 0 "the landings at node $node's speed" -- "$ct" run -q "$tmp/c.ini" --set impact.impacts=1 \
+        --set impact.V_star="$V" --set body.landings=100 --set output.what=landings -o "$tmp/lv.csv"
+    awk -F, 'NR > 2 { print $6 }' "$tmp/lv.csv" | sort -g >"$tmp/lv.sorted"
+    awk -v row="$row" '{ e[n++] = $1; s += $1 }
+        function q(p,   h, f) { h = (n - 1) * p; f = int(h); return f + 1 < n ? e[f] + (h - f) * (e[f + 1] - e[f]) : e[n - 1] }
+        END { split(row, r, ","); d = r[2] - s / n; if (d * d > 1e-24) exit 1
+            # columns: e_p0.01 is field 4, e_p0.05 field 6, ..., e_p0.5 field 24, e_p0.99 field 44
+            if ((r[4] - q(0.01)) ^ 2 > 1e-24 || (r[24] - q(0.5)) ^ 2 > 1e-24 || (r[44] - q(0.99)) ^ 2 > 1e-24) exit 1 }' \
+        "$tmp/lv.sorted" && ok || bad "node $node: the table's mean or quantiles are not the landings' own at V* = $V"
+done
+
 # a force on a plane is in N (l0 an area), on a line in N per metre of depth
 expect 0 "the ball's time columns" -- "$ct" run -q "$tmp/s.ini" --set body.landings=0 --set output.what=e,time -o "$tmp/st.csv"
 head -1 "$tmp/st.csv" | tr ',' '\n' | grep -qx P_peak_N && ok || bad "a ball's peak force not in N: $(head -1 "$tmp/st.csv")"

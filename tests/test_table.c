@@ -252,7 +252,7 @@ static void reader_refuses_foreign_slopes(void **state)
     int fd = mkstemp(path);
     assert_true(fd >= 0);
     close(fd);
-    char scene[1200];
+    char scene[5000]; /* longer than the reader's line (4096) */
     memset(scene, 'x', sizeof scene - 1);
     scene[sizeof scene - 1] = '\0';
     const double bad[] = {-500.0, 1e300, INFINITY, 0.0 /* its opposite */};
@@ -923,6 +923,232 @@ static void progress_and_interrupt(void **state)
     ct_bundle_free(b);
 }
 
+/* ---- tables of samples: the landings of a cylinder on rods placed along a line ---- */
+
+enum { LANDINGS = 40 };
+static const double PQ[3] = {0.1, 0.5, 0.9};
+
+static ct_surface *placed_rods(void)
+{
+    enum { N = 80 };
+    double top[N], area[N], x[N];
+    for (int k = 0; k < N; k++) {
+        top[k] = 0.5 * (1.0 + sin(1.7 * k));
+        area[k] = 1.0;
+        x[k] = k;
+    }
+    ct_surface *s;
+    assert_int_equal(ct_surface_new(&s, "rods"), CT_OK);
+    assert_int_equal(ct_surface_set_rods_at(s, N, top, area, NULL, x, NULL), CT_OK);
+    assert_int_equal(ct_surface_set(s, "surface", "Hstar", "2", ""), CT_OK);
+    assert_int_equal(ct_surface_set(s, "material", "E", "500", ""), CT_OK);
+    assert_int_equal(ct_surface_prepare(s, NULL), CT_OK);
+    return s;
+}
+
+static ct_body cylinder(void)
+{
+    ct_body b;
+    ct_body_defaults(&b);
+    for (size_t k = 0; k < ct_body_count(); k++)
+        if (!strcmp(ct_body_name(k), "cylinder"))
+            b.shape = (int)k;
+    b.radius = 30.0;
+    b.landings = LANDINGS;
+    b.seed = 3;
+    return b;
+}
+
+static double type7(const double *sorted, size_t n, double p)
+{
+    const double h = (double)(n - 1) * p;
+    const size_t f = (size_t)floor(h);
+    return f + 1 < n ? sorted[f] + (h - (double)f) * (sorted[f + 1] - sorted[f]) : sorted[n - 1];
+}
+
+static int cmp_d(const void *a, const void *b)
+{
+    const double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The table of the landings' statistics: at its nodes (grid speeds) the mean and the type-7
+ * quantiles of e over the landings, each landing run on its own here (the body at its apex,
+ * ct_surface_build and ct_sweep: not the ensemble the table was built by); the file read back
+ * by the library and by cantact_table.h evaluates to the same bits; e at (V*, p) is
+ * non-decreasing in p, the nearest column outside [0.1, 0.9], linear between columns, NaN for
+ * p outside [0, 1]; a file whose quantiles decrease, or whose columns disagree with
+ * # quantiles, is refused. */
+static void samples_table(void **state)
+{
+    (void)state;
+    ct_surface *s = placed_rods();
+    ct_body body = cylinder();
+    ct_scales sc;
+    ct_surface_scales(s, &sc);
+    const double V[2] = {1e-3, 1e-2};
+    ct_build_request req = {.V_star = V, .nvel = 2, .impacts = 1, .body = &body};
+    ct_impact_opts_default(&req.opts);
+    ct_bundle *rods;
+    assert_int_equal(ct_surface_build_unmet(s, &req, &rods, NULL), CT_OK);
+    ct_ensemble_spec es = {.first = 0,
+                           .count = LANDINGS,
+                           .impacts = 1,
+                           .body = &body,
+                           .scales = sc,
+                           .rods = rods,
+                           .threads = 2};
+    ct_impact_opts_default(&es.opts);
+    ct_table_spec spec;
+    ct_table_spec_default(&spec);
+    spec.V_min = V[0];
+    spec.V_max = V[1];
+    spec.tolerance = 1e-3;
+    ct_table_quantiles q = {.p = PQ, .np = 3, .grid = 300};
+    ct_table *t;
+    assert_int_equal(ct_table_build_samples(&t, &es, &spec, &q), CT_OK);
+    assert_int_equal(ct_table_quantile_count(t), 3);
+    assert_int_equal(ct_table_samples(t), LANDINGS);
+    ct_table_info in;
+    ct_table_get_info(t, &in);
+    assert_true(in.worst_error <= 1e-3);
+    /* the nodes against each landing run alone */
+    double lo[2], hi[2];
+    assert_int_equal(ct_body_landing_region(&body, &sc, rods, lo, hi), CT_OK);
+    const size_t n = ct_table_size(t);
+    int checked = 0;
+    for (size_t i = 1; i < n; i += n / 7) {
+        const double Vi = ct_table_V_star(t)[i];
+        if (!(Vi > in.V_star_crit))
+            continue;
+        double e[LANDINGS], sum = 0.0;
+        for (uint64_t k = 0; k < LANDINGS; k++) {
+            double pos[2];
+            ct_body_landing(lo, hi, body.seed, k, pos);
+            ct_body at = body;
+            at.landings = 0;
+            at.position[0] = pos[0];
+            ct_build_request one = {.V_star = &Vi, .nvel = 1, .impacts = 1, .body = &at};
+            ct_impact_opts_default(&one.opts);
+            ct_bundle *b;
+            assert_int_equal(ct_surface_build(s, &one, &b, NULL), CT_OK);
+            ct_sweep_spec sw = {.V_star = &Vi, .nvel = 1, .impacts = 1};
+            ct_impact_opts_default(&sw.opts);
+            ct_sweep_row row;
+            assert_int_equal(ct_sweep(b, &sw, &row), CT_OK);
+            e[k] = row.r.e;
+            sum += e[k];
+            ct_bundle_free(b);
+        }
+        qsort(e, LANDINGS, sizeof(double), cmp_d);
+        assert_true(fabs(ct_table_e(t)[i] - sum / LANDINGS) <= 1e-13);
+        for (size_t j = 0; j < 3; j++)
+            assert_true(fabs(ct_table_e_quantile(t, j)[i] - type7(e, LANDINGS, PQ[j])) <= 1e-15);
+        checked++;
+    }
+    assert_true(checked >= 5);
+    /* the file read back, by the library and by the header alone */
+    char path[] = "/tmp/ct_samples_XXXXXX", err[512];
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    FILE *f = fdopen(fd, "w");
+    ct_table_meta meta = {.version = "test",
+                          .tolerance = 1e-3,
+                          .v_per_V_star = NAN,
+                          .samples = "landings",
+                          .grid = 300};
+    assert_int_equal(ct_table_write(f, t, &meta), CT_OK);
+    fclose(f);
+    ct_table *back;
+    assert_int_equal(ct_table_read(&back, path, NULL), CT_OK);
+    ct_tab tab;
+    assert_int_equal(ct_tab_load(&tab, path, err, sizeof err), 0);
+    assert_int_equal(tab.nq, 3);
+    for (int a = 0; a <= 200; a++) {
+        const double Va = V[0] * pow(V[1] / V[0], a / 200.0);
+        double prev = -1.0;
+        for (int b = -2; b <= 102; b++) {
+            const double p = b / 100.0, v = ct_table_eval_quantile(t, Va, p);
+            const double u = ct_table_eval_quantile(back, Va, p);
+            assert_true(v == u || (isnan(v) && isnan(u)));
+            const double w = ct_tab_eval_quantile(&tab, Va, p);
+            assert_true(v == w || (isnan(v) && isnan(w)));
+            if (p < 0.0 || p > 1.0) {
+                assert_true(isnan(v));
+                continue;
+            }
+            assert_true(v >= prev); /* non-decreasing in p */
+            prev = v;
+        }
+        /* the columns: the nearest outside, linear between (the running maximum) */
+        double c[3];
+        for (size_t j = 0; j < 3; j++)
+            c[j] = ct_tab_interp(tab.n, tab.ln_V_star, tab.e_q + j * tab.n, tab.slope_q + j * tab.n,
+                                 tab.rule, tab.V_star_crit, Va);
+        const double c1 = fmax(c[0], c[1]), c2 = fmax(c1, c[2]);
+        assert_true(ct_tab_eval_quantile(&tab, Va, 0.0) == c[0]);
+        assert_true(ct_tab_eval_quantile(&tab, Va, 0.05) == c[0]);
+        assert_true(ct_tab_eval_quantile(&tab, Va, 1.0) == c2);
+        assert_true(fabs(ct_tab_eval_quantile(&tab, Va, 0.3) - 0.5 * (c[0] + c1)) <= 1e-15);
+        assert_true(fabs(ct_tab_eval_quantile(&tab, Va, 0.8) - (0.25 * c1 + 0.75 * c2)) <= 1e-15);
+    }
+    ct_tab_free(&tab);
+    /* columns that cross between nodes (each within its tolerance): e stays non-decreasing in
+     * p, the running maximum of the columns below it (linear, two nodes, p = 0.1 and 0.5) */
+    const double lnV[2] = {0.0, 1.0}, pp[2] = {0.1, 0.5}, eq[4] = {0.2, 0.6, 0.5, 0.3},
+                 dq[4] = {0.0, 0.0, 0.0, 0.0};
+    const double at = exp(0.75); /* column 0.1 at 0.5, column 0.5 at 0.35 */
+    assert_true(fabs(ct_tab_quantile_interp(2, lnV, 2, pp, eq, dq, CT_TAB_LINEAR, 0.0, at, 0.3) -
+                     0.5) <= 1e-15);
+    assert_true(fabs(ct_tab_quantile_interp(2, lnV, 2, pp, eq, dq, CT_TAB_LINEAR, 0.0, at, 0.5) -
+                     0.5) <= 1e-15);
+    assert_true(
+        fabs(ct_tab_quantile_interp(2, lnV, 2, pp, eq, dq, CT_TAB_LINEAR, 0.0, exp(0.25), 0.3) -
+             0.5 * (0.3 + 0.45)) <= 1e-15);
+    /* refused: a row whose quantiles decrease, a header that disagrees with # quantiles */
+    size_t len;
+    char *text = slurp(path, &len);
+    char *row = strstr(text, "\n1e-3") ? NULL : strstr(strstr(text, "\nV_star,") + 1, "\n") + 1;
+    assert_non_null(row);
+    char *bad = strdup(text);
+    char *brow = bad + (row - text);
+    char *f4 = brow; /* the row's fourth field (e at p = 0.1): set above every other */
+    for (int k = 0; k < 3; k++)
+        f4 = strchr(f4, ',') + 1;
+    f4[0] = '1';
+    for (char *q2 = f4 + 1; *q2 != ','; q2++)
+        *q2 = *q2 == '.' ? '.' : '0';
+    expect_reader_error(bad, "quantiles decrease");
+    free(bad);
+    bad = strdup(text);
+    char *nq = strstr(bad, "# quantiles = 3");
+    assert_non_null(nq);
+    nq[14] = '2';
+    expect_reader_error(bad, "more columns than # quantiles");
+    free(bad);
+    /* a quantile column's slope of the wrong sign in the middle row (field 7: de_p0.5) */
+    bad = malloc(len + 16);
+    const char *mid = strstr(text, "\nV_star,") + 1;
+    for (size_t k = 0; k <= n / 2; k++)
+        mid = strchr(mid, '\n') + 1;
+    const char *f7 = mid;
+    for (int k = 0; k < 6; k++)
+        f7 = strchr(f7, ',') + 1;
+    const char *f7end = strchr(f7, ',');
+    const size_t head = (size_t)(f7 - text);
+    memcpy(bad, text, head);
+    strcpy(bad + head, "-500");
+    strcat(bad, f7end);
+    expect_reader_error(bad, "slopes of e at p = 0.5");
+    free(bad);
+    free(text);
+    unlink(path);
+    ct_table_free(back);
+    ct_table_free(t);
+    ct_bundle_free(rods);
+    ct_surface_free(s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -938,6 +1164,7 @@ int main(void)
         cmocka_unit_test(slope_limit_stays_between_nodes),
         cmocka_unit_test(bad_input),
         cmocka_unit_test(progress_and_interrupt),
+        cmocka_unit_test(samples_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # cantact table: the output's header and rows, the [table] keys' one-line errors naming
-# file:line, exit 1 and no file when the tolerance cannot be met, a random surface, an
-# ensemble refused, the table's first node, V*_c and end against cantact run.
+# file:line, exit 1 and no file when the tolerance cannot be met, a random surface, a table of
+# an ensemble's statistics (its mean at a node the ensemble's own), the table's first node,
+# V*_c and end against cantact run.
 # Usage: test_table_cli.sh CANTACT SOURCE_DIR
 source "$(dirname "${BASH_SOURCE[0]}")/preamble.sh"
 ct=$1
@@ -131,7 +132,18 @@ INI
 expect 0 "random surface" -- "$ct" table -q "$tmp/r.ini" -o "$tmp/r.csv"
 has r.csv "^# surface = random_cantor" "random header"
 printf '[ensemble]\nrealisations = 4\n' >>"$tmp/r.ini"
-expect 2 "ensemble refused" -- "$ct" table "$tmp/r.ini"
-has err "a table is of one surface" "ensemble message"
+expect 0 "a table of the ensemble" -- "$ct" table "$tmp/r.ini" --set table.tolerance=1e-3 \
+    --set table.grid=300 -o "$tmp/re.csv"
+has err "table of the mean and 21 quantiles of e over ensemble.realisations = 4" "ensemble summary"
+has re.csv "^# quantiles = 21 " "ensemble table's quantiles"
+# a node's mean e is the ensemble's mean at that speed (cantact run's statistics)
+nodes=$(sed -n 's/^# nodes = \([0-9]*\).*/\1/p' "$tmp/re.csv")
+row=$(awk -F, -v m=$((nodes / 2)) '/^V_star,/ { h = 1; next } h && ++k == m' "$tmp/re.csv")
+expect 0 "the ensemble at the middle node" -- "$ct" run -q "$tmp/r.ini" --set impact.V_star="${row%%,*}" \
+    --set impact.impacts=1 -o "$tmp/rm.csv"
+awk -F, -v row="$row" 'NR == 2 { split(row, r, ","); d = r[2] - $4; exit !(d * d < 1e-26) }' "$tmp/rm.csv" &&
+    ok || bad "the middle node: mean e $(echo "$row" | cut -d, -f2) is not the ensemble's $(sed -n 2p "$tmp/rm.csv" | cut -d, -f4)"
+expect 2 "quantiles above 1" -- "$ct" table "$tmp/r.ini" --set table.quantiles=0.5,1.5 -o "$tmp/no.csv"
+has err "must be probabilities in (0, 1]" "quantiles above 1"
 
 finish

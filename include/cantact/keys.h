@@ -96,6 +96,8 @@ typedef struct {
     long max_nodes, check_points;
     long realisations; /* [ensemble] */
     int split;
+    ct_speeds table_quantiles; /* [table] of samples: the probabilities (n = 0: the default) */
+    long table_grid;
 } ct_run_keys;
 /* The rows of ct_run_keys (their offsets point into it): every front-end parses the run's
  * keys through them (ct_key_parse), so ranges, words and defaults are stated once. */

@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
+#include "cantact/ensemble.h"
 #include "cantact/sweep.h"
 
 #ifdef __cplusplus
@@ -101,6 +102,8 @@ typedef struct {
     double tolerance;    /* the tolerance the build was asked for */
     size_t check_points; /* points checked inside every interval */
     double v_per_V_star; /* impact speed per V* in the scene's units (NaN: no mass given) */
+    const char *samples; /* a table of samples: what they are ("landings ..."; NULL: not said) */
+    size_t grid;         /* a table of samples: the speeds each was computed at */
 } ct_table_meta;
 /* Writes the table file include/cantact_table.h reads: "# key = value" lines, then
  * V_star,e,de_dlnV_star rows (round-trip digits). CT_EIO on a write error. */
@@ -117,6 +120,37 @@ typedef struct {
  * header's numbers. CT_EINVAL for a file the reader refuses (the message names file:line),
  * CT_EIO when it cannot be opened or read, CT_ENOMEM. */
 int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file);
+
+/* ---- tables of samples: the mean and quantiles of e over realisations or landings ---- */
+/* A table of samples (an ensemble's realisations, or a curved body's landings: ct_ensemble_spec)
+ * holds, per node, e as the mean over the samples and e at np probabilities p (type-7
+ * quantiles of the samples, as ct_sample_stats), each column interpolated as e is. Every sample
+ * is computed at `grid` speeds equally spaced in ln V* over the range (one ensemble: each
+ * sample's rods built or met once), V*_c (the least of the samples': every e is 1 at and below
+ * it) among them; the nodes are grid points, added at the middle of every interval where a
+ * grid point of any column misses the tolerance, until none does. The check is at the grid
+ * points (between them it is not checked). */
+#define CT_TABLE_MAX_QUANTILES 64
+typedef struct {
+    const double *p; /* probabilities, strictly increasing in [0, 1], 6 significant digits */
+    size_t np;       /* 1 .. CT_TABLE_MAX_QUANTILES */
+    size_t grid;     /* speeds every sample is computed at, 2 .. 1e6 */
+} ct_table_quantiles;
+/* The table of samples (samples: count, first, the surface or rods and body; its speeds,
+ * impacts, options, interrupt and progress are the table's: spec) over spec's range with
+ * spec's tolerance, interpolation and max_nodes (check_points is not used: the grid is the
+ * check). CT_ENOCONV when max_nodes is not enough; a sample's failed impact fails the build
+ * (its message names the sample). */
+int ct_table_build_samples(ct_table **out, const ct_ensemble_spec *samples,
+                           const ct_table_spec *spec, const ct_table_quantiles *q);
+size_t ct_table_quantile_count(const ct_table *t);              /* 0: a table of one surface */
+const double *ct_table_p(const ct_table *t);                    /* the probabilities */
+const double *ct_table_e_quantile(const ct_table *t, size_t j); /* e at p[j] at the nodes */
+const double *ct_table_slope_quantile(const ct_table *t, size_t j);
+uint64_t ct_table_samples(const ct_table *t); /* samples the statistics are over */
+/* e at V* and probability p by cantact_table.h's rule (ct_tab_eval_quantile): NaN for a table
+ * without quantiles or p outside [0, 1]. */
+double ct_table_eval_quantile(const ct_table *t, double V_star, double p);
 
 #if defined(__GNUC__)
 #pragma GCC visibility pop

@@ -586,7 +586,10 @@ class Table:
     and below V_star_crit, the nearest end's e outside the nodes (covers() says where the table
     knows e). v_per_V_star: the impact speed per unit V* (from table(..., mass=m) or the
     file's key; None when unknown), which e_of_speed() uses; save() writes the file
-    include/cantact_table.h reads."""
+    include/cantact_table.h reads. A table of samples (`cantact table` of landings or
+    realisations) has e as their mean and, per node, e at probabilities p: p (array),
+    e_quantiles and slope_quantiles (len(p) x nodes); quantile(V_star, p) evaluates them
+    (cantact_table.h's ct_tab_eval_quantile). Otherwise p is None."""
 
     def __init__(self, handle, tolerance=None):
         self._t = handle
@@ -598,6 +601,13 @@ class Table:
         self.V_star = arr(lib.ct_table_V_star(handle))
         self.e = arr(lib.ct_table_e(handle))
         self.slope = arr(lib.ct_table_slope(handle))
+        nq = lib.ct_table_quantile_count(handle)
+        self.p = np.frombuffer(ffi.buffer(lib.ct_table_p(handle), nq * 8),
+                               dtype=np.float64).copy() if nq else None
+        self.e_quantiles = np.array([arr(lib.ct_table_e_quantile(handle, j)) for j in range(nq)])
+        self.slope_quantiles = np.array([arr(lib.ct_table_slope_quantile(handle, j))
+                                         for j in range(nq)])
+        self.samples = int(lib.ct_table_samples(handle)) if nq else None
         rule = lib.ct_table_interpolation(handle)
         self.interpolation = ffi.string(lib.ct_interp_name(rule)).decode()
         info = ffi.new("ct_table_info *")
@@ -614,6 +624,21 @@ class Table:
     def __call__(self, V_star):
         V = chk.array("V_star", V_star, positive=True)
         return np.array([lib.ct_table_eval(self._t, v) for v in V], dtype=np.float64)
+
+    def quantile(self, V_star, p):
+        """e at V_star and probability p (arrays broadcast together) of a table of samples:
+        each quantile column at V_star, non-decreasing in p, linear in p between columns, the
+        nearest column outside the first and last p."""
+        if self.p is None:
+            raise invalid("quantile: the table has no quantile columns (a table of samples has "
+                          "them: cantact table with body.landings or [ensemble])")
+        V = chk.array("V_star", V_star, positive=True)
+        P = chk.array("p", p, finite=True)
+        if ((P < 0) | (P > 1)).any():
+            raise invalid("p: must be in [0, 1]")
+        V, P = np.broadcast_arrays(V, P)
+        return np.array([lib.ct_table_eval_quantile(self._t, v, q)
+                         for v, q in zip(V.ravel(), P.ravel())]).reshape(V.shape)
 
     def e_of_speed(self, speed):
         """e at impact speeds in the units of the mass that gave v_per_V_star: e(speed /
@@ -697,9 +722,21 @@ class Table:
         if vpv is not None:
             lines.append(f"# v_per_V_star = {g(vpv)} (impact speed = V_star * v_per_V_star, in "
                          "the units of the scene's mass, l0, E and h0)")
-        lines.append("V_star,e,de_dlnV_star")
-        lines.extend(f"{g(V)},{g(e)},{g(d)}" for V, e, d in
-                     zip(self.V_star.tolist(), self.e.tolist(), self.slope.tolist()))
+        header = "V_star,e,de_dlnV_star"
+        if self.p is not None:  # a table of samples keeps its quantile columns
+            lines.append(f"# quantiles = {self.p.size} (e at each p over the {self.samples} "
+                         "samples: the columns e_p<p>)")
+            lines.append("# rule: e at (V_star, p): each column e_p<p> at V_star by the rule "
+                         "above, kept non-decreasing in p (a running maximum), then linear in p "
+                         "between the two columns about p (outside the first and last p, the "
+                         "nearest column); e is the mean over the samples")
+            header += "".join(f",e_p{q:.6g},de_p{q:.6g}_dlnV_star" for q in self.p.tolist())
+        lines.append(header)
+        for i, (V, e, d) in enumerate(zip(self.V_star.tolist(), self.e.tolist(),
+                                          self.slope.tolist())):
+            cols = "".join(f",{g(q[i])},{g(dq[i])}" for q, dq in
+                           zip(self.e_quantiles, self.slope_quantiles))
+            lines.append(f"{g(V)},{g(e)},{g(d)}{cols}")
         try:  # the text read from a file keeps its bytes (surrogateescape, as read)
             data = ("\n".join(lines) + "\n").encode("utf-8", errors="surrogateescape")
         except UnicodeEncodeError as exc:

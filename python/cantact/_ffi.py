@@ -347,6 +347,12 @@ const double *ct_table_e(const ct_table *t);
 const double *ct_table_slope(const ct_table *t);
 ct_interp ct_table_interpolation(const ct_table *t);
 void ct_table_get_info(const ct_table *t, ct_table_info *info);
+size_t ct_table_quantile_count(const ct_table *t);
+const double *ct_table_p(const ct_table *t);
+const double *ct_table_e_quantile(const ct_table *t, size_t j);
+const double *ct_table_slope_quantile(const ct_table *t, size_t j);
+uint64_t ct_table_samples(const ct_table *t);
+double ct_table_eval_quantile(const ct_table *t, double V_star, double p);
 double ct_table_eval(const ct_table *t, double V_star);
 void ct_pchip_slopes(size_t n, const double *x, const double *y, double *d);
 typedef struct {
@@ -498,6 +504,8 @@ typedef struct {
     long max_nodes, check_points;
     long realisations;
     int split;
+    ct_speeds table_quantiles;
+    long table_grid;
 } ct_run_keys;
 const ct_key *ct_run_keys_table(size_t *n);
 void ct_run_keys_defaults(ct_run_keys *k);

@@ -282,6 +282,8 @@ int main(void)
     FIELD(ct_run_keys, check_points);
     FIELD(ct_run_keys, realisations);
     FIELD(ct_run_keys, split);
+    FIELD(ct_run_keys, table_quantiles);
+    FIELD(ct_run_keys, table_grid);
     SIZE(ct_run_solver);
     FIELD(ct_run_solver, opts);
     FIELD(ct_run_solver, path);

@@ -98,3 +98,34 @@ def test_what_cannot_land_is_refused():
         run(landings=0)
     with pytest.raises(IN, match="seed"):
         run(seed=-1)
+
+
+def test_a_table_of_landings_read_and_saved(tmp_path):
+    """`cantact table` of landings: read_table gives its quantile columns, quantile() is e at
+    the columns at the nodes (their own values, the median column's at p = 0.5), and save()
+    writes them back so that the file reads as it was (a table of samples kept whole)."""
+    with open(tmp_path / "rods.csv", "w") as f:
+        f.write("top,area,x\n")
+        for k in range(201):
+            f.write("%.17g,1,%d\n" % (TOP[k], k))
+    (tmp_path / "c.ini").write_text(
+        "[surface]\ntype = rods\nfile = rods.csv\nHstar = 2\n[body]\nshape = cylinder\n"
+        "radius = 100\nlandings = 30\nseed = 5\n[material]\nE = 500\n[impact]\n"
+        "V_star = 0.001, 0.01\n[table]\ntolerance = 1e-3\ngrid = 200\n"
+        "quantiles = 0.1, 0.5, 0.9\n")
+    subprocess.run([os.environ["CANTACT_CLI"], "table", "-q", str(tmp_path / "c.ini"), "-o",
+                    str(tmp_path / "t.csv")], check=True)
+    t = cantact.read_table(tmp_path / "t.csv")
+    assert t.p.tolist() == [0.1, 0.5, 0.9] and t.e_quantiles.shape == (3, t.V_star.size)
+    assert np.array_equal(t.quantile(t.V_star, 0.5), t.e_quantiles[1])
+    assert (t.e_quantiles[0] <= t.e_quantiles[2]).all()
+    t.save(tmp_path / "u.csv")
+    u = cantact.read_table(tmp_path / "u.csv")
+    assert np.array_equal(u.e_quantiles, t.e_quantiles)
+    assert np.array_equal(u.slope_quantiles, t.slope_quantiles)
+    assert np.array_equal(u.quantile(t.V_star, 0.3), t.quantile(t.V_star, 0.3))
+    with pytest.raises(IN, match="p: must be in"):
+        t.quantile(1e-3, 1.5)
+    plain = cantact.table(rods(), V_star=(1e-3, 1e-2), tolerance=1e-3)
+    with pytest.raises(IN, match="no quantile columns"):
+        plain.quantile(1e-3, 0.5)

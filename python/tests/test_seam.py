@@ -393,6 +393,8 @@ RUN = {
     "table.interpolation": (cantact.table, "interpolation"),
     "table.max_nodes": (cantact.table, "max_nodes"),
     "table.check_points": (cantact.table, "check_points"),
+    "table.quantiles": "the program's: tables of samples (read_table reads them: quantile())",
+    "table.grid": "the program's: tables of samples",
     "ensemble.realisations": (cantact.ensemble, "realisations"),
     "ensemble.split": (cantact.ensemble, "split"),
 }

@@ -72,11 +72,28 @@ static void show_progress(size_t done, size_t total, void *ctx)
         ct_progress_step(prog);
 }
 
-/* This rank's samples my_a .. my_b - 1 into *mine (NULL when none): realisations of surface,
- * or landings on rods (not NULL); msg gets the error. */
-static int run_block(const ct_scene *sc, const ct_random_cantor *surface, const ct_bundle *rods,
-                     uint64_t my_a, uint64_t my_b, ct_ensemble_samples **mine, char *msg,
-                     size_t msglen)
+void ct_cli_samples_spec(const ct_scene *sc, const ct_cli_samples *s, uint64_t first,
+                         uint64_t count, ct_ensemble_spec *spec)
+{
+    *spec = (ct_ensemble_spec){.surface = s->surface,
+                               .first = first,
+                               .count = count,
+                               .V_star = sc->V_star,
+                               .nvel = sc->nvel,
+                               .impacts = sc->impacts,
+                               .opts = sc->opts,
+                               .path = sc->path,
+                               .stop_on_error = !sc->skip_failed,
+                               .threads = sc->threads,
+                               .split = sc->split,
+                               .body = &sc->body,
+                               .scales = sc->scales,
+                               .rods = s->rods};
+}
+
+/* This rank's samples my_a .. my_b - 1 into *mine (NULL when none); msg gets the error. */
+static int run_block(const ct_scene *sc, const ct_cli_samples *samples, uint64_t my_a,
+                     uint64_t my_b, ct_ensemble_samples **mine, char *msg, size_t msglen)
 {
     const size_t nrows = sc->nvel * (size_t)sc->impacts;
     ct_progress prog;
@@ -85,22 +102,10 @@ static int run_block(const ct_scene *sc, const ct_random_cantor *surface, const 
     if (my_b > my_a) {
         st = ct_ensemble_samples_alloc(mine, my_a, my_b - my_a, nrows);
         if (!st) {
-            ct_ensemble_spec spec = {.surface = *surface,
-                                     .first = my_a,
-                                     .count = my_b - my_a,
-                                     .V_star = sc->V_star,
-                                     .nvel = sc->nvel,
-                                     .impacts = sc->impacts,
-                                     .opts = sc->opts,
-                                     .path = sc->path,
-                                     .stop_on_error = !sc->skip_failed,
-                                     .threads = sc->threads,
-                                     .split = sc->split,
-                                     .progress = ct_mpi_rank() == 0 ? show_progress : NULL,
-                                     .progress_ctx = &prog,
-                                     .body = &sc->body,
-                                     .scales = sc->scales,
-                                     .rods = rods};
+            ct_ensemble_spec spec;
+            ct_cli_samples_spec(sc, samples, my_a, my_b - my_a, &spec);
+            spec.progress = ct_mpi_rank() == 0 ? show_progress : NULL;
+            spec.progress_ctx = &prog;
             st = ct_ensemble(&spec, *mine);
             /* a failed impact is a sample: rank 0 reports the lowest of all ranks */
             if (st && (*mine)->failed_realisation != UINT64_MAX)
@@ -159,33 +164,48 @@ static int report(ct_ens_outputs *o, const ct_scene *sc, const ct_ensemble_sampl
     return rc;
 }
 
-/* Landings: the surface's rods as built for the body, not met by it (each landing meets them at
- * its apex), and the line that says what runs. */
-static int landing_rods(const ct_scene *sc, ct_bundle **rods, ct_plan_info *info, char *err,
-                        size_t errlen)
+int ct_cli_samples_prepare(const ct_scene *sc, ct_cli_samples *s, char *err, size_t errlen)
 {
+    memset(s, 0, sizeof *s);
+    s->landings = sc->body.landings != 0;
+    s->count = s->landings ? sc->body.landings : sc->realisations;
+    if (!s->landings) {
+        ct_surface_random_cantor(sc->surface, &s->surface, NULL);
+        snprintf(s->line, sizeof s->line,
+                 "random cantor surface, depth %ld (%zu rods per realisation)", s->surface.depth,
+                 ((size_t)2 << s->surface.depth) - 1);
+        return CT_OK;
+    }
+    /* landings: the surface's rods as built for the body, not met by it (each landing meets
+     * them at its apex) */
     ct_build_request req;
     ct_scene_request(sc, 0, &req);
-    int st = ct_surface_build_unmet(sc->surface, &req, rods, info);
+    int st = ct_surface_build_unmet(sc->surface, &req, &s->rods, &s->info);
     double lo[2], hi[2];
-    if (!st && (st = ct_body_landing_region(&sc->body, &sc->scales, *rods, lo, hi))) {
-        ct_bundle_free(*rods);
-        *rods = NULL;
-    }
+    if (!st)
+        st = ct_body_landing_region(&sc->body, &sc->scales, s->rods, lo, hi);
     if (st) {
         snprintf(err, errlen, "%s", ct_error_message());
+        ct_cli_samples_free(s);
         return st;
     }
     char line[400], body[200];
-    ct_surface_describe(sc->surface, info, line, sizeof line);
+    ct_surface_describe(sc->surface, &s->info, line, sizeof line);
     ct_body_describe(&sc->body, body, sizeof body);
     if (!isnan(lo[1]))
-        snprintf(err, errlen, "%s %s; landings drawn over x %.6g .. %.6g, y %.6g .. %.6g", line,
-                 body, lo[0], hi[0], lo[1], hi[1]);
+        snprintf(s->line, sizeof s->line,
+                 "%s %s; landings drawn over x %.6g .. %.6g, y %.6g .. %.6g", line, body, lo[0],
+                 hi[0], lo[1], hi[1]);
     else
-        snprintf(err, errlen, "%s %s; landings drawn over x %.6g .. %.6g", line, body, lo[0],
-                 hi[0]);
+        snprintf(s->line, sizeof s->line, "%s %s; landings drawn over x %.6g .. %.6g", line, body,
+                 lo[0], hi[0]);
     return CT_OK;
+}
+
+void ct_cli_samples_free(ct_cli_samples *s)
+{
+    ct_bundle_free(s->rods);
+    s->rods = NULL;
 }
 
 int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
@@ -213,48 +233,38 @@ int ct_cli_ensemble_run(const ct_scene *sc, int quiet, const char *range)
         ct_cli_fail("%s", err);
     if (opened)
         ok = 0;
-    ct_bundle *rods = NULL;
-    ct_plan_info info = {0};
-    if (ok && landings &&
-        landing_rods(sc, &rods, &info, err, sizeof err)) { /* the same on every rank */
+    ct_cli_samples samples;
+    memset(&samples, 0, sizeof samples);
+    if (ok && ct_cli_samples_prepare(sc, &samples, err, sizeof err)) { /* alike on every rank */
         if (rank == 0)
             ct_cli_fail_scene(sc, CT_EINVAL, err);
         ok = 0;
     }
     if (!ct_mpi_bcast_int(ok)) {
         ct_ens_close_outputs(&o);
-        ct_bundle_free(rods);
+        ct_cli_samples_free(&samples);
         return EXIT_USAGE;
     }
-    ct_random_cantor surface;
-    memset(&surface, 0, sizeof surface);
-    if (!landings)
-        ct_surface_random_cantor(sc->surface, &surface, NULL);
     /* this rank's block of samples */
     const uint64_t n = b - a;
     const uint64_t my_a = a + n * (uint64_t)rank / (uint64_t)size;
     const uint64_t my_b = a + n * (uint64_t)(rank + 1) / (uint64_t)size;
     const int threads = sc->threads > 0 ? sc->threads : ct_default_threads();
-    if (rank == 0 && !quiet && landings)
-        fprintf(stderr,
-                "cantact: %s; landings %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
-                err, (unsigned long long)a, (unsigned long long)(b - 1), (unsigned long long)N,
-                size, threads);
-    else if (rank == 0 && !quiet)
-        fprintf(stderr,
-                "cantact: random cantor surface, depth %ld (%zu rods per realisation), "
-                "realisations %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
-                surface.depth, ((size_t)2 << surface.depth) - 1, (unsigned long long)a,
+    if (rank == 0 && !quiet)
+        fprintf(stderr, "cantact: %s%s %llu..%llu of %llu, %d process(es), %d thread(s) each\n",
+                samples.line, landings ? "; landings" : ", realisations", (unsigned long long)a,
                 (unsigned long long)(b - 1), (unsigned long long)N, size, threads);
     err[0] = '\0';
     ct_ensemble_samples *mine = NULL, *all = NULL;
-    int st = run_block(sc, &surface, rods, my_a, my_b, &mine, msg, sizeof msg);
-    ct_bundle_free(rods);
+    int st = run_block(sc, &samples, my_a, my_b, &mine, msg, sizeof msg);
+    const ct_plan_info info = samples.info;
+    const long depth = samples.surface.depth;
+    ct_cli_samples_free(&samples);
     if (size > 1) {
         st = ct_mpi_gather(mine, st, msg, a, n, sc->nvel * (size_t)sc->impacts, &all, err,
                            sizeof err);
         if (rank == 0 && all)
-            all->draws = landings ? 0 : ((uint64_t)2 << surface.depth) - 2;
+            all->draws = landings ? 0 : ((uint64_t)2 << depth) - 2;
     } else {
         all = mine;
         mine = NULL;

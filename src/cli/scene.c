@@ -638,7 +638,7 @@ static int ensemble_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
     return CT_OK;
 }
 
-static void table_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
+static int table_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
 {
     sc->table_tolerance = k->run.table_tolerance;
     sc->table_V_min = sc->table_V_max = 0.0; /* the speeds' range, once they are V* */
@@ -649,6 +649,23 @@ static void table_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
     sc->table_interpolation = (ct_interp)k->run.interpolation;
     sc->table_max_nodes = k->run.max_nodes;
     sc->table_check_points = k->run.check_points;
+    sc->table_grid = k->run.table_grid;
+    /* the probabilities, named in the file by 6 significant digits: rounded to them */
+    const ct_speeds *q = &k->run.table_quantiles;
+    entry *eq = find_entry(s, "table", "quantiles");
+    if (q->n > CT_TABLE_MAX_QUANTILES)
+        return bad(eq, "more than 64 probabilities");
+    sc->table_np = q->n ? q->n : 21;
+    for (size_t j = 0; j < sc->table_np; j++) {
+        char text[32];
+        const double p = !q->n ? (j == 0 ? 0.01 : j == 20 ? 0.99 : (double)j / 20.0) : q->v[j];
+        snprintf(text, sizeof text, "%.6g", p);
+        sc->table_p[j] = strtod(text, NULL);
+        if (!(sc->table_p[j] > 0.0 && sc->table_p[j] <= 1.0) ||
+            (j && !(sc->table_p[j] > sc->table_p[j - 1])))
+            return bad(eq, "must be probabilities in (0, 1], increasing (6 significant digits)");
+    }
+    return CT_OK;
 }
 
 static void keys_defaults(ct_scene_keys *k)
@@ -674,7 +691,7 @@ static int interpret(parse_state *s, ct_scene *sc)
     if (!(st = surface_values(s, sc)) && !(st = cli_values(s, &k, &sc->body)) &&
         !(st = impact_values(s, sc, &k)) && !(st = solver_values(s, sc, &k)) &&
         !(st = ensemble_values(s, sc, &k)) && !(st = output_values(s, sc, &k)))
-        table_values(s, sc, &k);
+        st = table_values(s, sc, &k);
     keys_free(&k);
     return st;
 }

@@ -54,6 +54,9 @@ typedef struct {
     double table_V_min, table_V_max; /* 0: the range of the speeds */
     ct_interp table_interpolation;
     long table_max_nodes, table_check_points;
+    double table_p[CT_TABLE_MAX_QUANTILES]; /* a table of samples: its probabilities */
+    size_t table_np;
+    long table_grid;
     ct_body body;    /* [body]: what strikes the rods (flat by default) */
     char *inputs[8]; /* the files this run reads: the scene, the surface's files */
     const char *input_what[8];

@@ -4,6 +4,7 @@
 #include "table.h"
 
 #include "args.h"
+#include "ensemble.h"
 #include "output.h"
 
 #include <math.h>
@@ -38,6 +39,14 @@ const char *const ct_cli_table_help =
     "  check_points = 16          points checked inside every interval (1 .. 1000)\n"
     "[impact] impacts is not used: a table is of the first impact on the virgin surface.\n"
     "\n"
+    "With samples (body.landings, or [ensemble] realisations of a random surface) the table is\n"
+    "of their statistics: e is the mean over the samples and, per node, e at each of [table]\n"
+    "quantiles (columns e_p<p>); every sample is computed at [table] grid speeds equally\n"
+    "spaced in ln V*, and the nodes are grid points added until every grid point of every\n"
+    "column is within the tolerance (cantact_table.h: ct_tab_eval_quantile).\n"
+    "  quantiles = 0.01, 0.05, ..., 0.95, 0.99   probabilities in (0, 1] (at most 64)\n"
+    "  grid = 2000                speeds every sample is computed at (2 .. 1e6)\n"
+    "\n"
     "Options:\n"
     "  --set section.key=value   override a scene key (each once; key= unsets it)\n"
     "  -o FILE                   same as --set output.file=FILE ('-' for stdout)\n"
@@ -52,7 +61,31 @@ static void show_progress(size_t done, size_t total, void *ctx)
 /* The surface planned for the table's range (depth auto from its smallest speed, the rods its
  * largest reaches) and the table built on it, its progress (exact impacts computed of those
  * planned so far) on a terminal. */
-static int build_table(const ct_scene *sc, ct_bundle **b, ct_table **t, ct_plan_info *info)
+/* The table of a scene's samples (landings or realisations) over the same range: the mean and
+ * quantiles of e (ct_table_build_samples); *what says what the samples are. */
+static int build_samples_table(const ct_scene *sc, const ct_table_spec *spec, ct_table **t,
+                               ct_plan_info *info, char *what, size_t len, char *why, size_t whylen)
+{
+    ct_cli_samples s;
+    int st = ct_cli_samples_prepare(sc, &s, why, whylen);
+    if (st)
+        return st;
+    *info = s.info;
+    if (s.landings)
+        snprintf(what, len, "body.landings = %llu, body.seed = %llu", (unsigned long long)s.count,
+                 (unsigned long long)sc->body.seed);
+    else
+        snprintf(what, len, "ensemble.realisations = %llu", (unsigned long long)s.count);
+    ct_ensemble_spec es;
+    ct_cli_samples_spec(sc, &s, 0, s.count, &es);
+    ct_table_quantiles q = {.p = sc->table_p, .np = sc->table_np, .grid = (size_t)sc->table_grid};
+    st = ct_table_build_samples(t, &es, spec, &q);
+    ct_cli_samples_free(&s);
+    return st;
+}
+
+static int build_table(const ct_scene *sc, ct_bundle **b, ct_table **t, ct_plan_info *info,
+                       char *samples, size_t len, char *why, size_t whylen)
 {
     double range[2] = {sc->table_V_min, sc->table_V_max};
     ct_build_request req;
@@ -70,17 +103,19 @@ static int build_table(const ct_scene *sc, ct_bundle **b, ct_table **t, ct_plan_
     spec.check_points = (size_t)sc->table_check_points;
     spec.opts = sc->opts;
     spec.path = sc->path;
-    int st = ct_surface_build(sc->surface, &req, b, info);
+    const int of_samples = sc->realisations || sc->body.landings;
+    int st = of_samples ? CT_OK : ct_surface_build(sc->surface, &req, b, info);
     if (st)
         return st;
     ct_progress prog;
     ct_progress_start(&prog, 2);
-    prog.unit = "exact impacts (more while intervals fail)";
+    prog.unit = of_samples ? "samples" : "exact impacts (more while intervals fail)";
     if (prog.enabled) {
         spec.progress = show_progress;
         spec.progress_ctx = &prog;
     }
-    st = ct_table_build(t, *b, &spec);
+    st = of_samples ? build_samples_table(sc, &spec, t, info, samples, len, why, whylen)
+                    : ct_table_build(t, *b, &spec);
     ct_progress_end(&prog);
     return st;
 }
@@ -108,19 +143,15 @@ int ct_cli_table(int argc, char **argv)
     ct_table *t = NULL;
     ct_plan_info info;
     char err[600];
-    if (sc.realisations) {
-        ct_cli_fail("table: %s has [ensemble] realisations: a table is of one surface (without "
-                    "[ensemble], surface.realisation names it)",
-                    scene);
-        goto done;
-    }
     if (ct_out_open(&out, sc.output, err, sizeof err)) {
         ct_cli_fail("%s", err);
         goto done;
     }
     opened = 1;
-    if ((st = build_table(&sc, &b, &t, &info))) {
-        ct_cli_fail_scene(&sc, st, ct_error_message());
+    char samples[200] = "", why[1024] = "";
+    if ((st = build_table(&sc, &b, &t, &info, samples, sizeof samples, why, sizeof why))) {
+        /* samples that cannot be prepared say why in why */
+        ct_cli_fail_scene(&sc, st, why[0] ? why : ct_error_message());
         rc = ct_cli_status_exit(st);
         goto done;
     }
@@ -134,14 +165,24 @@ int ct_cli_table(int argc, char **argv)
                           .surface = line,
                           .tolerance = sc.table_tolerance,
                           .check_points = (size_t)sc.table_check_points,
-                          .v_per_V_star = NAN};
+                          .v_per_V_star = NAN,
+                          .samples = samples[0] ? samples : NULL,
+                          .grid = (size_t)sc.table_grid};
     if (sc.mass > 0.0) /* V* = sqrt(m / (2 l0 E h0)) v, as the scene converts speeds */
         meta.v_per_V_star = 1.0 / ct_V_star_of(sc.mass, 1.0, sc.scales.physical.l0,
                                                sc.scales.physical.E, sc.scales.physical.h0);
     ct_table_write(out.f, t, &meta);
     ct_table_info in;
     ct_table_get_info(t, &in);
-    if (!a.quiet)
+    if (!a.quiet && ct_table_quantile_count(t))
+        fprintf(stderr,
+                "cantact: table of the mean and %zu quantiles of e over %s: %zu nodes on V* %.6g "
+                ".. %.6g, %s: worst error %.3g at V* = %.6g over %zu checked grid points of %ld "
+                "(tolerance %.3g; %zu impacts)\n",
+                ct_table_quantile_count(t), samples, ct_table_size(t), sc.table_V_min,
+                sc.table_V_max, ct_interp_name(ct_table_interpolation(t)), in.worst_error,
+                in.worst_V_star, in.checked, sc.table_grid, sc.table_tolerance, in.evaluations);
+    else if (!a.quiet)
         fprintf(stderr,
                 "cantact: table of %zu nodes (%zu at kinks) on V* %.6g .. %.6g, %s: worst "
                 "|e_table - e| = %.3g at V* = %.6g over %zu checked points (tolerance %.3g; "

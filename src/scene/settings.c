@@ -68,6 +68,16 @@ static const ct_key run_keys[] = {
     {"table", "check_points", CT_KEY_INTEGER, 1, 1000, 0, NULL,
      "must satisfy 1 <= check_points <= 1000", "16", "points checked inside every interval",
      AT(check_points)},
+    {"table", "quantiles", CT_KEY_SPEEDS, 0, 0, 0, NULL,
+     "must be probabilities in (0, 1], increasing (a, b, c or from:to:count)",
+     "0.01, 0.05, 0.1, ..., 0.9, 0.95, 0.99 (21)",
+     "a table of samples (body.landings or [ensemble]): e at these probabilities beside the mean",
+     AT(table_quantiles)},
+    {"table", "grid", CT_KEY_INTEGER, 2, 1000000, 0, NULL, "must satisfy 2 <= grid <= 1000000",
+     "2000",
+     "a table of samples: the speeds, equally spaced in ln V*, every sample is computed and "
+     "checked at",
+     AT(table_grid)},
     {"ensemble", "realisations", CT_KEY_INTEGER, 1, 1000000000, 0, NULL,
      "must satisfy 1 <= realisations <= 1e9", "",
      "realisations of a random surface (their statistics per speed)", AT(realisations)},
@@ -95,6 +105,7 @@ void ct_run_keys_defaults(ct_run_keys *k)
     k->table_tolerance = 1e-6;
     k->max_nodes = 100000;
     k->check_points = 16;
+    k->table_grid = 2000;
 }
 
 void ct_run_keys_clear(ct_run_keys *k)
