@@ -957,19 +957,41 @@ static size_t grid_check(const sample_grid *G, const size_t *idx, size_t n, ct_t
     return fails;
 }
 
-/* The first nodes: the ends, V*_c, and the grid points nearest two per decade. */
+/* 1 when grid point g may be a node: the ends, V*_c, every second point. The others are
+ * never nodes, so that every interval keeps a point to be checked at. */
+static int grid_node_allowed(const sample_grid *G, size_t g)
+{
+    return g == 0 || g + 1 == G->M || G->V[g] == G->Vc || g % 2 == 0;
+}
+
+/* The first nodes: the ends, V*_c, and the allowed grid points nearest two per decade. */
 static size_t grid_first_nodes(const sample_grid *G, size_t *idx)
 {
     size_t n = 0;
     const double step = 0.5 * log(10.0);
+    double last = -1.0;
     for (size_t g = 0; g < G->M; g++) {
         const int end = g == 0 || g + 1 == G->M, critical = G->V[g] == G->Vc;
-        const double k = floor((G->x[g] - G->x[0]) / step),
-                     prev = g ? floor((G->x[g - 1] - G->x[0]) / step) : k;
-        if (end || critical || k != prev)
+        const double k = floor((G->x[g] - G->x[0]) / step);
+        if (end || critical || (k != last && grid_node_allowed(G, g))) {
             idx[n++] = g;
+            last = k;
+        }
     }
     return n;
+}
+
+/* The allowed grid point nearest the middle of (a, b), strictly inside; 0 when there is none. */
+static size_t grid_split(const sample_grid *G, size_t a, size_t b)
+{
+    const size_t mid = a + (b - a) / 2;
+    for (size_t d = 0; mid - d > a || mid + d < b; d++) {
+        if (mid - d > a && grid_node_allowed(G, mid - d))
+            return mid - d;
+        if (mid + d < b && grid_node_allowed(G, mid + d))
+            return mid + d;
+    }
+    return 0;
 }
 
 int ct_table_build_samples(ct_table **out, const ct_ensemble_spec *samples,
@@ -1015,13 +1037,21 @@ int ct_table_build_samples(ct_table **out, const ct_ensemble_spec *samples,
                               t->info.worst_V_star);
             goto done;
         }
-        /* a failing interval holds a grid point (its nodes' neighbours are exact): split it
-         * at the one in its middle */
+        /* a failing interval is split at the allowed grid point in its middle; one that has
+         * none left (its check points are all it holds) cannot be made to pass */
         size_t m = 0;
         for (size_t i = 0; i < n; i++) {
             next[m++] = idx[i];
-            if (i + 1 < n && split[i])
-                next[m++] = idx[i] + (idx[i + 1] - idx[i]) / 2;
+            if (i + 1 < n && split[i] && !(next[m] = grid_split(&G, idx[i], idx[i + 1]))) {
+                st = ct_error_set(CT_ENOCONV,
+                                  "table: tolerance %.3g not met at the grid's resolution: "
+                                  "between the grid points next to V* = %.6g (worst error %.3g "
+                                  "at V* = %.6g); raise table.grid or the tolerance",
+                                  spec->tolerance, G.V[idx[i]], t->info.worst_error,
+                                  t->info.worst_V_star);
+                goto done;
+            }
+            m += i + 1 < n && split[i];
         }
         memcpy(idx, next, m * sizeof *idx);
         n = m;

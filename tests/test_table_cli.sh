@@ -132,8 +132,8 @@ INI
 expect 0 "random surface" -- "$ct" table -q "$tmp/r.ini" -o "$tmp/r.csv"
 has r.csv "^# surface = random_cantor" "random header"
 printf '[ensemble]\nrealisations = 4\n' >>"$tmp/r.ini"
-expect 0 "a table of the ensemble" -- "$ct" table "$tmp/r.ini" --set table.tolerance=1e-3 \
-    --set table.grid=300 -o "$tmp/re.csv"
+expect 0 "a table of the ensemble" -- "$ct" table "$tmp/r.ini" --set table.tolerance=1e-2 \
+    --set table.grid=2000 -o "$tmp/re.csv"
 has err "table of the mean and 21 quantiles of e over ensemble.realisations = 4" "ensemble summary"
 has re.csv "^# quantiles = 21 " "ensemble table's quantiles"
 # a node's mean e is the ensemble's mean at that speed (cantact run's statistics)
@@ -143,6 +143,11 @@ expect 0 "the ensemble at the middle node" -- "$ct" run -q "$tmp/r.ini" --set im
     --set impact.impacts=1 -o "$tmp/rm.csv"
 awk -F, -v row="$row" 'NR == 2 { split(row, r, ","); d = r[2] - $4; exit !(d * d < 1e-26) }' "$tmp/rm.csv" &&
     ok || bad "the middle node: mean e $(echo "$row" | cut -d, -f2) is not the ensemble's $(sed -n 2p "$tmp/rm.csv" | cut -d, -f4)"
+# a tolerance the grid cannot resolve: refused (every interval keeps a point to check), no file
+expect 1 "tolerance beyond the grid" -- "$ct" table "$tmp/r.ini" --set table.tolerance=1e-9 \
+    --set table.grid=50 -o "$tmp/fine.csv"
+has err "not met at the grid's resolution" "tolerance beyond the grid"
+[ ! -e "$tmp/fine.csv" ] && ok || bad "a table that missed its tolerance was written"
 expect 2 "quantiles above 1" -- "$ct" table "$tmp/r.ini" --set table.quantiles=0.5,1.5 -o "$tmp/no.csv"
 has err "must be probabilities in (0, 1]" "quantiles above 1"
 

@@ -127,9 +127,10 @@ int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file);
  * quantiles of the samples, as ct_sample_stats), each column interpolated as e is. Every sample
  * is computed at `grid` speeds equally spaced in ln V* over the range (one ensemble: each
  * sample's rods built or met once), V*_c (the least of the samples': every e is 1 at and below
- * it) among them; the nodes are grid points, added at the middle of every interval where a
- * grid point of any column misses the tolerance, until none does. The check is at the grid
- * points (between them it is not checked). */
+ * it) among them; the nodes are grid points (the ends, V*_c and every second point: the others
+ * are always checked), added at the middle of every interval where a grid point of any column
+ * misses the tolerance, until none does (CT_ENOCONV when an interval has no point left to add).
+ * The check is at the grid points (between them it is not checked). */
 #define CT_TABLE_MAX_QUANTILES 64
 typedef struct {
     const double *p; /* probabilities, strictly increasing in [0, 1], 6 significant digits */

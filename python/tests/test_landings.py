@@ -111,7 +111,7 @@ def test_a_table_of_landings_read_and_saved(tmp_path):
     (tmp_path / "c.ini").write_text(
         "[surface]\ntype = rods\nfile = rods.csv\nHstar = 2\n[body]\nshape = cylinder\n"
         "radius = 100\nlandings = 30\nseed = 5\n[material]\nE = 500\n[impact]\n"
-        "V_star = 0.001, 0.01\n[table]\ntolerance = 1e-3\ngrid = 200\n"
+        "V_star = 0.001, 0.01\n[table]\ntolerance = 1e-3\ngrid = 2000\n"
         "quantiles = 0.1, 0.5, 0.9\n")
     subprocess.run([os.environ["CANTACT_CLI"], "table", "-q", str(tmp_path / "c.ini"), "-o",
                     str(tmp_path / "t.csv")], check=True)
