@@ -154,6 +154,15 @@ for node in 40 300; do
         "$tmp/lv.sorted" && ok || bad "node $node: the table's mean or quantiles are not the landings' own at V* = $V"
 done
 
+# with a mass, the statistics end with the impact speed in m/s: the e table's own
+expect 0 "the ball's landings' statistics" -- "$ct" run -q "$tmp/s.ini" --set body.landings=3 -o "$tmp/ss.csv"
+expect 0 "the ball's e table" -- "$ct" run -q "$tmp/s.ini" --set body.landings=0 -o "$tmp/se.csv"
+head -1 "$tmp/ss.csv" | grep -q ',e_at_position,v_impact_m_per_s$' && ok || bad "no v_impact_m_per_s last: $(head -1 "$tmp/ss.csv")"
+paste -d, <(awk -F, 'NR > 1 { print $NF }' "$tmp/ss.csv") \
+    <(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "v_impact_m_per_s") c = i; next } { print $c }' "$tmp/se.csv") |
+    awk -F, '{ n++; d = ($1 - $2) / $2; if (d * d > 1e-24 || $2 == "") exit 1 } END { exit n != 2 }' &&
+    ok || bad "the statistics' speeds are not the e table's (to 1e-12)"
+
 # a force on a plane is in N (l0 an area), on a line in N per metre of depth
 expect 0 "the ball's time columns" -- "$ct" run -q "$tmp/s.ini" --set body.landings=0 --set output.what=e,time -o "$tmp/st.csv"
 head -1 "$tmp/st.csv" | tr ',' '\n' | grep -qx P_peak_N && ok || bad "a ball's peak force not in N: $(head -1 "$tmp/st.csv")"

@@ -142,7 +142,7 @@ static void write_realisations(FILE *f, const ct_scene *sc, const ct_ens_table *
 
 static const char *const stat_names[] = {"mean", "sd", "sem", "q05", "q50", "q95"};
 
-static void write_ensemble_header(FILE *f, int landings)
+static void write_ensemble_header(FILE *f, int landings, int speeds)
 {
     static const char *const quantities[] = {"e", "u_max_over_h0", "V_star_crit"};
     fputs(landings ? "impact,V_star,landings" : "impact,V_star,realisations", f);
@@ -150,7 +150,9 @@ static void write_ensemble_header(FILE *f, int landings)
         for (int s = 0; s < 6; s++)
             fprintf(f, ",%s_%s", quantities[q], stat_names[s]);
     /* beside landings: e with the apex where body.position puts it (the middle by default) */
-    fputs(landings ? ",e_at_position\n" : ",e_deterministic\n", f);
+    fputs(landings ? ",e_at_position" : ",e_deterministic", f);
+    /* with a mass, the impact speed in the scene's units (m/s for SI scenes), last */
+    fputs(speeds ? ",v_impact_m_per_s\n" : "\n", f);
 }
 
 /* One row per speed and impact: the statistics over the realisations in realisation order,
@@ -180,6 +182,10 @@ static int write_ensemble(FILE *f, const ct_scene *sc, const ct_ens_table *t, co
                 put_field(f, ok[c] ? v[s] : NAN);
         }
         put_field(f, e_det[q]);
+        if (sc->mass > 0.0) /* V* = sqrt(m / (2 l0 E h0)) v, as the scene converts speeds */
+            put_field(f, sc->V_star[q / impacts] /
+                             ct_V_star_of(sc->mass, 1.0, sc->scales.physical.l0,
+                                          sc->scales.physical.E, sc->scales.physical.h0));
         fputc('\n', f);
         if (ok[0] && (st[0].sem > *sem_max || (isnan(*sem_max) && !isnan(st[0].sem)))) {
             *sem_max = st[0].sem;
@@ -294,7 +300,7 @@ static int write_statistics(FILE *f, const ct_scene *sc, const ct_ens_table *t, 
     }
     for (size_t q = 0; e_det && q < t->nrows; q++)
         *det_empty += isnan(e_det[q]);
-    write_ensemble_header(f, t->landings);
+    write_ensemble_header(f, t->landings, sc->mass > 0.0);
     st = e_det ? write_ensemble(f, sc, t, e_det, sem_max, at) : CT_ENOMEM;
     free(e_det);
     return st;
