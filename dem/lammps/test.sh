@@ -2,7 +2,8 @@
 # The LAMMPS test of gran/hooke/history/cantact (README.md): installs Debian 12's LAMMPS and the
 # build tools when missing, builds the add-on, writes the e(V*) table with the project's CLI,
 # and runs head-on collisions of 2 mm steel spheres in the stock lmp (collide_test.py says what
-# it checks). Exit 0 only when every check passes.
+# it checks); oblique impacts of unequal spheres against an ODE of the same spring-dashpot
+# (oblique_test.py). Exit 0 only when every check passes.
 #
 #   dem/lammps/test.sh [PATH/TO/cantact]     (default build/cantact of this checkout)
 #
@@ -16,7 +17,7 @@ t_all=$(date +%s.%N)
 elapsed() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
 
 # ---- install what is missing ----
-pkgs="lammps liblammps-dev python3-lammps libopenmpi-dev openmpi-bin g++ gcc pkg-config python3"
+pkgs="lammps liblammps-dev python3-lammps libopenmpi-dev openmpi-bin g++ gcc pkg-config python3 python3-numpy python3-scipy"
 missing=""
 for p in $pkgs; do
     s=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
@@ -111,6 +112,21 @@ python3 "$here/collide_test.py" --quick --lmp lmp --lib "$work/build/libcantact_
     --loader "$here/cantact_load.py" --table "$work/e_profile.csv" \
     --e-of-speed "$work/e_of_speed" --work "$work/runs-profile" >"$work/profile.txt" 2>&1 || status=$?
 sed -n '/^worst/,$p' "$work/profile.txt"
-echo "test.sh: collisions: $(elapsed "$t") s; after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
+echo "test.sh: collisions: $(elapsed "$t") s"
+
+# ---- oblique impacts: the normal rebound ratio against e_table and against an ODE ----
+# (Debian's Python: its python3-numpy and python3-scipy, whatever python3 comes first on PATH)
+py=/usr/bin/python3
+t=$(date +%s.%N)
+echo
+echo "test.sh: oblique impacts at 30 degrees (oblique_test.py; docs/dem.md, \"Oblique impacts\"):"
+"$py" "$here/oblique_test.py" --lmp lmp --lib "$work/build/libcantact_lammps.so" \
+    --loader "$here/cantact_load.py" --table "$work/e_table.csv" \
+    --e-of-speed "$work/e_of_speed" --work "$work/runs-oblique" >"$work/oblique.txt" 2>&1 || status=$?
+sed -n '/^oblique impacts/,/^head-on pairs/p;/^FAILED/,/^$/p;/^oblique: /p' "$work/oblique.txt"
+[ -n "$(sed -n '/^oblique: /p' "$work/oblique.txt")" ] || { tail -n 5 "$work/oblique.txt"; status=1; }
+echo "test.sh: oblique: $(elapsed "$t") s"
+
+echo "test.sh: after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
 [ "$status" -eq 0 ] && echo "test.sh: PASS" || echo "test.sh: FAIL"
 exit "$status"
