@@ -33,7 +33,8 @@ is C tan^2(theta) v_n0 / (omega (R1 + R2)), C printed.
 
 Checks (each fails the run, exit 1):
   1. head-on pairs: LAMMPS within --tol-ode of e_table, the ODE within 1e-10 of it;
-  2. every contact reported once, v_n = v_n0 to 1e-5 (times --dt-factor), meff = m1 m2/(m1 + m2) to 1e-12;
+  2. every contact reported once, v_n = v_n0 to 1e-5 (times --dt-factor), meff = m1 m2/(m1 + m2)
+     to 1e-12;
   3. oblique: |e_n LAMMPS - e_n ODE| <= --tol-ode;
   4. the band: e_n - e_table of LAMMPS and of the ODE within +-10 % of the value docs/dem.md
      states (DOCUMENTED below, from the ODE); and the band can fail: the head-on pairs'
@@ -122,7 +123,8 @@ def lammps_input(path, pair_style, dt, kn, pairs, final, loader):
     steps = int(round((T0 + 1.5 * t_contact(kn)) / dt))
     L.append("thermo %d" % steps)
     L.append("run %d" % steps)
-    L.append("write_dump all custom %s id x y z vx vy vz modify format float %%.17g sort id" % final)
+    L.append("write_dump all custom %s id x y z vx vy vz modify format float %%.17g sort id"
+             % final)
     with open(path, "w") as f:
         f.write("\n".join(L) + "\n")
 
@@ -260,23 +262,25 @@ def main():
         for law in (0, 1):
             tag = "oblique.kn%g.law%d" % (kn, law)
             inp = os.path.join(work, "in." + tag)
-            lammps_input(inp, "pair_style gran/hooke/history/cantact %.17g 0.0 0.0 0.0 0 table %s%s "
-                         "report 1000" % (kn, table, " limit_damping" if law else ""),
+            lammps_input(inp, "pair_style gran/hooke/history/cantact %.17g 0.0 0.0 0.0 0 table "
+                         "%s%s report 1000" % (kn, table, " limit_damping" if law else ""),
                          dt, kn, pairs, "final." + tag, loader)
             text = runner.run(tag, inp)
             atoms = read_final(os.path.join(work, "final." + tag))
             reps = {min(int(r[0]), int(r[1])): r for r in REPORT.findall(text)}
             check(len(REPORT.findall(text)) == len(pairs) and len(reps) == len(pairs),
-                  "%s: %d contacts reported, %d expected" % (tag, len(REPORT.findall(text)), len(pairs)))
+                  "%s: %d contacts reported, %d expected"
+                  % (tag, len(REPORT.findall(text)), len(pairs)))
             dev = {}
             for k, th, vn in pairs:
                 r = reps.get(2 * k + 1)
                 if r is None:
                     continue
                 vn_l, meff, gn = float(r[3]), float(r[6]), float(r[7])
-                check(abs(vn_l - vn) <= 1e-5 * a.dt_factor * vn, "%s: pair %d: v_n %.17g at the first step, "
-                      "not %.17g" % (tag, k, vn_l, vn))
-                check(abs(meff - MEFF) <= 1e-12 * MEFF, "%s: meff %.17g, not %.17g" % (tag, meff, MEFF))
+                check(abs(vn_l - vn) <= 1e-5 * a.dt_factor * vn, "%s: pair %d: v_n %.17g at the "
+                      "first step, not %.17g" % (tag, k, vn_l, vn))
+                check(abs(meff - MEFF) <= 1e-12 * MEFF, "%s: meff %.17g, not %.17g"
+                      % (tag, meff, MEFF))
                 e_l = normal_ratio_at_separation(atoms[2 * k + 1], atoms[2 * k + 2], vn)
                 check(e_l is not None, "%s: pair %d still overlaps at the end" % (tag, k))
                 if e_l is None:
@@ -319,8 +323,9 @@ def main():
     print("oblique impacts at %g degrees, no friction: R1 %g m (%g kg/m^3), R2 %g m (%g kg/m^3), "
           "meff %.6g kg; e_n = (u.n) at separation / v_n at first touch"
           % (THETA, R1, RHO1, R2, RHO2, MEFF))
-    print("| Kn (N/m) | damping | v_n (m/s) | e_table | LAMMPS e_n − e_table | ODE e_n − e_table "
-          "| LAMMPS − ODE | first-order model − e_table | v_n/(ω(R1+R2)) | C |")
+    print("| Kn (N/m) | damping | v_n (m/s) | e_table | LAMMPS e_n − e_table "
+          "| ODE e_n − e_table | LAMMPS − ODE | first-order model − e_table "
+          "| v_n/(ω(R1+R2)) | C |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for kn, law, vn, et, dl, do, dlo, d1, ov, c in rows:
         print("| %g | %s | %g | %.4f | %.3e | %.3e | %+.1e | %.3e | %.2e | %.2f |"
