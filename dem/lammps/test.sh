@@ -3,7 +3,9 @@
 # build tools when missing, builds the add-on, writes the e(V*) table with the project's CLI,
 # and runs head-on collisions of 2 mm steel spheres in the stock lmp (collide_test.py says what
 # it checks); oblique impacts of unequal spheres against an ODE of the same spring-dashpot
-# (oblique_test.py). Exit 0 only when every check passes.
+# (oblique_test.py); and two particle types with a table per type pair, written by
+# dem/pair_tables.py for each pair's reduced radius and mass (pairs_test.py). Exit 0 only when
+# every check passes.
 #
 #   dem/lammps/test.sh [PATH/TO/cantact]     (default build/cantact of this checkout)
 #
@@ -127,6 +129,25 @@ sed -n '/^oblique impacts/,/^head-on pairs/p;/^FAILED/,/^$/p;/^oblique: /p' "$wo
 [ -n "$(sed -n '/^oblique: /p' "$work/oblique.txt")" ] || { tail -n 5 "$work/oblique.txt"; status=1; }
 echo "test.sh: oblique: $(elapsed "$t") s"
 
+# ---- a table per pair of particle types: pair_coeff I J table FILE ----
+t=$(date +%s.%N)
+echo
+echo "test.sh: two particle types, a table per type pair (pair_tables.py, pairs_test.py; docs/dem.md, \"e(v) for a pair of particles\"):"
+types="--type 2e-3:7850 --type 3e-3:7850"
+# shellcheck disable=SC2086
+if "$py" "$repo/dem/pair_tables.py" scripts/scenes/dem_pair_table.ini $types --cantact "$cantact" \
+    -o "$work/pairs"; then
+    # shellcheck disable=SC2086
+    "$py" "$here/pairs_test.py" --lmp lmp --lib "$work/build/libcantact_lammps.so" \
+        --loader "$here/cantact_load.py" --e-of-speed "$work/e_of_speed" --work "$work/runs-pairs" \
+        $types --tables "$work/pairs" >"$work/pairs.txt" 2>&1 || status=$?
+    sed -n '/^tables:/,/^negative control/p;/^FAILED/,/^$/p;/^pairs: /p' "$work/pairs.txt"
+    [ -n "$(sed -n '/^pairs: /p' "$work/pairs.txt")" ] || { tail -n 5 "$work/pairs.txt"; status=1; }
+else
+    echo "test.sh: FAIL: dem/pair_tables.py" >&2
+    status=1
+fi
+echo "test.sh: pairs: $(elapsed "$t") s"
 echo "test.sh: after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
 [ "$status" -eq 0 ] && echo "test.sh: PASS" || echo "test.sh: FAIL"
 exit "$status"
