@@ -2,7 +2,10 @@
 # The LAMMPS test of gran/hooke/history/cantact (README.md): installs Debian 12's LAMMPS and the
 # build tools when missing, builds the add-on, writes the e(V*) table with the project's CLI,
 # and runs head-on collisions of 2 mm steel spheres in the stock lmp (collide_test.py says what
-# it checks). Exit 0 only when every check passes.
+# it checks); oblique impacts of unequal spheres against an ODE of the same spring-dashpot
+# (oblique_test.py); and two particle types with a table per type pair, written by
+# dem/pair_tables.py for each pair's reduced radius and mass (pairs_test.py). Exit 0 only when
+# every check passes.
 #
 #   dem/lammps/test.sh [PATH/TO/cantact]     (default build/cantact of this checkout)
 #
@@ -16,7 +19,7 @@ t_all=$(date +%s.%N)
 elapsed() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
 
 # ---- install what is missing ----
-pkgs="lammps liblammps-dev python3-lammps libopenmpi-dev openmpi-bin g++ gcc pkg-config python3"
+pkgs="lammps liblammps-dev python3-lammps libopenmpi-dev openmpi-bin g++ gcc pkg-config python3 python3-numpy python3-scipy"
 missing=""
 for p in $pkgs; do
     s=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
@@ -111,6 +114,40 @@ python3 "$here/collide_test.py" --quick --lmp lmp --lib "$work/build/libcantact_
     --loader "$here/cantact_load.py" --table "$work/e_profile.csv" \
     --e-of-speed "$work/e_of_speed" --work "$work/runs-profile" >"$work/profile.txt" 2>&1 || status=$?
 sed -n '/^worst/,$p' "$work/profile.txt"
-echo "test.sh: collisions: $(elapsed "$t") s; after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
+echo "test.sh: collisions: $(elapsed "$t") s"
+
+# ---- oblique impacts: the normal rebound ratio against e_table and against an ODE ----
+# (Debian's Python: its python3-numpy and python3-scipy, whatever python3 comes first on PATH)
+py=/usr/bin/python3
+t=$(date +%s.%N)
+echo
+echo "test.sh: oblique impacts at 30 degrees (oblique_test.py; docs/dem.md, \"Oblique impacts\"):"
+"$py" "$here/oblique_test.py" --lmp lmp --lib "$work/build/libcantact_lammps.so" \
+    --loader "$here/cantact_load.py" --table "$work/e_table.csv" \
+    --e-of-speed "$work/e_of_speed" --work "$work/runs-oblique" >"$work/oblique.txt" 2>&1 || status=$?
+sed -n '/^oblique impacts/,/^head-on pairs/p;/^FAILED/,/^$/p;/^oblique: /p' "$work/oblique.txt"
+[ -n "$(sed -n '/^oblique: /p' "$work/oblique.txt")" ] || { tail -n 5 "$work/oblique.txt"; status=1; }
+echo "test.sh: oblique: $(elapsed "$t") s"
+
+# ---- a table per pair of particle types: pair_coeff I J table FILE ----
+t=$(date +%s.%N)
+echo
+echo "test.sh: two particle types, a table per type pair (pair_tables.py, pairs_test.py; docs/dem.md, \"e(v) for a pair of particles\"):"
+types="--type 2e-3:7850 --type 3e-3:7850"
+# shellcheck disable=SC2086
+if "$py" "$repo/dem/pair_tables.py" scripts/scenes/dem_pair_table.ini $types --cantact "$cantact" \
+    -o "$work/pairs"; then
+    # shellcheck disable=SC2086
+    "$py" "$here/pairs_test.py" --lmp lmp --lib "$work/build/libcantact_lammps.so" \
+        --loader "$here/cantact_load.py" --e-of-speed "$work/e_of_speed" --work "$work/runs-pairs" \
+        $types --tables "$work/pairs" >"$work/pairs.txt" 2>&1 || status=$?
+    sed -n '/^tables:/,/^negative control/p;/^FAILED/,/^$/p;/^pairs: /p' "$work/pairs.txt"
+    [ -n "$(sed -n '/^pairs: /p' "$work/pairs.txt")" ] || { tail -n 5 "$work/pairs.txt"; status=1; }
+else
+    echo "test.sh: FAIL: dem/pair_tables.py" >&2
+    status=1
+fi
+echo "test.sh: pairs: $(elapsed "$t") s"
+echo "test.sh: after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
 [ "$status" -eq 0 ] && echo "test.sh: PASS" || echo "test.sh: FAIL"
 exit "$status"

@@ -4,6 +4,10 @@ with the table's e at its normal impact speed.
 
     import cantact_yade
     damping = cantact_yade.Damping("e_table.csv")   # a table `cantact table` wrote
+    # or one table per pair of materials (ids, labels or Material objects; either order):
+    # damping = cantact_yade.Damping(pairs={("steel2", "steel2"): "e_1_1.csv",
+    #                                       ("steel2", "steel3"): "e_1_2.csv",
+    #                                       ("steel3", "steel3"): "e_2_2.csv"})
     O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
                  InteractionLoop([Ig2_Sphere_Sphere_ScGeom()],
                                  [Ip2_ViscElMat_ViscElMat_ViscElPhys()],
@@ -16,6 +20,7 @@ What it does, in a PyRunner run every step between the InteractionLoop and the
 NewtonIntegrator, for each contact made real in this step (Interaction.iterMadeReal ==
 O.iter):
   v_n  = the normal approach speed the law saw (the bodies' velocities, as Yade's law takes them)
+  table = the table of the two bodies' pair of materials (pairs=), else the one table given
   e    = table.e_of_speed(v_n)                    (cantact.read_table: the same bits as
                                                    include/cantact_table.h's ct_tab_e_of_speed)
   zeta = cantact.zeta_of_e(e, law="clipped")      (Yade clips the normal force at 0: the
@@ -43,6 +48,7 @@ for the loop over its interactions in Python); e is the first impact's on the vi
 as the table says, whatever happened at that spot before.
 """
 import math
+import os
 import sys
 
 import cantact
@@ -50,19 +56,85 @@ import cantact
 __all__ = ["Damping"]
 
 
-class Damping:
-    """Per-contact normal damping from a cantact table. table: a path or a cantact.Table
-    with v_per_V_star (the table's speeds in Yade's units: write the scene's [impact] mass in
-    the same units as Yade's). law: "clipped" (Yade's Law2_ScGeom_ViscElPhys_Basic; "tension"
-    only for a law that lets the dashpot pull). first_step, dt_compensation: the corrections
-    above. Counts: contacts (set up), outside (impact speeds outside the table: its end's e)."""
+def _material_key(k, pair):
+    """a material named in a pairs= key: its id (int >= 0), its label (str), or the Material
+    (its id read when a contact needs it: it may be appended to O.materials later)"""
+    if isinstance(k, bool) or not (isinstance(k, (int, str)) or hasattr(k, "id")):
+        raise ValueError(f"cantact_yade: pairs key {pair!r}: a material is its id (int), its "
+                         f"label (str) or the Material, not {k!r}")
+    if isinstance(k, int) and k < 0:
+        raise ValueError(f"cantact_yade: pairs key {pair!r}: material id {k} < 0")
+    if isinstance(k, str) and not k:
+        raise ValueError(f"cantact_yade: pairs key {pair!r}: an empty label")
+    return k
 
-    def __init__(self, table, law="clipped", first_step=True, dt_compensation=True,
-                 label="cantactDamping"):
-        self.table = table if isinstance(table, cantact.Table) else cantact.read_table(table)
-        if self.table.v_per_V_star is None:
-            raise ValueError("cantact_yade: the table has no v_per_V_star (give [impact] mass "
-                             "in the scene that wrote it)")
+
+def _ident(k):
+    return k if isinstance(k, (int, str)) else ("Material", id(k))
+
+
+def _matches(k, mat):
+    if isinstance(k, int):
+        return mat.id == k
+    if isinstance(k, str):
+        return mat.label == k
+    return k is mat or (k.id >= 0 and k.id == mat.id)
+
+
+class Damping:
+    """Per-contact normal damping from cantact tables. table: a path or a cantact.Table with
+    v_per_V_star (the table's speeds in Yade's units: write the scene's [impact] mass in the
+    same units as Yade's), for every contact. pairs: {(material A, material B): table, ...},
+    one table per pair of materials (either order; a material is its id in O.materials, its
+    label, or the Material itself), e.g. the tables dem/pair_tables.py writes for each pair's
+    reduced radius and mass; a contact of a pair not listed takes table, or stops the run with
+    an error naming its materials when there is none. law: "clipped" (Yade's
+    Law2_ScGeom_ViscElPhys_Basic; "tension" only for a law that lets the dashpot pull).
+    first_step, dt_compensation: the corrections above. Counts: contacts (set up), outside
+    (impact speeds outside their table: its end's e)."""
+
+    def __init__(self, table=None, law="clipped", first_step=True, dt_compensation=True,
+                 label="cantactDamping", pairs=None):
+        read = {}  # a path read once, whatever the pairs naming it
+
+        def load(t, what):
+            if isinstance(t, cantact.Table):
+                tab = t
+            elif isinstance(t, (str, bytes, os.PathLike)):
+                key = os.path.abspath(os.fsdecode(t))
+                if key not in read:
+                    read[key] = cantact.read_table(t)
+                tab = read[key]
+            else:
+                raise ValueError(f"cantact_yade: {what}: a table is a path or a cantact.Table, "
+                                 f"not {type(t).__name__}")
+            if tab.v_per_V_star is None:
+                raise ValueError(f"cantact_yade: {what} has no v_per_V_star (give [impact] mass "
+                                 "in the scene that wrote it)")
+            return tab
+
+        if table is None and not pairs:
+            raise ValueError("cantact_yade: give a table, or pairs={(material A, material B): "
+                             "table, ...}")
+        self.table = None if table is None else load(table, "the table")
+        self.pairs = []  # (key A, key B, table)
+        if pairs is not None:
+            if not hasattr(pairs, "items"):
+                raise ValueError("cantact_yade: pairs must be a dict {(material A, material B): "
+                                 f"table}}, not {type(pairs).__name__}")
+            seen = {}
+            for pair, t in pairs.items():
+                if not (isinstance(pair, tuple) and len(pair) == 2):
+                    raise ValueError(f"cantact_yade: pairs key {pair!r}: give two materials, "
+                                     "(A, B)")
+                ka, kb = (_material_key(k, pair) for k in pair)
+                same = frozenset((_ident(ka), _ident(kb)))  # (A, B) and (B, A) alike
+                if same in seen:
+                    raise ValueError(f"cantact_yade: pairs {seen[same]!r} and {pair!r} are the "
+                                     "same pair of materials")
+                seen[same] = pair
+                self.pairs.append((ka, kb, load(t, f"the table of pair {pair!r}")))
+        self._of = {}  # (material id, material id) -> table, as contacts meet them
         if law not in cantact.DAMPING_LAWS:
             raise ValueError(f"cantact_yade: law = {law!r}: must be 'clipped' or 'tension'")
         self.law = law
@@ -72,6 +144,30 @@ class Damping:
         self.contacts = 0
         self.outside = 0
         self.log = []  # (id1, id2, iter, v_n, e, zeta, cn) of every contact set up
+
+    # ---- which table ------------------------------------------------------------------------
+
+    def table_of(self, a, b):
+        """The table of a contact between a and b (bodies or materials): the one of their pair
+        of materials in pairs, else table; ValueError when none applies, or when two entries of
+        pairs name the same pair (say by label and by id) with different tables."""
+        ma, mb = (getattr(x, "material", x) for x in (a, b))
+        key = (ma.id, mb.id) if ma.id <= mb.id else (mb.id, ma.id)
+        if ma.id >= 0 and key in self._of:
+            return self._of[key]
+        found = [t for ka, kb, t in self.pairs
+                 if (_matches(ka, ma) and _matches(kb, mb))
+                 or (_matches(ka, mb) and _matches(kb, ma))]
+        if len({id(t) for t in found}) > 1:
+            raise ValueError(f"cantact_yade: materials {_name(ma)} and {_name(mb)}: pairs gives "
+                             f"{len(found)} different tables for them")
+        tab = found[0] if found else self.table
+        if tab is None:
+            raise ValueError(f"cantact_yade: no table for a contact of materials {_name(ma)} and "
+                             f"{_name(mb)}: give it in pairs, or a table for every other pair")
+        if ma.id >= 0 and mb.id >= 0:
+            self._of[key] = tab
+        return tab
 
     # ---- the engine -------------------------------------------------------------------------
 
@@ -128,10 +224,11 @@ class Damping:
         k = p.kn
         if not (v_n > 0.0 and k > 0.0 and 0.0 < m < math.inf):
             return  # not an impact (a resting contact, or no mass): left as Yade made it
-        V = v_n / self.table.v_per_V_star
-        if not bool(self.table.covers(V)[0]):
+        table = self.table_of(b1, b2)
+        V = v_n / table.v_per_V_star
+        if not bool(table.covers(V)[0]):
             self.outside += 1
-        e = float(self.table.e_of_speed(v_n)[0])
+        e = float(table.e_of_speed(v_n)[0])
         zeta = cantact.zeta_of_e(e, law=self.law)
         omega, dt = math.sqrt(k / m), O.dt
         z = zeta
@@ -152,6 +249,10 @@ class Damping:
             O.forces.addT(i.id2, c2.cross(df))
         self.contacts += 1
         self.log.append((i.id1, i.id2, O.iter, v_n, e, zeta, cn))
+
+
+def _name(mat):
+    return f"{mat.label!r} (id {mat.id})" if mat.label else f"id {mat.id}"
 
 
 def main_guard(fn):

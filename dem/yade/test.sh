@@ -4,7 +4,11 @@
 # with the clipped law's relation (Yade's Law2_ScGeom_ViscElPhys_Basic clips the force), both
 # time-step corrections on, dt = 1e-8 s: every rebound ratio must be the table's e within
 # 1e-4 (measured 8e-9). Then two runs that must fail the same check: the tension law's
-# relation (the wrong one for Yade), and no corrections at dt = 1e-7 s (error 9e-4).
+# relation (the wrong one for Yade), and no corrections at dt = 1e-7 s (error 9e-4). Then a
+# table per pair of materials (dem/yade/pairs.py): a 2 mm and a 3 mm steel sphere, the three
+# pairs' tables written by dem/pair_tables.py for each pair's reduced radius and mass, given to
+# cantact_yade.Damping(pairs=...): every pair within 1e-4 of its own table, and the 1-1 and 2-2
+# tables swapped must fail.
 # Installs Yade when `yade` is not on the PATH (apt-get; sudo when not root), and python3-numpy
 # and python3-cffi for the cantact module when /usr/bin/python3 lacks them; builds nothing.
 # Usage: dem/yade/test.sh [CANTACT]   (the cantact program, default build/cantact; its
@@ -79,4 +83,22 @@ echo "ok: without the corrections at dt = 1e-7 s the check fails (worst $bad)"
     >"$tmp/out.txt" 2>&1) || fail "Yade with the measured surface's table: $(tail -5 "$tmp/out.txt")"
 worst=$(sed -n 's/.*worst |e_yade - e_table| = \([^ ]*\).*/\1/p' "$tmp/out.txt")
 echo "ok: a measured surface's table (Dektak profile) in Yade within 1e-4 at dt = 1e-8 s (worst $worst)"
+
+# a table per pair of materials: two particle types, three pairs (docs/dem.md, "e(v) for a pair
+# of particles")
+types=(--type 2e-3:7850 --type 3e-3:7850)
+/usr/bin/python3 "$root/dem/pair_tables.py" -q "$root/scripts/scenes/dem_pair_table.ini" \
+    "${types[@]}" --cantact "$cantact" -o "$tmp/pairs" || fail "dem/pair_tables.py"
+pairs() {
+    (cd "$tmp" && yade -n -x "$here/pairs.py" "${types[@]}" --tables "$tmp/pairs" "$@" \
+        >"$tmp/out.txt" 2>&1)
+}
+pairs_said() { sed -n 's/^pairs.py: dt = [^:]*: //p' "$tmp/out.txt"; }
+if ! pairs --dt 1e-8 --tol 1e-4 --control; then
+    grep -E '^(FAIL|pairs\.py|[0-9]-[0-9],)|Error' "$tmp/out.txt" | tail -40
+    fail "a table per pair of materials: Yade's rebounds are not their pair's table's e within 1e-4, or the swapped tables passed"
+fi
+grep '^ok: cantact_yade' "$tmp/out.txt"
+echo "ok: a table per pair of materials (1-1, 1-2, 2-2), each pair within 1e-4 of its own table at dt = 1e-8 s: $(pairs_said | head -n 1)"
+echo "$(grep '^ok: with the 1-1 and 2-2' "$tmp/out.txt"): $(pairs_said | tail -n 1)"
 echo "dem/yade: passed in $(awk -v a="$start" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }') s"
