@@ -106,6 +106,9 @@
 /* The interpolation rules; libcantact's ct_interp has the same values. */
 enum { CT_TAB_MONOTONE_CUBIC = 0, CT_TAB_LINEAR = 1 };
 
+/* A loaded table. A code that fills one by hand (e.g. copies rank 0's to the other MPI ranks)
+ * zeroes it first (memset, or `ct_tab t = {0}`): ct_tab_free frees every array, and fields are
+ * added at the end as the format grows (nq, p, e_q and slope_q came with tables of samples). */
 typedef struct {
     size_t n;            /* nodes, >= 2 */
     double *V_star;      /* nodes, dimensionless, strictly increasing */
