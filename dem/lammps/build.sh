@@ -6,7 +6,8 @@
 #
 # Extra compiler flags: EXTRA_CXXFLAGS (e.g. -DCANTACT_LOCAL_ZETA: the style's own e <-> zeta
 # relations instead of cantact_table.h's).
-# Needs: liblammps-dev, libopenmpi-dev (mpicxx), g++; and include/cantact_table.h of this repo.
+# Needs: liblammps-dev, libopenmpi-dev (mpicxx), g++, librandom123-dev (Random123's Philox, for
+# the scatter keyword); and include/cantact_table.h of this repo.
 # The headers liblammps-dev lacks are in lammps-headers/ (copied from that LAMMPS version's
 # source): the class layouts must be the binary's, so any other LAMMPS version is refused.
 set -eu
@@ -24,6 +25,8 @@ if [ "$have" != "$want" ]; then
 fi
 command -v "$CXX" >/dev/null 2>&1 || { echo "build.sh: $CXX not found (apt-get install libopenmpi-dev g++)" >&2; exit 1; }
 [ -f "$repo/include/cantact_table.h" ] || { echo "build.sh: $repo/include/cantact_table.h missing" >&2; exit 1; }
+printf '#include <Random123/philox.h>\n' | "$CXX" -std=c++11 -x c++ -fsyntax-only - 2>/dev/null ||
+    { echo "build.sh: Random123/philox.h not found (apt-get install librandom123-dev)" >&2; exit 1; }
 
 mkdir -p "$out"
 # -ffp-contract=off and no -march: no fused multiply-adds, the arithmetic of Debian's build

@@ -10,6 +10,9 @@
         and gamma_n = 2 zeta(e) sqrt(kn / meff) is stored; every later step of the contact reads
         it back (LAMMPS's damping force is meff gamma_n v_n, so c_n = 2 zeta sqrt(meff kn));
      3. gamma_t given as NULL means 0.5 gamma_n of the contact (stock: 0.5 gamma_n).
+   With `scatter SEED` (a table of samples), e in 2. is the table's e at the contact's speed and
+   a probability p drawn once per contact (scatter_p: counter-based, the same on every rank);
+   without it, the table's e (the mean of a table of samples), as before.
    Every floating-point expression of the force is otherwise the stock one, in the same order:
    with a constant e, and the stock style given this style's gamma_n, the trajectories are the
    same to the bit (test.sh checks it).
@@ -32,8 +35,12 @@
 
 #include "cantact_table.h"
 
+// scatter: Random123's counter-based Philox4x64-10 (header-only; Debian: librandom123-dev)
+#include <Random123/philox.h>
+
 #include <cfloat>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -68,6 +75,8 @@ PairGranHookeHistoryCantact::PairGranHookeHistoryCantact(LAMMPS *lmp) : PairGran
   gammat_from_gamman = 0;
   law = 0;
   report_left = 0;
+  scatter = 0;
+  scatter_seed = 0;
   outside_error = 0;
   gamman = 0.0;
   contacts_set = contacts_outside = 0.0;
@@ -177,12 +186,14 @@ double PairGranHookeHistoryCantact::zeta_of_e(double e, int law)
 }
 
 /* ----------------------------------------------------------------------
-   e at normal approach speed vn (> 0 approaching) from one source; covered: 0 when the
-   table does not know e there (ct_tab_covers: above V*_c and outside its nodes, where it
-   gives its nearest end's e)
+   e at normal approach speed vn (> 0 approaching) from one source: the table's e (its mean
+   for a table of samples) when p < 0, else its e at probability p (ct_tab_eval_quantile);
+   covered: 0 when the table does not know e there (ct_tab_covers: above V*_c and outside its
+   nodes, where it gives its nearest end's e)
 ------------------------------------------------------------------------- */
 
-double PairGranHookeHistoryCantact::e_of_speed(const Source &s, double vn, int &covered) const
+double PairGranHookeHistoryCantact::e_of_speed(const Source &s, double vn, double p,
+                                               int &covered) const
 {
   covered = 1;
   if (s.table < 0) return s.e;
@@ -193,20 +204,41 @@ double PairGranHookeHistoryCantact::e_of_speed(const Source &s, double vn, int &
     V = DBL_MIN;
   else
     covered = ct_tab_covers(&t, V);
-  return ct_tab_eval(&t, V);
+  return p < 0.0 ? ct_tab_eval(&t, V) : ct_tab_eval_quantile(&t, V, p);
 }
 
-void PairGranHookeHistoryCantact::contact_damping(int itype, int jtype, double vn, double meff,
-                                                  double &e, double &gn, int count)
+/* ----------------------------------------------------------------------
+   scatter: the probability p in [0, 1) of the contact of atoms itag and jtag that starts at
+   step. One Philox4x64-10 block (Random123), key (SEED, "scatter" in ASCII), counter (the
+   smaller tag, the larger tag, step, 0); p = (its first 64-bit word >> 11) 2^-53. A pure
+   function of (SEED, the pair, step): every rank that sets the contact up (both, for a pair
+   across two ranks with newton off) draws the same p, on any number of ranks, in any order.
+------------------------------------------------------------------------- */
+
+double PairGranHookeHistoryCantact::scatter_p(tagint itag, tagint jtag, bigint step) const
+{
+  const uint64_t a = (uint64_t) (itag < jtag ? itag : jtag);
+  const uint64_t b = (uint64_t) (itag < jtag ? jtag : itag);
+  const philox4x64_key_t key = {{(uint64_t) scatter_seed, UINT64_C(0x73636174746572)}};
+  const philox4x64_ctr_t ctr = {{a, b, (uint64_t) step, 0}};
+  const philox4x64_ctr_t r = philox4x64(ctr, key);
+  return ldexp((double) (r.v[0] >> 11), -53);
+}
+
+void PairGranHookeHistoryCantact::contact_damping(int itype, int jtype, tagint itag,
+                                                  tagint jtag, double vn, double meff, double &e,
+                                                  double &p, double &gn, int count)
 {
   Source &s = sources[source_of[itype][jtype]];
   double zeta;
+  p = -1.0;
   if (s.table < 0) {
-    e = s.e;
+    e = s.e;    // with scatter: refused at setup (init_style)
     zeta = s.zeta;
   } else {
     int covered;
-    e = e_of_speed(s, vn, covered);
+    if (scatter) p = scatter_p(itag, jtag, update->ntimestep);
+    e = e_of_speed(s, vn, p, covered);
     zeta = zeta_of_e(e, law);
     if (count && !covered) outside_table(s, itype, jtype, vn);
   }
@@ -369,20 +401,22 @@ void PairGranHookeHistoryCantact::compute(int eflag, int vflag)
 
         shear = &allshear[N_HISTORY * jj];
         if (shear[H_SET] == 0.0) {
-          double e;
+          double e, p;
           // counted once: a pair across two ranks with newton off is set up on both
           const int count = newton_pair || j < nlocal || atom->tag[i] < atom->tag[j];
-          contact_damping(type[i], type[j], -vnnr * rinv, meff, e, gn, count);
+          contact_damping(type[i], type[j], atom->tag[i], atom->tag[j], -vnnr * rinv, meff, e,
+                          p, gn, count);
           shear[H_SET] = 1.0;
           shear[H_E] = e;
           shear[H_GAMMAN] = gn;
           if (report_left > 0 && comm->me == 0) {
             report_left--;
-            const std::string line = fmt::format(
+            std::string line = fmt::format(
                 "cantact: contact {} {} step {} v_n {:.17g} e {:.17g} zeta {:.17g} meff "
-                "{:.17g} gamma_n {:.17g}\n",
+                "{:.17g} gamma_n {:.17g}",
                 atom->tag[i], atom->tag[j], update->ntimestep, -vnnr * rinv, e,
                 zeta_of_e(e, law), meff, gn);
+            line += scatter ? fmt::format(" p {:.17g}\n", p) : std::string("\n");
             if (screen) fputs(line.c_str(), screen);
             if (logfile) fputs(line.c_str(), logfile);
           }
@@ -492,6 +526,10 @@ void PairGranHookeHistoryCantact::transfer_history(double *source, double *targe
                report N           (print the first N new contacts seen by proc 0)
                outside warn|error (a contact at a speed outside its table: the nearest end's
                                    e and a warning once per table, or an error)
+               scatter SEED       (SEED >= 0: each new contact takes e at a probability p
+                                   drawn from (SEED, its atoms' ids, its first step) from its
+                                   table's quantile columns, not the mean; tables of samples
+                                   only, for every type pair)
 ------------------------------------------------------------------------- */
 
 void PairGranHookeHistoryCantact::settings(int narg, char **arg)
@@ -500,7 +538,7 @@ void PairGranHookeHistoryCantact::settings(int narg, char **arg)
     error->all(FLERR,
                "Illegal pair_style gran/hooke/history/cantact command: Kn Kt gamma_t xmu "
                "dampflag [table FILE | e E] [v_per_V_star S] [limit_damping] [report N] "
-               "[outside warn|error]");
+               "[outside warn|error] [scatter SEED]");
 
   kn = utils::numeric(FLERR, arg[0], false, lmp);
   if (strcmp(arg[1], "NULL") == 0)
@@ -527,12 +565,17 @@ void PairGranHookeHistoryCantact::settings(int narg, char **arg)
       dampflag > 1)
     error->all(FLERR, "Illegal pair_style gran/hooke/history/cantact command");
 
-  // the keywords; limit_damping first, as the source's zeta depends on the law
+  // the keywords; limit_damping and scatter first, as checking a source depends on them (the
+  // law: the source's zeta; scatter: the least e of the quantile columns)
   limit_damping = 0;
   report_left = 0;
   outside_error = 0;
-  for (int iarg = 5; iarg < narg; iarg++)
+  scatter = 0;
+  scatter_seed = 0;
+  for (int iarg = 5; iarg < narg; iarg++) {
     if (strcmp(arg[iarg], "limit_damping") == 0) limit_damping = 1;
+    if (strcmp(arg[iarg], "scatter") == 0) scatter = 1;
+  }
   law = limit_damping ? 1 : 0;
 
   int src = -1;
@@ -550,18 +593,23 @@ void PairGranHookeHistoryCantact::settings(int narg, char **arg)
         error->all(FLERR, "pair_style gran/hooke/history/cantact: outside warn | outside error");
       outside_error = strcmp(arg[iarg + 1], "error") == 0;
       iarg += 2;
+    } else if (strcmp(arg[iarg], "scatter") == 0) {
+      if (iarg + 1 >= narg)
+        error->all(FLERR, "pair_style gran/hooke/history/cantact: scatter SEED (an integer >= 0)");
+      scatter_seed = utils::bnumeric(FLERR, arg[iarg + 1], false, lmp);
+      if (scatter_seed < 0)
+        error->all(FLERR, "pair_style gran/hooke/history/cantact: scatter {}: SEED must be >= 0",
+                   arg[iarg + 1]);
+      iarg += 2;
     } else if (!parse_source(narg, arg, iarg, src, v_override, "pair_style")) {
       error->all(FLERR, "Illegal pair_style gran/hooke/history/cantact keyword: {}", arg[iarg]);
     }
   }
   if (v_override > 0.0 && src >= 0 && sources[src].table < 0)
     error->all(FLERR, "pair_style gran/hooke/history/cantact: v_per_V_star needs a table");
-  if (src >= 0 && v_override > 0.0) {
-    Source s = sources[src];
-    s.v_per_V_star = v_override;
-    check_source(s);
-    src = add_source(s);
-  }
+  // src is the source this command's `table` made: its v_per_V_star is overridden in place (a
+  // copy would leave the table's own, maybe NaN, to be refused below)
+  if (src >= 0 && v_override > 0.0) sources[src].v_per_V_star = v_override;
   default_source = src;
 
   // a pair_style command given again: the type pairs set by pair_coeff keep their own source,
@@ -573,6 +621,13 @@ void PairGranHookeHistoryCantact::settings(int narg, char **arg)
     utils::logmesg(lmp, "gran/hooke/history/cantact: e -> damping by the {} relation, from {}\n",
                    law ? "force-clipped (limit_damping)" : "tension-allowed (stock)",
                    zeta_relations());
+  if (scatter && comm->me == 0)
+    utils::logmesg(lmp,
+                   "gran/hooke/history/cantact: scatter {}: each new contact takes e at its "
+                   "speed and a probability p in [0, 1) from its table's quantile columns; p is "
+                   "Philox4x64-10 of key ({}, 0x73636174746572), counter (smaller id, larger id, "
+                   "first step, 0)\n",
+                   scatter_seed, scatter_seed);
 }
 
 /* ----------------------------------------------------------------------
@@ -632,6 +687,9 @@ int PairGranHookeHistoryCantact::add_table(const std::string &path)
 
   Table *tab = new Table;
   ct_tab &t = tab->t;
+  // every pointer null: the ranks that do not read the file fill in only what they are sent,
+  // and ct_tab_free frees them all (the quantile columns too, absent from most tables)
+  memset(&t, 0, sizeof t);
   char err[1024] = "";
   int status = 0;
   if (comm->me == 0) status = ct_tab_load(&t, path.c_str(), err, sizeof err) ? 1 : 0;
@@ -640,8 +698,9 @@ int PairGranHookeHistoryCantact::add_table(const std::string &path)
     delete tab;
     error->all(FLERR, "gran/hooke/history/cantact: {}", err);
   }
-  bigint n = comm->me == 0 ? (bigint) t.n : 0;
+  bigint n = comm->me == 0 ? (bigint) t.n : 0, nq = comm->me == 0 ? (bigint) t.nq : 0;
   MPI_Bcast(&n, 1, MPI_LMP_BIGINT, 0, world);
+  MPI_Bcast(&nq, 1, MPI_LMP_BIGINT, 0, world);
   double head[5] = {(double) t.rule, t.V_star_crit, t.tolerance, t.worst_error, t.v_per_V_star};
   MPI_Bcast(head, 5, MPI_DOUBLE, 0, world);
   if (comm->me != 0) {
@@ -658,19 +717,35 @@ int PairGranHookeHistoryCantact::add_table(const std::string &path)
     t.slope = (double *) malloc(t.n * sizeof(double));
     if (!t.V_star || !t.ln_V_star || !t.e || !t.slope)
       error->one(FLERR, "gran/hooke/history/cantact: out of memory for table {}", path);
+    t.nq = (size_t) nq;
+    if (nq) {    // a table of samples: its quantile columns, laid out as ct_tab_read leaves them
+      t.p = (double *) malloc(t.nq * sizeof(double));
+      t.e_q = (double *) malloc(t.n * t.nq * sizeof(double));
+      t.slope_q = (double *) malloc(t.n * t.nq * sizeof(double));
+      if (!t.p || !t.e_q || !t.slope_q)
+        error->one(FLERR, "gran/hooke/history/cantact: out of memory for table {}", path);
+    }
   }
   MPI_Bcast(t.V_star, (int) n, MPI_DOUBLE, 0, world);
   MPI_Bcast(t.ln_V_star, (int) n, MPI_DOUBLE, 0, world);
   MPI_Bcast(t.e, (int) n, MPI_DOUBLE, 0, world);
   MPI_Bcast(t.slope, (int) n, MPI_DOUBLE, 0, world);
+  if (nq) {
+    MPI_Bcast(t.p, (int) nq, MPI_DOUBLE, 0, world);
+    MPI_Bcast(t.e_q, (int) (n * nq), MPI_DOUBLE, 0, world);
+    MPI_Bcast(t.slope_q, (int) (n * nq), MPI_DOUBLE, 0, world);
+  }
 
   tables.push_back(tab);
   table_paths.push_back(path);
   if (comm->me == 0)
     utils::logmesg(lmp,
                    "gran/hooke/history/cantact: table {}: {} nodes on V* {:.6g} .. {:.6g}, e "
-                   "{:.6g} .. 1, v_per_V_star {:.17g}\n",
-                   path, t.n, t.V_star[0], t.V_star[t.n - 1], t.e[t.n - 1], t.v_per_V_star);
+                   "{:.6g} .. 1, v_per_V_star {:.17g}{}\n",
+                   path, t.n, t.V_star[0], t.V_star[t.n - 1], t.e[t.n - 1], t.v_per_V_star,
+                   t.nq ? fmt::format(", {} quantile columns p = {:.6g} .. {:.6g}", t.nq, t.p[0],
+                                      t.p[t.nq - 1])
+                        : std::string(", no quantile columns"));
   return (int) tables.size() - 1;
 }
 
@@ -700,6 +775,9 @@ void PairGranHookeHistoryCantact::check_source(const Source &s)
     emin = 1.0;
     for (size_t k = 0; k < t.n; k++)
       if (t.e[k] < emin) emin = t.e[k];    // both rules keep e within its nodes
+    if (scatter)    // and so the quantile columns within theirs (and p between two columns)
+      for (size_t k = 0; k < t.n * t.nq; k++)
+        if (t.e_q[k] < emin) emin = t.e_q[k];
     if (comm->me == 0)
       utils::logmesg(lmp,
                      "gran/hooke/history/cantact: table {} with v_per_V_star {:.17g} knows e for "
@@ -771,6 +849,23 @@ void PairGranHookeHistoryCantact::init_style()
     for (int j = i; j <= atom->ntypes; j++)
       if (setflag[i][j] && source_of[i][j] < 0)
         error->all(FLERR, "gran/hooke/history/cantact: no e for types {} {}", i, j);
+  // scatter draws from quantile columns: every type pair needs a table of samples
+  for (int i = 1; scatter && i <= atom->ntypes; i++)
+    for (int j = i; j <= atom->ntypes; j++) {
+      if (!setflag[i][j]) continue;
+      const Source &s = sources[source_of[i][j]];
+      if (s.table < 0)
+        error->all(FLERR,
+                   "gran/hooke/history/cantact: scatter needs a table of samples, but types {} {} "
+                   "have the constant e {}",
+                   i, j, s.e);
+      if (!tables[s.table]->t.nq)
+        error->all(FLERR,
+                   "gran/hooke/history/cantact: scatter needs a table of samples, but table {} "
+                   "(types {} {}) has no quantile columns (write it from a scene with [body] "
+                   "landings or [ensemble] realisations)",
+                   table_paths[s.table], i, j);
+    }
 }
 
 /* ----------------------------------------------------------------------
@@ -852,11 +947,11 @@ double PairGranHookeHistoryCantact::single(int i, int j, int itype, int jtype, d
   }
 
   double *shear = &allshear[N_HISTORY * neighprev];
-  double gn, e;
+  double gn, e, p;
   if (shear[H_SET] != 0.0)
     gn = shear[H_GAMMAN];
   else
-    contact_damping(itype, jtype, -vnnr * rinv, meff, e, gn, 0);
+    contact_damping(itype, jtype, atom->tag[i], atom->tag[j], -vnnr * rinv, meff, e, p, gn, 0);
   double gt = gammat_from_gamman ? 0.5 * gn : gammat;
   if (dampflag == 0) gt = 0.0;
 

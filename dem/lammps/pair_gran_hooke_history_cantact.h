@@ -1,6 +1,7 @@
 /* -*- c++ -*- ----------------------------------------------------------
    gran/hooke/history/cantact: LAMMPS's gran/hooke/history whose normal damping is set once per
-   contact from a restitution coefficient e(v) read from a cantact e(V*) table (or a constant e).
+   contact from a restitution coefficient e(v) read from a cantact e(V*) table (or a constant e);
+   with `scatter SEED`, e at a probability drawn per contact from a table of samples' quantiles.
 
    A derived class of PairGranHookeHistory (LAMMPS 29 Sep 2021): the same force law, line for
    line, with gamma_n taken per contact from the contact's history instead of the pair_style's
@@ -68,6 +69,8 @@ class PairGranHookeHistoryCantact : public PairGranHookeHistory {
   int gammat_from_gamman; // gamma_t given as NULL: 0.5 gamma_n of each contact
   int law;                // 0 tension allowed, 1 force clipped (limit_damping)
   long report_left;       // new contacts still to print (report N)
+  int scatter;            // scatter SEED: e of each new contact at a drawn quantile p
+  bigint scatter_seed;    // SEED (>= 0): Philox4x64-10's key word 0
   int outside_error;      // outside error: a contact outside its table's speeds is an error
   double contacts_set;    // contacts set up on this rank (pvector[0], summed by compute pair)
   double contacts_outside; // of which at a speed outside their table (pvector[1])
@@ -76,12 +79,17 @@ class PairGranHookeHistoryCantact : public PairGranHookeHistory {
   int add_table(const std::string &path);
   int add_source(const Source &s);
   void check_source(const Source &s);
-  double e_of_speed(const Source &s, double vn, int &covered) const;
-  // gamma_n (1/time, as stock: F_damp = meff gamma_n v_n) and e for a contact that starts
-  // now with normal approach speed vn and effective mass meff; count: a new contact of
-  // compute() (counted, and warned about or refused when outside its table), not single()
-  void contact_damping(int itype, int jtype, double vn, double meff, double &e, double &gn,
-                       int count);
+  // e at vn from the table's mean (p < 0) or at probability p in [0, 1] (its quantiles)
+  double e_of_speed(const Source &s, double vn, double p, int &covered) const;
+  // scatter: p in [0, 1) of the contact of atoms itag, jtag (either order) that starts at
+  // step, a pure function of (scatter_seed, the tags, step)
+  double scatter_p(tagint itag, tagint jtag, bigint step) const;
+  // gamma_n (1/time, as stock: F_damp = meff gamma_n v_n) and e for a contact of atoms itag,
+  // jtag that starts now with normal approach speed vn and effective mass meff (p: the drawn
+  // probability with scatter, else -1); count: a new contact of compute() (counted, and warned
+  // about or refused when outside its table), not single()
+  void contact_damping(int itype, int jtype, tagint itag, tagint jtag, double vn, double meff,
+                       double &e, double &p, double &gn, int count);
   void outside_table(Source &s, int itype, int jtype, double vn);
   void allocate_sources();
 };

@@ -4,8 +4,9 @@
 # and runs head-on collisions of 2 mm steel spheres in the stock lmp (collide_test.py says what
 # it checks); oblique impacts of unequal spheres against an ODE of the same spring-dashpot
 # (oblique_test.py); and two particle types with a table per type pair, written by
-# dem/pair_tables.py for each pair's reduced radius and mass (pairs_test.py). Exit 0 only when
-# every check passes.
+# dem/pair_tables.py for each pair's reduced radius and mass (pairs_test.py); and scatter, e drawn
+# per contact from a table of samples, checked by Kolmogorov-Smirnov (scatter_test.py). Exit 0
+# only when every check passes.
 #
 #   dem/lammps/test.sh [PATH/TO/cantact]     (default build/cantact of this checkout)
 #
@@ -19,7 +20,7 @@ t_all=$(date +%s.%N)
 elapsed() { awk -v a="$1" -v b="$(date +%s.%N)" 'BEGIN { printf "%.1f", b - a }'; }
 
 # ---- install what is missing ----
-pkgs="lammps liblammps-dev python3-lammps libopenmpi-dev openmpi-bin g++ gcc pkg-config python3 python3-numpy python3-scipy"
+pkgs="lammps liblammps-dev python3-lammps libopenmpi-dev openmpi-bin g++ gcc pkg-config librandom123-dev python3 python3-numpy python3-scipy"
 missing=""
 for p in $pkgs; do
     s=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
@@ -148,6 +149,21 @@ else
     status=1
 fi
 echo "test.sh: pairs: $(elapsed "$t") s"
+
+# ---- scatter: e at a quantile drawn per contact from a table of samples ----
+t=$(date +%s.%N)
+echo
+echo "test.sh: scatter, e of each contact at a drawn probability (scatter_test.py; docs/dem.md, \"Scatter: a table of samples\"):"
+"$cantact" table -q scripts/scenes/random_ensemble.ini --set table.tolerance=1e-2 -o "$work/e_samples.csv"
+lib="$(dirname "$cantact")/libcantact.so.0"
+[ -f "$lib" ] || lib=""
+"$py" "$here/scatter_test.py" --lmp lmp --lib "$work/build/libcantact_lammps.so" \
+    --loader "$here/cantact_load.py" --table "$work/e_samples.csv" --plain-table "$work/e_table.csv" \
+    ${lib:+--cantact-library "$lib"} --cantact-python "$repo/python" \
+    --work "$work/runs-scatter" >"$work/scatter.txt" 2>&1 || status=$?
+sed -n '/^table /,/^refused: scatter with a table/p;/^FAILED/,/^$/p;/^scatter: [0-9]/p' "$work/scatter.txt"
+[ -n "$(sed -n '/^scatter: [0-9]/p' "$work/scatter.txt")" ] || { tail -n 5 "$work/scatter.txt"; status=1; }
+echo "test.sh: scatter: $(elapsed "$t") s"
 echo "test.sh: after the install: $(elapsed "$t_start") s; with it: $(elapsed "$t_all") s"
 [ "$status" -eq 0 ] && echo "test.sh: PASS" || echo "test.sh: FAIL"
 exit "$status"
