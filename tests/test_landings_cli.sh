@@ -173,6 +173,19 @@ expect 0 "a strip's time columns" -- "$ct" run -q "$src/examples/scenes/cantor.i
     --set impact.mass=1 --set impact.velocity=0.01 --set output.what=e,time -o "$tmp/ct.csv"
 head -1 "$tmp/ct.csv" | tr ',' '\n' | grep -qx P_peak_N_per_m && ok || bad "a strip's peak force not in N/m: $(head -1 "$tmp/ct.csv")"
 
+# with a mass the plain e table carries the contact time and the peak force in the scene's units:
+# the time columns' own values (what = e,time), N for a ball
+for col in t_contact_s P_peak_N; do
+    diff <(awk -F, -v n=$col 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == n) c = i; next } { print c ? $c : "none" }' "$tmp/se.csv") \
+        <(awk -F, -v n=$col 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == n) c = i; next } { print c ? $c : "none" }' "$tmp/st.csv") >/dev/null &&
+        ! grep -q none <(awk -F, -v n=$col 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == n) c = i; next } { print c ? $c : "none" }' "$tmp/se.csv") &&
+        ok || bad "the e table's $col is not the time columns'"
+done
+expect 0 "a strip's e table" -- "$ct" run -q "$src/examples/scenes/cantor.ini" --set impact.V_star= \
+    --set impact.mass=1 --set impact.velocity=0.01 -o "$tmp/ce.csv"
+head -1 "$tmp/ce.csv" | grep -q ',v_rebound_m_per_s,t_contact_s,P_peak_N_per_m$' && ok ||
+    bad "a strip's e table: $(head -1 "$tmp/ce.csv")"
+
 # refusals, one line each, nothing written
 expect 2 "landings of the flat strip" -- "$ct" run -q "$tmp/c.ini" --set body.shape=flat -o "$tmp/no.csv"
 has err "landings need a curved body" "flat strip"

@@ -135,7 +135,11 @@ static void print_run_help(FILE *f)
                 fprintf(f, "%s%s", first ? "" : ",", cols[k].name);
                 first = 0;
             }
-        fputs(g ? "\n           and with a mass their twins in the scene's units:" : "\n", f);
+        fputs(g ? "\n           and with a mass their twins in the scene's units:"
+                : "\n           and with a mass v_impact_m_per_s,v_rebound_m_per_s,t_contact_s,"
+                  "P_peak_N_per_m\n           (P_peak_N on an areal surface; with time the last "
+                  "two are time's)\n",
+              f);
         for (size_t k = 0, first = 1; g && k < ncol; k++)
             if (!strcmp(cols[k].group, groups[g]) && cols[k].physical) {
                 fprintf(f, "%s%s", first ? " " : ",", cols[k].physical);

@@ -202,6 +202,25 @@ static void show_progress(size_t done, size_t total, void *ctx)
         ct_progress_step(prog);
 }
 
+/* 1 when the e table carries the contact time and the peak force in the scene's units without
+ * the time columns: a mass is given (issue 38: whenever mass and speed are given). */
+static int physical_time(const ct_scene *sc)
+{
+    return sc->mass > 0.0 && !(sc->what & CT_OUT_TIME);
+}
+
+/* The time columns' contact time and peak force (their places in the column table). */
+static void contact_columns(const ct_column *cols, size_t n, size_t at[2])
+{
+    at[0] = at[1] = 0;
+    for (size_t k = 0; k < n; k++) {
+        if (!strcmp(cols[k].name, "t_contact_over_tau"))
+            at[0] = k;
+        if (!strcmp(cols[k].name, "P_peak_over_PY"))
+            at[1] = k;
+    }
+}
+
 /* The scene's sweep (speeds, impacts, rule, path, the time columns), progress into prog: the
  * whole sweep and the streamed one start from it. */
 static ct_sweep_spec spec_of(const ct_scene *sc, ct_progress *prog)
@@ -217,7 +236,7 @@ static ct_sweep_spec spec_of(const ct_scene *sc, ct_progress *prog)
         .path = sc->path,
         /* with a history too: an impact whose motion fails is then a failed row (skipped
          * under on_error = skip), not a history that ends the run */
-        .dynamics = !!(sc->what & (CT_OUT_TIME | CT_OUT_HISTORY)),
+        .dynamics = !!(sc->what & (CT_OUT_TIME | CT_OUT_HISTORY)) || physical_time(sc),
     };
 }
 
@@ -253,6 +272,11 @@ static void write_e_header(FILE *f, const ct_scene *sc)
     for (size_t k = 0; k < n && sc->mass > 0.0; k++) /* with a mass, the speeds themselves */
         if (!strcmp(cols[k].group, "speed"))
             fprintf(f, ",%s", cols[k].physical);
+    if (physical_time(sc)) { /* and the contact time and the peak force */
+        size_t at[2];
+        contact_columns(cols, n, at);
+        fprintf(f, ",%s,%s", cols[at[0]].physical, ct_cli_physical_name(&cols[at[1]], sc));
+    }
     fprintf(f, "%s\n", sc->skip_failed ? ",error" : "");
 }
 
@@ -293,6 +317,16 @@ static void write_e_row(FILE *f, const ct_scene *sc, const ct_cli_columns *ec,
                       ? NAN
                       : ct_column_physical(&cols[sp->at[q]], row, L, &sc->scales.physical, tau),
                   17);
+        if (physical_time(sc)) {
+            size_t at[2];
+            contact_columns(cols, ct_sweep_columns(&cols), at);
+            for (int q = 0; q < 2; q++)
+                field(l,
+                      row->status
+                          ? NAN
+                          : ct_column_physical(&cols[at[q]], row, L, &sc->scales.physical, tau),
+                      17);
+        }
     }
     if (row->status) {
         ct_line_str(l, ",\"");
@@ -331,7 +365,8 @@ static int write_e_rows(FILE *f, const ct_scene *sc, const ct_sweep_row *rows, s
             ct_cli_fail("V* = %g impact %ld: a non-finite result", row->V_star, row->impact);
             return EXIT_FAILED;
         }
-        if ((sc->what & CT_OUT_TIME) && ct_cli_time_check(row, err, sizeof err)) {
+        if (((sc->what & CT_OUT_TIME) || physical_time(sc)) &&
+            ct_cli_time_check(row, err, sizeof err)) {
             ct_cli_fail("%s", err); /* two computations of the rebound disagree: a defect */
             return EXIT_FAILED;
         }
