@@ -28,6 +28,7 @@ struct ct_table {
     double *V, *x, *e, *d; /* nodes, ln V*, e, de/dx */
     ct_interp rule;
     ct_table_info info;
+    double q_tol, q_worst, q_worst_V; /* the quantile columns' tolerance and worst error */
     size_t nq;       /* quantile columns of a table of samples (0: of one surface) */
     double *p;       /* their probabilities */
     double *eq, *dq; /* column j at node i: [j * n + i], and its slopes */
@@ -254,6 +255,14 @@ const double *ct_table_slope_quantile(const ct_table *t, size_t j)
 uint64_t ct_table_samples(const ct_table *t)
 {
     return t->samples;
+}
+double ct_table_quantile_tolerance(const ct_table *t)
+{
+    return t->q_tol;
+}
+double ct_table_quantile_worst_error(const ct_table *t)
+{
+    return t->q_worst;
 }
 
 double ct_table_eval_quantile(const ct_table *t, double V_star, double p)
@@ -811,6 +820,11 @@ static int check_quantiles(const ct_table_quantiles *q)
             return ct_error_set(CT_EINVAL, "table: quantile %.17g: at most 6 significant digits",
                                 q->p[j]);
     }
+    if (!(q->tolerance == 0.0 || (q->tolerance >= 1e-13 && q->tolerance < 1.0)))
+        return ct_error_set(CT_EINVAL,
+                            "table: quantile tolerance = %g: must satisfy 1e-13 <= tolerance < 1 "
+                            "(0: the table's)",
+                            q->tolerance);
     if (q->grid < 2 || q->grid > 1000000)
         return ct_error_set(CT_EINVAL, "table: grid = %zu: must satisfy 2 <= grid <= 1e6", q->grid);
     return CT_OK;
@@ -926,12 +940,13 @@ static int grid_table(const sample_grid *G, const size_t *idx, size_t n, ct_inte
 /* Every grid point between the nodes against the table: the worst error into t's info and, per
  * interval, whether it fails (split[i] for interval i). Returns how many fail. */
 static size_t grid_check(const sample_grid *G, const size_t *idx, size_t n, ct_table *t, double tol,
-                         unsigned char *split)
+                         double qtol, unsigned char *split)
 {
     size_t fails = 0;
-    t->info.worst_error = 0.0;
-    t->info.worst_V_star = NAN;
+    t->info.worst_error = t->q_worst = 0.0;
+    t->info.worst_V_star = t->q_worst_V = NAN;
     t->info.checked = 0;
+    t->q_tol = qtol;
     for (size_t i = 0; i + 1 < n; i++) {
         split[i] = 0;
         for (size_t g = idx[i] + 1; g < idx[i + 1]; g++) {
@@ -944,11 +959,13 @@ static size_t grid_check(const sample_grid *G, const size_t *idx, size_t n, ct_t
                                       (int)t->rule, t->info.V_star_crit, G->V[g])
                       : ct_table_eval(t, G->V[g]);
                 const double err = fabs(v - G->y[c * G->M + g]);
-                if (err > t->info.worst_error || isnan(err)) {
-                    t->info.worst_error = err;
-                    t->info.worst_V_star = G->V[g];
+                double *worst = c ? &t->q_worst : &t->info.worst_error,
+                       *where = c ? &t->q_worst_V : &t->info.worst_V_star;
+                if (err > *worst || isnan(err)) {
+                    *worst = err;
+                    *where = G->V[g];
                 }
-                if (!(err <= tol))
+                if (!(err <= (c ? qtol : tol)))
                     split[i] = 1;
             }
         }
@@ -1024,7 +1041,8 @@ int ct_table_build_samples(ct_table **out, const ct_ensemble_spec *samples,
         t = NULL;
         if ((st = grid_table(&G, idx, n, spec->interpolation, q, &t)))
             goto done;
-        const size_t fails = grid_check(&G, idx, n, t, spec->tolerance, split);
+        const double qtol = q->tolerance > 0.0 ? q->tolerance : spec->tolerance;
+        const size_t fails = grid_check(&G, idx, n, t, spec->tolerance, qtol, split);
         t->info.rounds = round;
         if (!fails)
             break;
@@ -1044,11 +1062,12 @@ int ct_table_build_samples(ct_table **out, const ct_ensemble_spec *samples,
             next[m++] = idx[i];
             if (i + 1 < n && split[i] && !(next[m] = grid_split(&G, idx[i], idx[i + 1]))) {
                 st = ct_error_set(CT_ENOCONV,
-                                  "table: tolerance %.3g not met at the grid's resolution: "
-                                  "between the grid points next to V* = %.6g (worst error %.3g "
-                                  "at V* = %.6g); raise table.grid or the tolerance",
-                                  spec->tolerance, G.V[idx[i]], t->info.worst_error,
-                                  t->info.worst_V_star);
+                                  "table: tolerance %.3g (quantiles %.3g) not met at the "
+                                  "grid's resolution: between the grid points next to V* = "
+                                  "%.6g (worst error of the mean %.3g, of a quantile %.3g); "
+                                  "raise table.grid or the tolerances",
+                                  spec->tolerance, t->q_tol, G.V[idx[i]], t->info.worst_error,
+                                  t->q_worst);
                 goto done;
             }
             m += i + 1 < n && split[i];
@@ -1146,6 +1165,8 @@ int ct_table_write(FILE *f, const ct_table *t, const ct_table_meta *meta)
                 "# quantiles = %zu (e at each p over the %llu samples%s%s: the columns e_p<p>)\n",
                 t->nq, (unsigned long long)t->samples, meta->samples ? ", " : "",
                 meta->samples ? meta->samples : "");
+        put_value(f, "quantile_tolerance", t->q_tol);
+        put_value(f, "quantile_worst_error", t->q_worst);
         fputs("# rule: e at (V_star, p): each column e_p<p> at V_star by the rule above, kept "
               "non-decreasing in p (a running maximum), then linear in p between the two "
               "columns about p (outside the first and last p, the nearest column); e is the "

@@ -1047,6 +1047,23 @@ static void samples_table(void **state)
         checked++;
     }
     assert_true(checked >= 5);
+    /* the quantile columns against a tolerance of their own (each has a kink wherever two
+     * samples' e cross): the mean within the table's, the quantiles within theirs, and looser */
+    ct_table *t2;
+    ct_table_spec spec2 = spec;
+    spec2.tolerance = 2e-3;
+    ct_table_quantiles q2 = q;
+    q2.tolerance = 2e-2;
+    assert_int_equal(ct_table_build_samples(&t2, &es, &spec2, &q2), CT_OK);
+    ct_table_info in2;
+    ct_table_get_info(t2, &in2);
+    assert_true(in2.worst_error <= 2e-3);
+    assert_true(ct_table_quantile_tolerance(t2) == 2e-2);
+    assert_true(ct_table_quantile_worst_error(t2) <= 2e-2);
+    assert_true(ct_table_quantile_worst_error(t2) > 2e-3); /* the looser one was used */
+    ct_table_free(t2);
+    q2.tolerance = 1.5;
+    assert_int_equal(ct_table_build_samples(&t2, &es, &spec2, &q2), CT_EINVAL);
     /* the file read back, by the library and by the header alone */
     char path[] = "/tmp/ct_samples_XXXXXX", err[512];
     int fd = mkstemp(path);

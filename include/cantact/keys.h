@@ -98,6 +98,7 @@ typedef struct {
     int split;
     ct_speeds table_quantiles; /* [table] of samples: the probabilities (n = 0: the default) */
     long table_grid;
+    double table_quantile_tolerance; /* 0: the table's tolerance */
 } ct_run_keys;
 /* The rows of ct_run_keys (their offsets point into it): every front-end parses the run's
  * keys through them (ct_key_parse), so ranges, words and defaults are stated once. */

@@ -133,9 +133,11 @@ int ct_table_read(ct_table **out, const char *path, ct_table_file_info *file);
  * The check is at the grid points (between them it is not checked). */
 #define CT_TABLE_MAX_QUANTILES 64
 typedef struct {
-    const double *p; /* probabilities, strictly increasing in [0, 1], 6 significant digits */
-    size_t np;       /* 1 .. CT_TABLE_MAX_QUANTILES */
-    size_t grid;     /* speeds every sample is computed at, 2 .. 1e6 */
+    const double *p;  /* probabilities, strictly increasing in [0, 1], 6 significant digits */
+    size_t np;        /* 1 .. CT_TABLE_MAX_QUANTILES */
+    size_t grid;      /* speeds every sample is computed at, 2 .. 1e6 */
+    double tolerance; /* the quantile columns' (0: the table's, spec->tolerance): e at a
+                         quantile has a kink wherever two samples' e cross, the mean far fewer */
 } ct_table_quantiles;
 /* The table of samples (samples: count, first, the surface or rods and body; its speeds,
  * impacts, options, interrupt and progress are the table's: spec) over spec's range with
@@ -149,6 +151,10 @@ const double *ct_table_p(const ct_table *t);                    /* the probabili
 const double *ct_table_e_quantile(const ct_table *t, size_t j); /* e at p[j] at the nodes */
 const double *ct_table_slope_quantile(const ct_table *t, size_t j);
 uint64_t ct_table_samples(const ct_table *t); /* samples the statistics are over */
+/* The quantile columns' tolerance and their largest error at the checked points (the mean's is
+ * ct_table_info's worst_error). */
+double ct_table_quantile_tolerance(const ct_table *t);
+double ct_table_quantile_worst_error(const ct_table *t);
 /* e at V* and probability p by cantact_table.h's rule (ct_tab_eval_quantile): NaN for a table
  * without quantiles or p outside [0, 1]. */
 double ct_table_eval_quantile(const ct_table *t, double V_star, double p);

@@ -506,6 +506,7 @@ typedef struct {
     int split;
     ct_speeds table_quantiles;
     long table_grid;
+    double table_quantile_tolerance;
 } ct_run_keys;
 const ct_key *ct_run_keys_table(size_t *n);
 void ct_run_keys_defaults(ct_run_keys *k);

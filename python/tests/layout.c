@@ -284,6 +284,7 @@ int main(void)
     FIELD(ct_run_keys, split);
     FIELD(ct_run_keys, table_quantiles);
     FIELD(ct_run_keys, table_grid);
+    FIELD(ct_run_keys, table_quantile_tolerance);
     SIZE(ct_run_solver);
     FIELD(ct_run_solver, opts);
     FIELD(ct_run_solver, path);

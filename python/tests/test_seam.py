@@ -395,6 +395,7 @@ RUN = {
     "table.check_points": (cantact.table, "check_points"),
     "table.quantiles": "the program's: tables of samples (read_table reads them: quantile())",
     "table.grid": "the program's: tables of samples",
+    "table.quantile_tolerance": "the program's: tables of samples",
     "ensemble.realisations": (cantact.ensemble, "realisations"),
     "ensemble.split": (cantact.ensemble, "split"),
 }

@@ -650,6 +650,7 @@ static int table_values(parse_state *s, ct_scene *sc, const ct_scene_keys *k)
     sc->table_max_nodes = k->run.max_nodes;
     sc->table_check_points = k->run.check_points;
     sc->table_grid = k->run.table_grid;
+    sc->table_qtol = k->run.table_quantile_tolerance;
     /* the probabilities, named in the file by 6 significant digits: rounded to them */
     const ct_speeds *q = &k->run.table_quantiles;
     entry *eq = find_entry(s, "table", "quantiles");

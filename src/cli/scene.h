@@ -57,8 +57,9 @@ typedef struct {
     double table_p[CT_TABLE_MAX_QUANTILES]; /* a table of samples: its probabilities */
     size_t table_np;
     long table_grid;
-    ct_body body;    /* [body]: what strikes the rods (flat by default) */
-    char *inputs[8]; /* the files this run reads: the scene, the surface's files */
+    double table_qtol; /* 0: table_tolerance */
+    ct_body body;      /* [body]: what strikes the rods (flat by default) */
+    char *inputs[8];   /* the files this run reads: the scene, the surface's files */
     const char *input_what[8];
     size_t ninputs;
     char name[300];         /* the scene's name in messages */

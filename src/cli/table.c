@@ -46,6 +46,8 @@ const char *const ct_cli_table_help =
     "column is within the tolerance (cantact_table.h: ct_tab_eval_quantile).\n"
     "  quantiles = 0.01, 0.05, ..., 0.95, 0.99   probabilities in (0, 1] (at most 64)\n"
     "  grid = 2000                speeds every sample is computed at (2 .. 1e6)\n"
+    "  quantile_tolerance = tolerance   the quantile columns' (each has a kink wherever two\n"
+    "                             samples' e cross: far more than the mean)\n"
     "\n"
     "Options:\n"
     "  --set section.key=value   override a scene key (each once; key= unsets it)\n"
@@ -78,7 +80,10 @@ static int build_samples_table(const ct_scene *sc, const ct_table_spec *spec, ct
         snprintf(what, len, "ensemble.realisations = %llu", (unsigned long long)s.count);
     ct_ensemble_spec es;
     ct_cli_samples_spec(sc, &s, 0, s.count, &es);
-    ct_table_quantiles q = {.p = sc->table_p, .np = sc->table_np, .grid = (size_t)sc->table_grid};
+    ct_table_quantiles q = {.p = sc->table_p,
+                            .np = sc->table_np,
+                            .grid = (size_t)sc->table_grid,
+                            .tolerance = sc->table_qtol};
     st = ct_table_build_samples(t, &es, spec, &q);
     ct_cli_samples_free(&s);
     return st;
@@ -177,11 +182,12 @@ int ct_cli_table(int argc, char **argv)
     if (!a.quiet && ct_table_quantile_count(t))
         fprintf(stderr,
                 "cantact: table of the mean and %zu quantiles of e over %s: %zu nodes on V* %.6g "
-                ".. %.6g, %s: worst error %.3g at V* = %.6g over %zu checked grid points of %ld "
-                "(tolerance %.3g; %zu impacts)\n",
+                ".. %.6g, %s: worst error of the mean %.3g (tolerance %.3g), of a quantile %.3g "
+                "(tolerance %.3g), over %zu checked grid points of %ld (%zu impacts)\n",
                 ct_table_quantile_count(t), samples, ct_table_size(t), sc.table_V_min,
                 sc.table_V_max, ct_interp_name(ct_table_interpolation(t)), in.worst_error,
-                in.worst_V_star, in.checked, sc.table_grid, sc.table_tolerance, in.evaluations);
+                sc.table_tolerance, ct_table_quantile_worst_error(t),
+                ct_table_quantile_tolerance(t), in.checked, sc.table_grid, in.evaluations);
     else if (!a.quiet)
         fprintf(stderr,
                 "cantact: table of %zu nodes (%zu at kinks) on V* %.6g .. %.6g, %s: worst "

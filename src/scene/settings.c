@@ -78,6 +78,11 @@ static const ct_key run_keys[] = {
      "a table of samples: the speeds, equally spaced in ln V*, every sample is computed and "
      "checked at",
      AT(table_grid)},
+    {"table", "quantile_tolerance", CT_KEY_NUMBER, 1e-13, 0.5, CT_KEY_LO_CLOSED, NULL,
+     "must satisfy 1e-13 <= quantile_tolerance < 0.5", "table.tolerance",
+     "a table of samples: largest error of a quantile column at every checked point (each has "
+     "a kink wherever two samples' e cross: far more than the mean)",
+     AT(table_quantile_tolerance)},
     {"ensemble", "realisations", CT_KEY_INTEGER, 1, 1000000000, 0, NULL,
      "must satisfy 1 <= realisations <= 1e9", "",
      "realisations of a random surface (their statistics per speed)", AT(realisations)},
